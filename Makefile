@@ -1,0 +1,126 @@
+# rigid: build, test, run, bench, charts, sanitize.
+#   make                 build/librigid.a and build/librigid.so (float build)
+#   make test            build everything and run every test (installs what is missing)
+#   make run             the main job
+#   make REAL=double     the double-precision build, in build/double/
+#   make sanitize        the tests under AddressSanitizer + UndefinedBehaviorSanitizer
+#   make install PREFIX=/usr/local
+REAL ?= float
+PREFIX ?= /usr/local
+CC ?= cc
+PYTHON ?= python3
+
+ifeq ($(REAL),double)
+REAL_FLAGS := -DRG_DOUBLE
+DEFAULT_B := build/double
+else ifeq ($(REAL),float)
+REAL_FLAGS :=
+DEFAULT_B := build
+else
+$(error REAL must be float or double)
+endif
+B ?= $(DEFAULT_B)
+
+OPT ?= -O2
+WARN := -Wall -Wextra -Wpedantic -Werror -Wshadow -Wundef -Wwrite-strings \
+        -Wmissing-prototypes -Wstrict-prototypes -Wdouble-promotion -Wcast-qual \
+        -Wpointer-arith -Wvla
+CFLAGS := -std=c99 $(OPT) -ffp-contract=off -fPIC -fvisibility=hidden $(WARN) $(REAL_FLAGS) \
+          -Iinclude -Isrc -MMD -MP $(EXTRA_CFLAGS)
+LDFLAGS := $(EXTRA_LDFLAGS)
+LDLIBS := -lm
+
+VERSION := 0.1.0
+SONAME := librigid.so.0
+LIB_SRC := $(wildcard src/*.c)
+LIB_OBJ := $(patsubst src/%.c,$(B)/obj/%.o,$(LIB_SRC))
+LIB_A := $(B)/librigid.a
+LIB_SO := $(B)/librigid.so
+
+CMOCKA_LIBS := -lcmocka
+TEST_SRC := $(wildcard tests/test_*.c)
+TEST_BINS := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_SRC))
+
+# Fragments append to these.
+ALL_TARGETS := $(LIB_A) $(LIB_SO)
+TEST_RUNS := check-c check-ffi check-readme
+
+.PHONY: all test test-all deps sanitize install clean run bench charts $(TEST_RUNS)
+all: $(ALL_TARGETS)
+
+# ---------------------------------------------------------------- library
+$(B)/obj/%.o: src/%.c
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -c $< -o $@
+
+$(LIB_A): $(LIB_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(LIB_SO): $(LIB_OBJ)
+	$(CC) -shared -Wl,-soname,$(SONAME) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+# ---------------------------------------------------------------- tests
+$(B)/tests/%: tests/%.c tests/testutil.h $(LIB_A)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -Itests $(LDFLAGS) -o $@ $< $(LIB_A) $(CMOCKA_LIBS) $(LDLIBS)
+
+check-c: $(TEST_BINS)
+	@fail=0; for t in $(TEST_BINS); do echo "== $$t"; $$t || fail=1; done; exit $$fail
+
+check-ffi: $(LIB_SO)
+	@echo "== tests/test_ffi.py"
+	$(FFI_ENV) $(PYTHON) tests/test_ffi.py $(LIB_SO)
+
+# The README's C example, extracted and compiled, so it stays true.
+$(B)/readme_example.c: README.md
+	@mkdir -p $(@D)
+	awk '/^<!-- example:c -->/{on=1;next} on&&/^```c/{inb=1;next} inb&&/^```/{exit} inb{print}' $< > $@
+	@test -s $@ || { echo "README.md has no C example"; exit 1; }
+
+$(B)/readme_example: $(B)/readme_example.c $(LIB_A)
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $< $(LIB_A) $(LDLIBS)
+
+check-readme: $(B)/readme_example
+	@echo "== README C example"
+	$(B)/readme_example
+
+# Installs what is missing (tools/install-deps.sh is a no-op when all is there).
+deps:
+	@tools/install-deps.sh
+
+test: deps
+	@$(MAKE) --no-print-directory test-all
+
+test-all: $(ALL_TARGETS)
+	@fail=0; for r in $(TEST_RUNS); do $(MAKE) --no-print-directory $$r || fail=1; done; \
+	 if [ $$fail -ne 0 ]; then echo "make test: FAILED"; exit 1; fi; echo "make test: all passed ($(REAL))"
+
+SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g
+sanitize: deps
+	@$(MAKE) --no-print-directory test-all B=build/sanitize OPT=-O1 \
+	  EXTRA_CFLAGS="$(SAN_FLAGS)" EXTRA_LDFLAGS="$(SAN_FLAGS)" \
+	  FFI_ENV="LD_PRELOAD=$$($(CC) -print-file-name=libasan.so) ASAN_OPTIONS=detect_leaks=0"
+
+# ---------------------------------------------------------------- install
+$(B)/rigid.pc: Makefile
+	@mkdir -p $(@D)
+	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: rigid\nDescription: 2D game physics in C99\nVersion: %s\nCflags: -I$${includedir} %s\nLibs: -L$${libdir} -lrigid\nLibs.private: -lm\n' \
+	  '$(PREFIX)' '$(VERSION)' '$(REAL_FLAGS)' > $@
+
+install: $(LIB_A) $(LIB_SO) $(B)/rigid.pc
+	install -d $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig
+	install -m 644 include/rigid.h $(DESTDIR)$(PREFIX)/include/
+	install -m 644 $(LIB_A) $(DESTDIR)$(PREFIX)/lib/
+	install -m 755 $(LIB_SO) $(DESTDIR)$(PREFIX)/lib/librigid.so.$(VERSION)
+	ln -sf librigid.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/$(SONAME)
+	ln -sf $(SONAME) $(DESTDIR)$(PREFIX)/lib/librigid.so
+	install -m 644 $(B)/rigid.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/
+
+clean:
+	rm -rf build
+
+# Lua binding and host, tools (seed scene, accuracy lab, benchmark): their own fragments.
+include $(sort $(wildcard lua/*.mk tools/*.mk))
+
+-include $(LIB_OBJ:.o=.d) $(TEST_BINS:=.d)

@@ -1,0 +1,210 @@
+/* rigid.h: the one public header of rigid, a C99 library for 2D game physics.
+ *
+ * Units are SI throughout: metres, seconds, kilograms, newtons.  Every function validates
+ * its input in every build and returns a status; a call that returns an error changes
+ * nothing.  No input, however bad, crashes the library or puts a NaN into the world.
+ *
+ * The contract is in shared/ABI.md: the names, parameter orders, types and values of the
+ * entry points it lists are fixed.  Everything else here extends it in the same style.
+ */
+#ifndef RIGID_H
+#define RIGID_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define RG_VERSION_MAJOR 0
+#define RG_VERSION_MINOR 1
+#define RG_VERSION_PATCH 0
+#define RG_VERSION (RG_VERSION_MAJOR * 10000 + RG_VERSION_MINOR * 100 + RG_VERSION_PATCH)
+
+#if defined(_WIN32) && defined(RG_BUILD_SHARED)
+#define RG_API __declspec(dllexport)
+#elif defined(__GNUC__) || defined(__clang__)
+#define RG_API __attribute__((visibility("default")))
+#else
+#define RG_API
+#endif
+
+/* ---------------------------------------------------------------- basic types */
+
+#ifdef RG_DOUBLE
+typedef double rg_real;
+#else
+typedef float rg_real;
+#endif
+
+/* A 2D vector.  The only struct passed by value, and only as an input. */
+typedef struct rg_vec2 {
+    rg_real x, y;
+} rg_vec2;
+
+typedef struct rg_world rg_world;   /* opaque; created and destroyed by the library */
+
+/* A body handle: slot index, generation and a world tag packed in 64 bits.  0 is never a
+ * body; a destroyed body's handle never becomes valid again in that world. */
+typedef uint64_t rg_body;
+
+typedef int32_t rg_status;
+#define RG_OK                    0
+#define RG_ERR_INVALID_ARGUMENT (-1) /* NULL, NaN/inf, negative mass or size, dt <= 0, bad enum */
+#define RG_ERR_STALE_HANDLE     (-2) /* destroyed, forged, zero or another world's handle */
+#define RG_ERR_OUT_OF_MEMORY    (-3)
+#define RG_ERR_CAPACITY         (-4) /* more bodies or springs than a world can hold */
+#define RG_ERR_LOCKED           (-5) /* not allowed at this moment */
+
+#define RG_INTEGRATOR_EXPLICIT_EULER      0
+#define RG_INTEGRATOR_SEMI_IMPLICIT_EULER 1   /* the default */
+#define RG_INTEGRATOR_VELOCITY_VERLET     2
+#define RG_INTEGRATOR_RK4                 3
+
+#define RG_BODY_STATIC    0   /* never moves; infinite mass */
+#define RG_BODY_KINEMATIC 1   /* moves by its velocity only; pushes, is never pushed */
+#define RG_BODY_DYNAMIC   2   /* moved by forces, impulses and contacts */
+
+/* Most bodies and most springs one world holds (slot indices are 24 bits). */
+#define RG_MAX_BODIES  16777215
+#define RG_MAX_SPRINGS 16777215
+
+/* Human-readable text for a status; never NULL. */
+RG_API const char *rg_status_string(rg_status s);
+/* MAJOR*10000 + MINOR*100 + PATCH of the loaded library; equals RG_VERSION. */
+RG_API int32_t rg_version(void);
+/* sizeof(rg_real) of the loaded library: 4 (float build) or 8 (double build). */
+RG_API int32_t rg_real_size(void);
+
+/* ---------------------------------------------------------------- world */
+
+/* Allocator in the style of lua_Alloc: new_size == 0 frees ptr and returns NULL; otherwise
+ * it returns a block of new_size bytes holding the first min(old_size, new_size) bytes of
+ * ptr (ptr is NULL and old_size 0 for a fresh block), or NULL when it cannot, in which case
+ * ptr stays valid.  Blocks must be aligned for any type, as malloc's are. */
+typedef void *(*rg_alloc_fn)(void *user, void *ptr, size_t old_size, size_t new_size);
+
+/* Creates an empty world: gravity (0, 0), no wind, semi-implicit Euler, fixed step 1/60 s
+ * with at most 8 steps per advance.  Uses malloc/realloc/free. */
+RG_API rg_status rg_world_create(rg_world **out_world);
+/* The same with every allocation of this world going through alloc(user, ...). */
+RG_API rg_status rg_world_create_with_allocator(rg_alloc_fn alloc, void *user,
+                                                rg_world **out_world);
+/* Frees the world and everything in it.  NULL is a no-op. */
+RG_API void rg_world_destroy(rg_world *world);
+
+/* Gravity as an acceleration in m/s^2, applied to dynamic bodies times their gravity scale. */
+RG_API rg_status rg_world_set_gravity(rg_world *world, rg_vec2 gravity);
+RG_API rg_status rg_world_get_gravity(const rg_world *world, rg_vec2 *out_gravity);
+/* Wind as a force in N: the same force on every dynamic body (a light body feels more). */
+RG_API rg_status rg_world_set_wind(rg_world *world, rg_vec2 force);
+RG_API rg_status rg_world_get_wind(const rg_world *world, rg_vec2 *out_force);
+/* One of RG_INTEGRATOR_*. */
+RG_API rg_status rg_world_set_integrator(rg_world *world, int32_t integrator);
+RG_API rg_status rg_world_get_integrator(const rg_world *world, int32_t *out_integrator);
+
+/* Exactly one step of length dt seconds (dt > 0 and finite):
+ * forces -> integrate -> speed limits -> collide -> events -> clear applied forces. */
+RG_API rg_status rg_world_step(rg_world *world, rg_real dt);
+
+/* The step rg_world_advance takes (dt > 0, finite) and the most steps one advance may take
+ * (>= 1).  Changing them keeps the accumulated time. */
+RG_API rg_status rg_world_set_fixed_step(rg_world *world, rg_real dt, int32_t max_steps_per_advance);
+RG_API rg_status rg_world_get_fixed_step(const rg_world *world, rg_real *out_dt,
+                                         int32_t *out_max_steps);
+/* Adds frame_time (>= 0, finite, seconds) to an accumulator and takes as many fixed steps
+ * as fit, at most max_steps_per_advance; time beyond that is dropped (the game slows down
+ * instead of spiralling).  *out_steps (may be NULL) receives the number of steps taken.
+ * The state after k fixed steps is bit-identical whatever frame times fed the accumulator. */
+RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *out_steps);
+/* accumulator / fixed dt after the last advance, in [0, 1): the blend factor for rendering. */
+RG_API rg_status rg_world_get_alpha(const rg_world *world, rg_real *out_alpha);
+/* prev + alpha * (current - prev), where prev is the position before the last step taken
+ * by rg_world_advance.  After a direct rg_world_step, or a set_position, it is the current
+ * position. */
+RG_API rg_status rg_body_get_interpolated_position(const rg_world *world, rg_body body,
+                                                   rg_vec2 *out);
+/* Number of live bodies; 0 for NULL. */
+RG_API int32_t rg_world_body_count(const rg_world *world);
+/* Number of live springs; 0 for NULL. */
+RG_API int32_t rg_world_spring_count(const rg_world *world);
+
+/* ---------------------------------------------------------------- bodies */
+
+/* type is one of RG_BODY_*.  mass (kg) must be > 0 and finite for a dynamic body; it is
+ * ignored (may be anything finite) for the others.  position in m.  Defaults: velocity 0,
+ * gravity scale 1, no drag, no surface friction, no speed limits. */
+RG_API rg_status rg_body_create(rg_world *world, int32_t type, rg_real mass, rg_vec2 position,
+                                rg_body *out_body);
+/* Destroys the body and the springs attached to it (their handles go stale). */
+RG_API rg_status rg_body_destroy(rg_world *world, rg_body body);
+/* 1 when body is a live body of this world, else 0 (also for NULL world). */
+RG_API int32_t rg_body_is_valid(const rg_world *world, rg_body body);
+/* One of RG_BODY_*. */
+RG_API rg_status rg_body_get_type(const rg_world *world, rg_body body, int32_t *out_type);
+/* Mass in kg; 0 for static and kinematic bodies. */
+RG_API rg_status rg_body_get_mass(const rg_world *world, rg_body body, rg_real *out_mass);
+/* New mass in kg (> 0, finite) of a dynamic body; RG_ERR_INVALID_ARGUMENT for the others. */
+RG_API rg_status rg_body_set_mass(rg_world *world, rg_body body, rg_real mass);
+
+/* Position in m, velocity in m/s.  A static body has no velocity: setting a non-zero one
+ * is RG_ERR_INVALID_ARGUMENT. */
+RG_API rg_status rg_body_get_position(const rg_world *world, rg_body body, rg_vec2 *out);
+RG_API rg_status rg_body_set_position(rg_world *world, rg_body body, rg_vec2 position);
+RG_API rg_status rg_body_get_velocity(const rg_world *world, rg_body body, rg_vec2 *out);
+RG_API rg_status rg_body_set_velocity(rg_world *world, rg_body body, rg_vec2 velocity);
+/* The acceleration (m/s^2) the last step started with: sum(forces)/mass + gravity*scale,
+ * forces being wind, applied forces, drag, surface friction and springs at the start state.
+ * 0 before the first step and for non-dynamic bodies. */
+RG_API rg_status rg_body_get_acceleration(const rg_world *world, rg_body body, rg_vec2 *out);
+
+/* A force in N held constant over the next step, then cleared.  Forces add up.  No effect
+ * on static and kinematic bodies (infinite mass), which is not an error. */
+RG_API rg_status rg_body_apply_force(rg_world *world, rg_body body, rg_vec2 force);
+/* An impulse in N*s: velocity += impulse / mass at once.  No effect on non-dynamic bodies. */
+RG_API rg_status rg_body_apply_impulse(rg_world *world, rg_body body, rg_vec2 impulse);
+/* Multiplies world gravity for this body (any finite value; 0 floats, -1 falls up). */
+RG_API rg_status rg_body_set_gravity_scale(rg_world *world, rg_body body, rg_real scale);
+/* Air drag F = -(linear + quadratic * |v|) * v, with linear in kg/s and quadratic in kg/m
+ * (quadratic = 1/2 * rho * Cd * A); both >= 0 and finite. */
+RG_API rg_status rg_body_set_drag(rg_world *world, rg_body body, rg_real linear, rg_real quadratic);
+/* Surface friction F = -mu * normal_force * v/|v| (mu >= 0, normal_force >= 0 in N): a body
+ * sliding on a surface, as seen from above.  It brings the body exactly to rest, never
+ * reverses it, and holds it at rest against any smaller force (static friction). */
+RG_API rg_status rg_body_set_surface_friction(rg_world *world, rg_body body, rg_real mu,
+                                              rg_real normal_force);
+/* After each step: |v| < min_speed -> v = 0 exactly; |v| > max_speed -> v scaled to
+ * max_speed.  max_speed = 0 means no limit; both >= 0, and max_speed >= min_speed unless 0. */
+RG_API rg_status rg_body_set_speed_limits(rg_world *world, rg_body body, rg_real min_speed,
+                                          rg_real max_speed);
+/* An opaque 64-bit value for the caller (an entity id, an index); 0 by default. */
+RG_API rg_status rg_body_set_user_data(rg_world *world, rg_body body, uint64_t user_data);
+RG_API rg_status rg_body_get_user_data(const rg_world *world, rg_body body, uint64_t *out);
+
+/* Dissipative forces (drag, surface friction) never reverse a velocity within a step: when
+ * the explicit force would carry the velocity through zero, as it does when
+ * mu*N*dt/m > |v| or (linear + quadratic*|v|)*dt/m > 1, that body's step treats them
+ * implicitly instead (friction projects the velocity to exactly zero; drag solves
+ * v' = v_free - dt*(linear + quadratic*|v'|)*v'/m).  Small steps keep the integrator's order. */
+
+/* ---------------------------------------------------------------- springs */
+
+/* A damped spring between two points: F = -(stiffness*(|d| - rest_length) +
+ * damping*(dv . d/|d|)) * d/|d| on a, the opposite on b, where d = pos(a) - pos(b) and dv
+ * the relative velocity.  b = 0 ties a to the fixed world point `anchor` (ignored
+ * otherwise).  stiffness in N/m, damping in N*s/m, rest_length in m, all >= 0 and finite.
+ * A zero rest length gives F = -stiffness * d exactly.  Evaluated at every stage of a
+ * multi-stage integrator.  a and b must be distinct live bodies of this world. */
+RG_API rg_status rg_spring_create(rg_world *world, rg_body a, rg_body b, rg_vec2 anchor,
+                                  rg_real rest_length, rg_real stiffness, rg_real damping,
+                                  uint64_t *out_spring);
+RG_API rg_status rg_spring_destroy(rg_world *world, uint64_t spring);
+/* 1 when spring is a live spring of this world, else 0. */
+RG_API int32_t rg_spring_is_valid(const rg_world *world, uint64_t spring);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* RIGID_H */

@@ -1,0 +1,259 @@
+/* integrator.c: the four integrators over the dense arrays of the active partition. */
+#include <string.h>
+
+#include "integrator.h"
+#include "vec2.h"
+#include "world.h"
+
+/* Backward-Euler dissipation for one body: given the velocity v_free the other forces give
+ * over h, solve v' = v_free - h/m * (muN + lin*|v'| + quad*|v'|^2) * v'/|v'| for v' along
+ * v_free.  Friction that exceeds |v_free| stops the body exactly (static friction);
+ * otherwise a*s^2 + b*s - (|v_free| - h*muN/m) = 0 with a = h*quad/m, b = 1 + h*lin/m,
+ * taken in the cancellation-free form s = 2c / (b + sqrt(b^2 + 4ac)).  |v'| <= |v_free|, so
+ * it can never reverse or grow the velocity. */
+static inline void dissipate_implicit(rg_real vfx, rg_real vfy, rg_real lin, rg_real quad,
+                                      rg_real fric, rg_real inv_m, rg_real h,
+                                      rg_real *out_vx, rg_real *out_vy)
+{
+    rg_real s = rg_sqrt(vfx * vfx + vfy * vfy);
+    rg_real c = s - h * inv_m * fric;
+    if (!(c > 0)) {
+        *out_vx = 0;
+        *out_vy = 0;
+        return;
+    }
+    rg_real a = h * inv_m * quad, bb = 1 + h * inv_m * lin;
+    rg_real s1 = 2 * c / (bb + rg_sqrt(bb * bb + 4 * a * c));
+    rg_real k = s1 / s;
+    *out_vx = vfx * k;
+    *out_vy = vfy * k;
+}
+
+/* The explicit step is kept unless it would carry the velocity through zero (the new
+ * velocity no longer points along v_free), or the body starts at rest, where friction has
+ * no direction and acts as static friction.  NaN compares false, so it falls back too. */
+static inline int dissipation_overshoots(rg_real v0x, rg_real v0y, rg_real nvx, rg_real nvy,
+                                         rg_real vfx, rg_real vfy)
+{
+    return (v0x == 0 && v0y == 0) || !(nvx * vfx + nvy * vfy > 0);
+}
+
+/* Explicit and semi-implicit Euler in one fused pass: one force evaluation at the start
+ * state, so drag and friction are evaluated inline and springs come from one spring pass. */
+static void euler_step(rg_world *w, rg_real h, int explicit_euler)
+{
+    body_store *b = &w->b;
+    int32_t n = b->n_active;
+    rg_real gx = w->gravity.x, gy = w->gravity.y, wx = w->wind.x, wy = w->wind.y;
+    const int springs = w->springs.count > 0;
+    const int dissipative = w->dissipative_count > 0;
+    if (springs) force_springs(w, w->scratch.sax, w->scratch.say);
+    const rg_real *sax = w->scratch.sax, *say = w->scratch.say;
+    for (int32_t i = 0; i < n; i++) {
+        rg_real im = b->inv_mass[i];
+        rg_real ax = gx * b->gscale[i] + (wx + b->fx[i]) * im;
+        rg_real ay = gy * b->gscale[i] + (wy + b->fy[i]) * im;
+        if (springs) {
+            ax += sax[i];
+            ay += say[i];
+        }
+        rg_real v0x = b->vx[i], v0y = b->vy[i];
+        rg_real vfx = v0x + ax * h, vfy = v0y + ay * h; /* without dissipation */
+        rg_real nvx = vfx, nvy = vfy;
+        if (dissipative && (b->flags[i] & BODY_F_DISSIPATIVE)) {
+            rg_real speed = rg_sqrt(v0x * v0x + v0y * v0y);
+            if (speed > 0) {
+                rg_real k = (b->drag_lin[i] + b->drag_quad[i] * speed + b->fric[i] / speed) * im;
+                ax -= k * v0x;
+                ay -= k * v0y;
+                nvx = v0x + ax * h;
+                nvy = v0y + ay * h;
+            }
+            if (dissipation_overshoots(v0x, v0y, nvx, nvy, vfx, vfy))
+                dissipate_implicit(vfx, vfy, b->drag_lin[i], b->drag_quad[i], b->fric[i], im, h,
+                                   &nvx, &nvy);
+        }
+        b->ax[i] = ax;
+        b->ay[i] = ay;
+        if (explicit_euler) {
+            b->x[i] += v0x * h;
+            b->y[i] += v0y * h;
+        } else {
+            b->x[i] += nvx * h;
+            b->y[i] += nvy * h;
+        }
+        b->vx[i] = nvx;
+        b->vy[i] = nvy;
+    }
+}
+
+static void save_start(rg_world *w, int32_t n)
+{
+    scratch_store *s = &w->scratch;
+    const body_store *b = &w->b;
+    memcpy(s->x0, b->x, (size_t)n * sizeof *b->x);
+    memcpy(s->y0, b->y, (size_t)n * sizeof *b->y);
+    memcpy(s->vx0, b->vx, (size_t)n * sizeof *b->vx);
+    memcpy(s->vy0, b->vy, (size_t)n * sizeof *b->vy);
+}
+
+/* v_free = v0 + h * (gravity, wind, applied, springs at the start): what the step would
+ * give without dissipation, the reference the guard compares against. */
+static void free_velocity(rg_world *w, rg_real h)
+{
+    body_store *b = &w->b;
+    scratch_store *s = &w->scratch;
+    int32_t n = b->n_active;
+    if (w->springs.count > 0) force_springs(w, s->sax, s->say);
+    for (int32_t i = 0; i < n; i++) {
+        if (!(b->flags[i] & BODY_F_DISSIPATIVE)) continue;
+        rg_real im = b->inv_mass[i];
+        rg_real ax = w->gravity.x * b->gscale[i] + (w->wind.x + b->fx[i]) * im;
+        rg_real ay = w->gravity.y * b->gscale[i] + (w->wind.y + b->fy[i]) * im;
+        if (w->springs.count > 0) {
+            ax += s->sax[i];
+            ay += s->say[i];
+        }
+        s->vfx[i] = b->vx[i] + ax * h;
+        s->vfy[i] = b->vy[i] + ay * h;
+    }
+}
+
+static void guard_dissipation(rg_world *w, rg_real h)
+{
+    body_store *b = &w->b;
+    scratch_store *s = &w->scratch;
+    int32_t n = b->n_active;
+    for (int32_t i = 0; i < n; i++) {
+        if (!(b->flags[i] & BODY_F_DISSIPATIVE)) continue;
+        if (!dissipation_overshoots(s->vx0[i], s->vy0[i], b->vx[i], b->vy[i], s->vfx[i], s->vfy[i]))
+            continue;
+        rg_real vx, vy;
+        dissipate_implicit(s->vfx[i], s->vfy[i], b->drag_lin[i], b->drag_quad[i], b->fric[i],
+                           b->inv_mass[i], h, &vx, &vy);
+        b->vx[i] = vx;
+        b->vy[i] = vy;
+        b->x[i] = s->x0[i] + vx * h;
+        b->y[i] = s->y0[i] + vy * h;
+    }
+}
+
+/* Velocity Verlet; velocity-dependent forces see the predicted velocity v0 + h*a0:
+ *   x1 = x0 + h v0 + h^2/2 a0,  a1 = a(x1, v0 + h a0),  v1 = v0 + h/2 (a0 + a1). */
+static void verlet_step(rg_world *w, rg_real h)
+{
+    body_store *b = &w->b;
+    scratch_store *s = &w->scratch;
+    int32_t n = b->n_active;
+    rg_real hh = h * h / 2, h2 = h / 2;
+    force_eval(w, b->ax, b->ay);
+    for (int32_t i = 0; i < n; i++) {
+        b->x[i] += h * b->vx[i] + hh * b->ax[i];
+        b->y[i] += h * b->vy[i] + hh * b->ay[i];
+        b->vx[i] = s->vx0[i] + h * b->ax[i];
+        b->vy[i] = s->vy0[i] + h * b->ay[i];
+    }
+    force_eval(w, s->tax, s->tay);
+    for (int32_t i = 0; i < n; i++) {
+        b->vx[i] = s->vx0[i] + h2 * (b->ax[i] + s->tax[i]);
+        b->vy[i] = s->vy0[i] + h2 * (b->ay[i] + s->tay[i]);
+    }
+}
+
+/* Classic RK4 on (x, v): k1 at the start, k2 and k3 at the midpoint, k4 at the end,
+ * weights 1, 2, 2, 1.  kx/kvx accumulate the weighted derivatives. */
+static void rk4_step(rg_world *w, rg_real h)
+{
+    body_store *b = &w->b;
+    scratch_store *s = &w->scratch;
+    int32_t n = b->n_active;
+    rg_real h2 = h / 2;
+    force_eval(w, b->ax, b->ay);
+    for (int32_t i = 0; i < n; i++) {
+        s->kx[i] = s->vx0[i];
+        s->ky[i] = s->vy0[i];
+        s->kvx[i] = b->ax[i];
+        s->kvy[i] = b->ay[i];
+        b->x[i] = s->x0[i] + h2 * s->vx0[i];
+        b->y[i] = s->y0[i] + h2 * s->vy0[i];
+        b->vx[i] = s->vx0[i] + h2 * b->ax[i];
+        b->vy[i] = s->vy0[i] + h2 * b->ay[i];
+    }
+    for (int stage = 2; stage <= 3; stage++) {
+        rg_real hs = stage == 2 ? h2 : h;
+        force_eval(w, s->tax, s->tay);
+        for (int32_t i = 0; i < n; i++) {
+            rg_real vx = b->vx[i], vy = b->vy[i];
+            s->kx[i] += 2 * vx;
+            s->ky[i] += 2 * vy;
+            s->kvx[i] += 2 * s->tax[i];
+            s->kvy[i] += 2 * s->tay[i];
+            b->x[i] = s->x0[i] + hs * vx;
+            b->y[i] = s->y0[i] + hs * vy;
+            b->vx[i] = s->vx0[i] + hs * s->tax[i];
+            b->vy[i] = s->vy0[i] + hs * s->tay[i];
+        }
+    }
+    force_eval(w, s->tax, s->tay);
+    rg_real h6 = h / 6;
+    for (int32_t i = 0; i < n; i++) {
+        rg_real kx = s->kx[i] + b->vx[i], ky = s->ky[i] + b->vy[i];
+        rg_real kvx = s->kvx[i] + s->tax[i], kvy = s->kvy[i] + s->tay[i];
+        b->x[i] = s->x0[i] + h6 * kx;
+        b->y[i] = s->y0[i] + h6 * ky;
+        b->vx[i] = s->vx0[i] + h6 * kvx;
+        b->vy[i] = s->vy0[i] + h6 * kvy;
+    }
+}
+
+static void apply_speed_limits(rg_world *w)
+{
+    body_store *b = &w->b;
+    int32_t n = b->n_active;
+    for (int32_t i = 0; i < n; i++) {
+        if (!(b->flags[i] & BODY_F_LIMITED)) continue;
+        rg_real vx = b->vx[i], vy = b->vy[i];
+        rg_real s2 = vx * vx + vy * vy;
+        rg_real lo = b->min_speed[i], hi = b->max_speed[i];
+        if (s2 < lo * lo) {
+            b->vx[i] = 0;
+            b->vy[i] = 0;
+        } else if (hi > 0 && s2 > hi * hi) {
+            rg_real k = hi / rg_sqrt(s2);
+            b->vx[i] = vx * k;
+            b->vy[i] = vy * k;
+        }
+    }
+}
+
+rg_status integrator_prepare(rg_world *w)
+{
+    int multi_stage = w->integrator == RG_INTEGRATOR_VELOCITY_VERLET ||
+                      w->integrator == RG_INTEGRATOR_RK4;
+    if (multi_stage || w->springs.count > 0) return body_scratch_reserve(w);
+    return RG_OK;
+}
+
+void integrator_step(rg_world *w, rg_real h)
+{
+    switch (w->integrator) {
+    case RG_INTEGRATOR_EXPLICIT_EULER:
+        euler_step(w, h, 1);
+        break;
+    case RG_INTEGRATOR_SEMI_IMPLICIT_EULER:
+        euler_step(w, h, 0);
+        break;
+    default: {
+        int32_t n = w->b.n_active;
+        save_start(w, n);
+        if (w->dissipative_count > 0) free_velocity(w, h);
+        if (w->integrator == RG_INTEGRATOR_VELOCITY_VERLET)
+            verlet_step(w, h);
+        else
+            rk4_step(w, h);
+        if (w->dissipative_count > 0) guard_dissipation(w, h);
+        break;
+    }
+    }
+    if (w->limit_count > 0) apply_speed_limits(w);
+}

@@ -1,0 +1,91 @@
+/* testutil.h: what every cmocka test binary of rigid shares. */
+#ifndef RG_TESTUTIL_H
+#define RG_TESTUTIL_H
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rigid.h"
+
+#ifdef RG_DOUBLE
+#define REAL_EPS DBL_EPSILON
+#else
+#define REAL_EPS FLT_EPSILON
+#endif
+
+#define assert_ok(expr) assert_int_equal((expr), RG_OK)
+#define assert_status(expr, st) assert_int_equal((expr), (st))
+/* |a - b| <= tol, printing both on failure. */
+#define assert_near(a, b, tol)                                                            \
+    do {                                                                                  \
+        double a_ = (double)(a), b_ = (double)(b), t_ = (double)(tol);                    \
+        if (!(fabs(a_ - b_) <= t_)) fail_msg("%s = %.9g, expected %.9g +- %.3g", #a, a_, b_, t_); \
+    } while (0)
+
+static inline rg_vec2 v2(double x, double y)
+{
+    rg_vec2 v;
+    v.x = (rg_real)x;
+    v.y = (rg_real)y;
+    return v;
+}
+
+/* A dynamic body of mass m at (x, y). */
+static inline rg_body make_body(rg_world *w, double m, double x, double y)
+{
+    rg_body b = 0;
+    assert_ok(rg_body_create(w, RG_BODY_DYNAMIC, (rg_real)m, v2(x, y), &b));
+    return b;
+}
+
+static inline rg_vec2 pos_of(rg_world *w, rg_body b)
+{
+    rg_vec2 p;
+    assert_ok(rg_body_get_position(w, b, &p));
+    return p;
+}
+
+static inline rg_vec2 vel_of(rg_world *w, rg_body b)
+{
+    rg_vec2 v;
+    assert_ok(rg_body_get_velocity(w, b, &v));
+    return v;
+}
+
+/* ---- an allocator that counts, checks sizes, and fails from its Nth allocation on */
+typedef struct test_alloc {
+    long calls;        /* allocations attempted */
+    long fail_at;      /* the allocation (1-based) that fails, and every one after; 0 = never */
+    long live_blocks;
+    long long live_bytes;
+} test_alloc;
+
+static inline void *test_alloc_fn(void *user, void *ptr, size_t old_size, size_t new_size)
+{
+    test_alloc *t = user;
+    if (new_size == 0) {
+        if (ptr != NULL) {
+            t->live_blocks--;
+            t->live_bytes -= (long long)old_size;
+            free(ptr);
+        }
+        return NULL;
+    }
+    t->calls++;
+    if (t->fail_at > 0 && t->calls >= t->fail_at) return NULL;
+    void *p = realloc(ptr, new_size);
+    if (p == NULL) return NULL;
+    if (ptr == NULL) t->live_blocks++;
+    t->live_bytes += (long long)new_size - (long long)old_size;
+    return p;
+}
+
+#endif
