@@ -45,8 +45,13 @@ TEST_BINS := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_SRC))
 ALL_TARGETS := $(LIB_A) $(LIB_SO)
 TEST_RUNS := check-c check-ffi check-readme
 
-.PHONY: all test test-all deps sanitize install clean run bench charts $(TEST_RUNS)
+.PHONY: all test test-all deps sanitize install clean run run-main bench charts $(TEST_RUNS)
 all: $(ALL_TARGETS)
+
+# The main job; a fragment defines run-main.  `bench` and `charts` gather prerequisites
+# from the fragments (bench: bench-x, charts: charts-y), each with its own recipe.
+run: deps
+	@$(MAKE) --no-print-directory run-main
 
 # ---------------------------------------------------------------- library
 $(B)/obj/%.o: src/%.c

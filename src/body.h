@@ -51,7 +51,7 @@ typedef struct body_store {
     X(rg_real, x0) X(rg_real, y0) X(rg_real, vx0) X(rg_real, vy0) \
     X(rg_real, kx) X(rg_real, ky) X(rg_real, kvx) X(rg_real, kvy) \
     X(rg_real, vfx) X(rg_real, vfy) X(rg_real, sax) X(rg_real, say) \
-    X(rg_real, tax) X(rg_real, tay)
+    X(rg_real, tax) X(rg_real, tay) X(int32_t, implicit)
 
 typedef struct scratch_store {
 #define RG_FIELD_PTR(T, name) T *name;

@@ -38,6 +38,29 @@ static inline int dissipation_overshoots(rg_real v0x, rg_real v0y, rg_real nvx, 
     return (v0x == 0 && v0y == 0) || !(nvx * vfx + nvy * vfy > 0);
 }
 
+/* The explicit (Euler) dissipation check of body i from v0, given v_free: returns 1 when the
+ * step must treat dissipation implicitly, else 0 and the explicit velocity in *nvx, *nvy and
+ * the dissipative acceleration added to *ax, *ay.  Every integrator makes this decision
+ * from the start state: a multi-stage method evaluated past the stop sees friction flip
+ * between stages, cancel, and creep forever instead of stopping. */
+static inline int dissipation_explicit(const body_store *b, int32_t i, rg_real v0x, rg_real v0y,
+                                       rg_real vfx, rg_real vfy, rg_real h, rg_real *ax,
+                                       rg_real *ay, rg_real *nvx, rg_real *nvy)
+{
+    rg_real speed = rg_sqrt(v0x * v0x + v0y * v0y);
+    rg_real dax = 0, day = 0;
+    if (speed > 0) {
+        rg_real k = (b->drag_lin[i] + b->drag_quad[i] * speed + b->fric[i] / speed) * b->inv_mass[i];
+        dax = -k * v0x;
+        day = -k * v0y;
+    }
+    *ax += dax;
+    *ay += day;
+    *nvx = vfx + dax * h;
+    *nvy = vfy + day * h;
+    return dissipation_overshoots(v0x, v0y, *nvx, *nvy, vfx, vfy);
+}
+
 /* Explicit and semi-implicit Euler in one fused pass: one force evaluation at the start
  * state, so drag and friction are evaluated inline and springs come from one spring pass. */
 static void euler_step(rg_world *w, rg_real h, int explicit_euler)
@@ -60,19 +83,9 @@ static void euler_step(rg_world *w, rg_real h, int explicit_euler)
         rg_real v0x = b->vx[i], v0y = b->vy[i];
         rg_real vfx = v0x + ax * h, vfy = v0y + ay * h; /* without dissipation */
         rg_real nvx = vfx, nvy = vfy;
-        if (dissipative && (b->flags[i] & BODY_F_DISSIPATIVE)) {
-            rg_real speed = rg_sqrt(v0x * v0x + v0y * v0y);
-            if (speed > 0) {
-                rg_real k = (b->drag_lin[i] + b->drag_quad[i] * speed + b->fric[i] / speed) * im;
-                ax -= k * v0x;
-                ay -= k * v0y;
-                nvx = v0x + ax * h;
-                nvy = v0y + ay * h;
-            }
-            if (dissipation_overshoots(v0x, v0y, nvx, nvy, vfx, vfy))
-                dissipate_implicit(vfx, vfy, b->drag_lin[i], b->drag_quad[i], b->fric[i], im, h,
-                                   &nvx, &nvy);
-        }
+        if (dissipative && (b->flags[i] & BODY_F_DISSIPATIVE) &&
+            dissipation_explicit(b, i, v0x, v0y, vfx, vfy, h, &ax, &ay, &nvx, &nvy))
+            dissipate_implicit(vfx, vfy, b->drag_lin[i], b->drag_quad[i], b->fric[i], im, h, &nvx, &nvy);
         b->ax[i] = ax;
         b->ay[i] = ay;
         if (explicit_euler) {
@@ -98,7 +111,8 @@ static void save_start(rg_world *w, int32_t n)
 }
 
 /* v_free = v0 + h * (gravity, wind, applied, springs at the start): what the step would
- * give without dissipation, the reference the guard compares against. */
+ * give without dissipation, the reference the guard compares against; and the start-state
+ * decision whether this body's dissipation is treated implicitly this step. */
 static void free_velocity(rg_world *w, rg_real h)
 {
     body_store *b = &w->b;
@@ -114,8 +128,10 @@ static void free_velocity(rg_world *w, rg_real h)
             ax += s->sax[i];
             ay += s->say[i];
         }
-        s->vfx[i] = b->vx[i] + ax * h;
-        s->vfy[i] = b->vy[i] + ay * h;
+        rg_real vfx = b->vx[i] + ax * h, vfy = b->vy[i] + ay * h, nvx, nvy;
+        s->vfx[i] = vfx;
+        s->vfy[i] = vfy;
+        s->implicit[i] = dissipation_explicit(b, i, b->vx[i], b->vy[i], vfx, vfy, h, &ax, &ay, &nvx, &nvy);
     }
 }
 
@@ -126,7 +142,8 @@ static void guard_dissipation(rg_world *w, rg_real h)
     int32_t n = b->n_active;
     for (int32_t i = 0; i < n; i++) {
         if (!(b->flags[i] & BODY_F_DISSIPATIVE)) continue;
-        if (!dissipation_overshoots(s->vx0[i], s->vy0[i], b->vx[i], b->vy[i], s->vfx[i], s->vfy[i]))
+        if (!s->implicit[i] &&
+            !dissipation_overshoots(s->vx0[i], s->vy0[i], b->vx[i], b->vy[i], s->vfx[i], s->vfy[i]))
             continue;
         rg_real vx, vy;
         dissipate_implicit(s->vfx[i], s->vfy[i], b->drag_lin[i], b->drag_quad[i], b->fric[i],

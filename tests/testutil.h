@@ -16,9 +16,9 @@
 #include "rigid.h"
 
 #ifdef RG_DOUBLE
-#define REAL_EPS DBL_EPSILON
+#define REAL_EPS ((double)DBL_EPSILON)
 #else
-#define REAL_EPS FLT_EPSILON
+#define REAL_EPS ((double)FLT_EPSILON)
 #endif
 
 #define assert_ok(expr) assert_int_equal((expr), RG_OK)
