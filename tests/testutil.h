@@ -17,8 +17,10 @@
 
 #ifdef RG_DOUBLE
 #define REAL_EPS ((double)DBL_EPSILON)
+#define REAL_MAX DBL_MAX
 #else
 #define REAL_EPS ((double)FLT_EPSILON)
+#define REAL_MAX FLT_MAX
 #endif
 
 #define assert_ok(expr) assert_int_equal((expr), RG_OK)
