@@ -1,0 +1,244 @@
+#!/usr/bin/env python3
+"""test_ffi.py: drives build/librigid.so through Python's ctypes, a second language host.
+
+Checks that the ABI works from an FFI: the real size, vectors passed by value, outputs
+through pointers, 64-bit handles, statuses, and a caller-supplied allocator callback.
+Closes with `N passed, N failed`.
+"""
+import ctypes as C
+import math
+import sys
+
+LIB_PATH = sys.argv[1] if len(sys.argv) > 1 else "build/librigid.so"
+lib = C.CDLL(LIB_PATH)
+
+lib.rg_real_size.restype = C.c_int32
+REAL = {4: C.c_float, 8: C.c_double}[lib.rg_real_size()]
+EPS = {4: 1.1920929e-07, 8: 2.220446049250313e-16}[lib.rg_real_size()]
+
+OK, INVALID, STALE = 0, -1, -2
+STATIC, KINEMATIC, DYNAMIC = 0, 1, 2
+
+
+class Vec2(C.Structure):
+    _fields_ = [("x", REAL), ("y", REAL)]
+
+
+World = C.c_void_p
+Body = C.c_uint64
+ALLOC = C.CFUNCTYPE(C.c_void_p, C.c_void_p, C.c_void_p, C.c_size_t, C.c_size_t)
+
+
+def sig(name, res, *args):
+    f = getattr(lib, name)
+    f.restype = res
+    f.argtypes = list(args)
+
+
+sig("rg_version", C.c_int32)
+sig("rg_status_string", C.c_char_p, C.c_int32)
+sig("rg_world_create", C.c_int32, C.POINTER(World))
+sig("rg_world_create_with_allocator", C.c_int32, ALLOC, C.c_void_p, C.POINTER(World))
+sig("rg_world_destroy", None, World)
+sig("rg_world_set_gravity", C.c_int32, World, Vec2)
+sig("rg_world_set_wind", C.c_int32, World, Vec2)
+sig("rg_world_set_integrator", C.c_int32, World, C.c_int32)
+sig("rg_world_step", C.c_int32, World, REAL)
+sig("rg_world_set_fixed_step", C.c_int32, World, REAL, C.c_int32)
+sig("rg_world_advance", C.c_int32, World, REAL, C.POINTER(C.c_int32))
+sig("rg_world_get_alpha", C.c_int32, World, C.POINTER(REAL))
+sig("rg_world_body_count", C.c_int32, World)
+sig("rg_body_create", C.c_int32, World, C.c_int32, REAL, Vec2, C.POINTER(Body))
+sig("rg_body_destroy", C.c_int32, World, Body)
+sig("rg_body_is_valid", C.c_int32, World, Body)
+sig("rg_body_get_position", C.c_int32, World, Body, C.POINTER(Vec2))
+sig("rg_body_set_position", C.c_int32, World, Body, Vec2)
+sig("rg_body_get_velocity", C.c_int32, World, Body, C.POINTER(Vec2))
+sig("rg_body_set_velocity", C.c_int32, World, Body, Vec2)
+sig("rg_body_apply_force", C.c_int32, World, Body, Vec2)
+sig("rg_body_apply_impulse", C.c_int32, World, Body, Vec2)
+sig("rg_body_set_drag", C.c_int32, World, Body, REAL, REAL)
+sig("rg_body_set_surface_friction", C.c_int32, World, Body, REAL, REAL)
+sig("rg_body_set_speed_limits", C.c_int32, World, Body, REAL, REAL)
+sig("rg_body_get_interpolated_position", C.c_int32, World, Body, C.POINTER(Vec2))
+sig("rg_spring_create", C.c_int32, World, Body, Body, Vec2, REAL, REAL, REAL, C.POINTER(C.c_uint64))
+sig("rg_spring_destroy", C.c_int32, World, C.c_uint64)
+
+TESTS = []
+
+
+def test(fn):
+    TESTS.append(fn)
+    return fn
+
+
+def check(cond, what):
+    if not cond:
+        raise AssertionError(what)
+
+
+def new_world():
+    w = World()
+    check(lib.rg_world_create(C.byref(w)) == OK, "world create")
+    return w
+
+
+def body(w, kind=DYNAMIC, mass=1.0, x=0.0, y=0.0):
+    b = Body()
+    check(lib.rg_body_create(w, kind, mass, Vec2(x, y), C.byref(b)) == OK, "body create")
+    return b
+
+
+def pos(w, b):
+    p = Vec2()
+    check(lib.rg_body_get_position(w, b, C.byref(p)) == OK, "get position")
+    return p
+
+
+def vel(w, b):
+    v = Vec2()
+    check(lib.rg_body_get_velocity(w, b, C.byref(v)) == OK, "get velocity")
+    return v
+
+
+@test
+def version_and_real_size_describe_the_loaded_build():
+    v = lib.rg_version()
+    check(v >= 100 and v % 100 < 100, "version %d" % v)
+    check(lib.rg_status_string(STALE) == b"stale or invalid handle", "status string")
+    check(lib.rg_status_string(12345) is not None, "unknown status has a string")
+
+
+@test
+def free_fall_matches_semi_implicit_euler_closed_form():
+    # y_n = -g h^2 n (n + 1) / 2 for semi-implicit Euler from rest
+    w = new_world()
+    lib.rg_world_set_gravity(w, Vec2(0, -9.81))
+    b = body(w)
+    h, n = 1.0 / 60, 60
+    for _ in range(n):
+        check(lib.rg_world_step(w, h) == OK, "step")
+    y = pos(w, b).y
+    exact = -9.81 * h * h * n * (n + 1) / 2
+    check(abs(y - exact) <= n * 8 * EPS * abs(exact), "y = %r, expected %r" % (y, exact))
+    lib.rg_world_destroy(w)
+
+
+@test
+def bad_input_returns_status_and_changes_nothing():
+    w = new_world()
+    b = body(w, x=1, y=2)
+    check(lib.rg_body_set_position(w, b, Vec2(float("nan"), 0)) == INVALID, "NaN position")
+    check(lib.rg_body_set_velocity(w, b, Vec2(0, float("inf"))) == INVALID, "inf velocity")
+    check(lib.rg_body_apply_force(None, b, Vec2(1, 1)) == INVALID, "NULL world")
+    check(lib.rg_body_get_position(w, b, None) == INVALID, "NULL out")
+    check(lib.rg_world_step(w, 0) == INVALID, "dt = 0")
+    check(lib.rg_world_step(w, -1) == INVALID, "dt < 0")
+    check(lib.rg_body_create(w, 7, 1, Vec2(0, 0), C.byref(Body())) == INVALID, "bad type")
+    check(lib.rg_body_create(w, DYNAMIC, -1, Vec2(0, 0), C.byref(Body())) == INVALID, "neg mass")
+    check(lib.rg_body_set_drag(w, b, -1, 0) == INVALID, "negative drag")
+    p = pos(w, b)
+    check((p.x, p.y) == (1, 2), "position unchanged")
+    check(lib.rg_world_body_count(w) == 1, "count unchanged")
+    lib.rg_world_destroy(w)
+
+
+@test
+def stale_forged_and_foreign_handles_are_rejected():
+    w, other = new_world(), new_world()
+    b, f = body(w), body(other)
+    check(lib.rg_body_destroy(w, b) == OK, "destroy")
+    for h in (b, Body(0), f, Body(2**64 - 1), Body(b.value + (1 << 24))):
+        check(lib.rg_body_is_valid(w, h) == 0, "valid %x" % h.value)
+        check(lib.rg_body_get_position(w, h, C.byref(Vec2())) == STALE, "stale %x" % h.value)
+    check(lib.rg_body_destroy(w, b) == STALE, "double destroy")
+    lib.rg_world_destroy(other)
+    lib.rg_world_destroy(w)
+
+
+@test
+def springs_and_friction_work_through_the_ffi():
+    w = new_world()
+    a = body(w, x=1)
+    s = C.c_uint64()
+    # omega = 2 rad/s oscillator; RK4 at omega*dt = 0.02 is accurate to ~1e-9 over a period
+    lib.rg_world_set_integrator(w, 3)
+    check(lib.rg_spring_create(w, a, 0, Vec2(0, 0), 0, 4, 0, C.byref(s)) == OK, "spring")
+    n = int(round(math.pi / 0.01))  # half a period: x goes 1 -> -1
+    for _ in range(n):
+        lib.rg_world_step(w, 0.01)
+    x = pos(w, a).x
+    check(abs(x - math.cos(2 * n * 0.01)) < 1e-5 + n * 64 * EPS, "x = %r" % x)
+    check(lib.rg_spring_destroy(w, s) == OK and lib.rg_spring_destroy(w, s) == STALE, "spring destroy")
+    slider = body(w)
+    lib.rg_body_set_velocity(w, slider, Vec2(2, 0))
+    lib.rg_body_set_surface_friction(w, slider, 0.5, 9.81)
+    for _ in range(120):
+        lib.rg_world_step(w, 1.0 / 60)
+    v = vel(w, slider)
+    check(v.x == 0 and v.y == 0, "friction leaves it at exactly zero")
+    lib.rg_world_destroy(w)
+
+
+@test
+def accumulator_and_interpolation_through_the_ffi():
+    w = new_world()
+    b = body(w)
+    lib.rg_body_set_velocity(w, b, Vec2(1, 0))
+    lib.rg_world_set_fixed_step(w, 0.25, 8)
+    steps = C.c_int32(-1)
+    check(lib.rg_world_advance(w, 0.625, C.byref(steps)) == OK and steps.value == 2, "two steps")
+    alpha = REAL()
+    lib.rg_world_get_alpha(w, C.byref(alpha))
+    check(abs(alpha.value - 0.5) < 8 * EPS, "alpha %r" % alpha.value)
+    ip = Vec2()
+    lib.rg_body_get_interpolated_position(w, b, C.byref(ip))
+    check(abs(ip.x - 0.375) < 8 * EPS, "interpolated %r" % ip.x)
+    lib.rg_world_destroy(w)
+
+
+@test
+def a_python_allocator_sees_every_block_freed():
+    live = {}
+
+    @ALLOC
+    def alloc(user, ptr, old, new):
+        if new == 0:
+            if ptr:
+                live.pop(ptr)
+            return None
+        buf = C.create_string_buffer(new)
+        if ptr:
+            C.memmove(buf, ptr, min(old, new))
+            live.pop(ptr)
+        addr = C.addressof(buf)
+        live[addr] = buf
+        return addr
+
+    w = World()
+    check(lib.rg_world_create_with_allocator(alloc, None, C.byref(w)) == OK, "create")
+    for i in range(500):
+        body(w, x=i)
+    lib.rg_world_set_gravity(w, Vec2(0, -1))
+    lib.rg_world_step(w, 0.1)
+    check(len(live) > 0, "allocations went through Python")
+    lib.rg_world_destroy(w)
+    check(len(live) == 0, "%d blocks leaked" % len(live))
+
+
+def main():
+    passed = failed = 0
+    for t in TESTS:
+        try:
+            t()
+            print("ok     " + t.__name__)
+            passed += 1
+        except Exception as e:  # report every failure, keep going
+            print("FAILED %s: %s" % (t.__name__, e))
+            failed += 1
+    print("%d passed, %d failed" % (passed, failed))
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
