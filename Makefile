@@ -43,7 +43,7 @@ TEST_BINS := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_SRC))
 
 # Fragments append to these.
 ALL_TARGETS := $(LIB_A) $(LIB_SO)
-TEST_RUNS := check-c check-ffi check-readme
+TEST_RUNS := check-c check-ffi check-readme check-exports
 
 .PHONY: all test test-all deps sanitize install clean run run-main bench charts $(TEST_RUNS)
 all: $(ALL_TARGETS)
@@ -89,6 +89,13 @@ $(B)/readme_example: $(B)/readme_example.c $(LIB_A)
 check-readme: $(B)/readme_example
 	@echo "== README C example"
 	$(B)/readme_example
+
+# The shared library exports the API and nothing else.
+check-exports: $(LIB_SO)
+	@echo "== exports of $(LIB_SO)"
+	@bad=$$(nm -D --defined-only $(LIB_SO) | awk '{print $$3}' | grep -v '^rg_' | grep -v '^_' || true); \
+	 if [ -n "$$bad" ]; then echo "exported outside rg_*: $$bad"; exit 1; fi; \
+	 echo "$$(nm -D --defined-only $(LIB_SO) | grep -c ' T rg_') rg_* functions, nothing else"
 
 # Installs what is missing (tools/install-deps.sh is a no-op when all is there).
 deps:
