@@ -1,0 +1,170 @@
+/* bench_rigid.c: the benchmark's rigid engine, through the public API only.
+ *
+ * Scenes with shapes need the collision API (rg_body_set_circle ...); tools/bench.mk
+ * defines RG_BENCH_COLLISION when include/rigid.h declares it, and without it such scenes
+ * are reported as not available rather than run without collision. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench.h"
+#include "rigid.h"
+
+/* Counts every byte the world holds through rg_world_create_with_allocator. */
+typedef struct counting_alloc {
+    size_t live, peak;
+} counting_alloc;
+
+static void *count_alloc(void *user, void *ptr, size_t old_size, size_t new_size)
+{
+    counting_alloc *c = user;
+    if (new_size == 0) {
+        free(ptr);
+        c->live -= old_size;
+        return NULL;
+    }
+    void *p = realloc(ptr, new_size);
+    if (p == NULL) return NULL;
+    c->live = c->live - old_size + new_size;
+    if (c->live > c->peak) c->peak = c->live;
+    return p;
+}
+
+typedef struct rigid_ctx {
+    counting_alloc mem;
+    rg_world *w;
+    rg_body *dyn;   /* handles of the dynamic bodies, in list order */
+    int32_t ndyn;
+} rigid_ctx;
+
+static rg_vec2 v2(double x, double y)
+{
+    rg_vec2 v;
+    v.x = (rg_real)x;
+    v.y = (rg_real)y;
+    return v;
+}
+
+static void rigid_destroy(void *p)
+{
+    rigid_ctx *c = p;
+    if (c == NULL) return;
+    rg_world_destroy(c->w);
+    free(c->dyn);
+    free(c);
+}
+
+static int rigid_add_shape(rigid_ctx *c, rg_body h, const bench_body *bb, const bench_scene *s)
+{
+#ifdef RG_BENCH_COLLISION
+    rg_status st = RG_OK;
+    if (bb->shape == BENCH_SHAPE_CIRCLE)
+        st = rg_body_set_circle(c->w, h, (rg_real)bb->a);
+    else
+        st = rg_body_set_aabb(c->w, h, (rg_real)bb->a, (rg_real)bb->b);
+    /* A pair uses the geometric mean of the two frictions, so each body gets the pair's. */
+    if (st == RG_OK) st = rg_body_set_friction(c->w, h, (rg_real)s->friction);
+    if (st == RG_OK && s->restitution != 0)
+        st = rg_body_set_restitution(c->w, h, (rg_real)s->restitution);
+    if (st == RG_OK && bb->sensor) st = rg_body_set_sensor(c->w, h, 1);
+    return st == RG_OK;
+#else
+    (void)c;
+    (void)h;
+    (void)bb;
+    (void)s;
+    return 0;
+#endif
+}
+
+static void *rigid_create(const bench_scene *s)
+{
+    rigid_ctx *c = calloc(1, sizeof *c);
+    if (c == NULL) return NULL;
+    c->dyn = malloc((size_t)(s->ndynamic > 0 ? s->ndynamic : 1) * sizeof *c->dyn);
+    if (c->dyn == NULL || rg_world_create_with_allocator(count_alloc, &c->mem, &c->w) != RG_OK) {
+        rigid_destroy(c);
+        return NULL;
+    }
+    rg_world_set_gravity(c->w, v2(s->gx, s->gy));
+    for (int32_t i = 0; i < s->nbodies; i++) {
+        const bench_body *bb = &s->bodies[i];
+        int dyn = bb->type == BENCH_DYNAMIC;
+        rg_body h;
+        if (rg_body_create(c->w, dyn ? RG_BODY_DYNAMIC : RG_BODY_STATIC, (rg_real)bb->mass,
+                           v2(bb->x, bb->y), &h) != RG_OK)
+            goto fail;
+        if (bb->shape != BENCH_SHAPE_NONE && !rigid_add_shape(c, h, bb, s)) goto fail;
+        if (dyn) {
+            if ((bb->vx != 0 || bb->vy != 0) && rg_body_set_velocity(c->w, h, v2(bb->vx, bb->vy)) != RG_OK)
+                goto fail;
+            if (s->damping > 0 &&
+                rg_body_set_drag(c->w, h, (rg_real)(s->damping * bb->mass), 0) != RG_OK)
+                goto fail;
+            c->dyn[c->ndyn++] = h;
+        }
+    }
+    return c;
+fail:
+    rigid_destroy(c);
+    return NULL;
+}
+
+static void rigid_step(void *p, double dt)
+{
+    rigid_ctx *c = p;
+    rg_world_step(c->w, (rg_real)dt);
+}
+
+static void rigid_force(void *p, int32_t k, double fx, double fy)
+{
+    rigid_ctx *c = p;
+    rg_body_apply_force(c->w, c->dyn[k], v2(fx, fy));
+}
+
+static void rigid_impulse(void *p, int32_t k, double ix, double iy)
+{
+    rigid_ctx *c = p;
+    rg_body_apply_impulse(c->w, c->dyn[k], v2(ix, iy));
+}
+
+static void rigid_read(void *p, float *x, float *y, float *vx, float *vy)
+{
+    rigid_ctx *c = p;
+    for (int32_t k = 0; k < c->ndyn; k++) {
+        rg_vec2 q = v2(0, 0), v = v2(0, 0);
+        rg_body_get_position(c->w, c->dyn[k], &q);
+        rg_body_get_velocity(c->w, c->dyn[k], &v);
+        x[k] = (float)q.x;
+        y[k] = (float)q.y;
+        vx[k] = (float)v.x;
+        vy[k] = (float)v.y;
+    }
+}
+
+static size_t rigid_bytes(void *p)
+{
+    const rigid_ctx *c = p;
+    return c->mem.peak;
+}
+
+#ifdef RG_DOUBLE
+#define RIGID_BUILD "double"
+#else
+#define RIGID_BUILD "float"
+#endif
+
+static const char *rigid_version(void)
+{
+    static char text[48];
+    int32_t v = rg_version();
+    snprintf(text, sizeof text, "rigid %d.%d.%d (%s)", (int)(v / 10000), (int)(v / 100 % 100),
+             (int)(v % 100), RIGID_BUILD);
+    return text;
+}
+
+const bench_engine bench_rigid_engine = {
+    "rigid", rigid_create, rigid_step, rigid_force, rigid_impulse, rigid_read, rigid_bytes,
+    rigid_destroy, rigid_version,
+};
