@@ -1,0 +1,44 @@
+# The accuracy lab (issue 5): tools/accuracy in this build, its test's shared sources, and
+# `make charts` (the lab in the float and the double build, rendered by gnuplot).
+ACC_SRC := tools/accuracy.c tools/accuracy_scenes.c
+ACC_HDR := tools/accuracy_scenes.h
+ALL_TARGETS += $(B)/accuracy
+
+$(B)/accuracy: $(ACC_SRC) $(ACC_HDR) $(LIB_A)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -Itools $(LDFLAGS) -o $@ $(ACC_SRC) $(LIB_A) $(LDLIBS)
+
+# tests/test_accuracy.c measures with the lab's own scene code.
+$(B)/tests/test_accuracy: tests/test_accuracy.c tests/testutil.h tools/accuracy_scenes.c $(ACC_HDR) $(LIB_A)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -Itests -Itools $(LDFLAGS) -o $@ $< tools/accuracy_scenes.c $(LIB_A) \
+	  $(CMOCKA_LIBS) $(LDLIBS)
+
+# Both builds of the lab: the float one in $(ACC_FB), the double one in $(ACC_DB).
+ifeq ($(REAL),double)
+ACC_DB := $(B)
+ACC_FB ?= build
+else
+ACC_FB := $(B)
+ACC_DB ?= $(B)/double
+endif
+ACC_CHARTS ?= $(ACC_FB)/charts
+# The charts the README shows, committed under tools/charts/.
+ACC_README_CHARTS := pareto energy60 convergence stability framerate dissipation
+
+.PHONY: charts-accuracy charts-accuracy-copy
+charts: charts-accuracy
+
+charts-accuracy:
+	@tools/install-deps.sh --charts
+	@$(MAKE) --no-print-directory REAL=float B=$(ACC_FB) $(ACC_FB)/accuracy
+	@$(MAKE) --no-print-directory REAL=double B=$(ACC_DB) $(ACC_DB)/accuracy
+	@mkdir -p $(ACC_CHARTS)
+	$(ACC_FB)/accuracy --out $(ACC_CHARTS) | tee $(ACC_CHARTS)/accuracy_float.txt
+	$(ACC_DB)/accuracy --out $(ACC_CHARTS) | tee $(ACC_CHARTS)/accuracy_double.txt
+	gnuplot -e "dir='$(ACC_CHARTS)'" tools/charts/accuracy.gp
+	@echo "charts: $(ACC_CHARTS)/*.svg and *.png"
+
+# Refreshes the README's copies from the last `make charts`.
+charts-accuracy-copy:
+	for c in $(ACC_README_CHARTS); do cp $(ACC_CHARTS)/$$c.png $(ACC_CHARTS)/$$c.svg tools/charts/; done
