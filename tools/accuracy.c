@@ -300,26 +300,18 @@ static void write_stability(const char *dir)
 static void write_framerate(const char *dir)
 {
     static const double rates[] = {30, 40, 50, 60, 72, 75, 90, 100, 120, 144, 165, 200, 240};
-    const int nr = (int)(sizeof rates / sizeof rates[0]);
+    enum { NR = sizeof rates / sizeof rates[0], NP = NR + 5 };
     static double frames[JUMP_FRAMES];
-    FILE *f = open_csv(dir, "framerate");
-    fprintf(f, "pattern,frame_rate_hz,integrator,real,naive_apex,fixed_apex,identical,exact\n");
+    double naive[NP][ACC_INTEGRATORS], fixed[NP][ACC_INTEGRATORS], mean[NP];
+    int same[NP][ACC_INTEGRATORS];
     double exact = acc_jump_exact(JUMP_V0, JUMP_G);
-    double ref[ACC_INTEGRATORS];
-    int all_same = 1;
-    double spread[ACC_INTEGRATORS][2];
-    for (int ig = 0; ig < ACC_INTEGRATORS; ig++) {
-        spread[ig][0] = ACC_INF;
-        spread[ig][1] = -ACC_INF;
-    }
     /* steady frame rates, then jittered frames (uniform in [1/144, 1/30] s, fixed seeds) */
-    for (int pi = 0; pi < nr + 5; pi++) {
-        double mean = 0;
-        if (pi < nr) {
+    for (int pi = 0; pi < NP; pi++) {
+        if (pi < NR) {
             for (int i = 0; i < JUMP_FRAMES; i++) frames[i] = 1.0 / rates[pi];
-            mean = rates[pi];
+            mean[pi] = rates[pi];
         } else {
-            unsigned long long x = 0x9E3779B97F4A7C15ull * (unsigned long long)(pi - nr + 1);
+            unsigned long long x = 0x9E3779B97F4A7C15ull * (unsigned long long)(pi - NR + 1);
             double sum = 0;
             for (int i = 0; i < JUMP_FRAMES; i++) {
                 x = x * 6364136223846793005ull + 1442695040888963407ull;
@@ -327,26 +319,35 @@ static void write_framerate(const char *dir)
                 frames[i] = 1.0 / 144 + u * (1.0 / 30 - 1.0 / 144);
                 sum += frames[i];
             }
-            mean = JUMP_FRAMES / sum;
+            mean[pi] = JUMP_FRAMES / sum;
         }
         for (int ig = 0; ig < ACC_INTEGRATORS; ig++) {
-            int same = 0;
             long steps = 0;
-            double naive = acc_jump_naive(ig, frames, JUMP_FRAMES, JUMP_V0, JUMP_G);
-            double fixed = acc_jump_fixed(ig, 1.0 / 60, frames, JUMP_FRAMES, JUMP_V0, JUMP_G, &same, &steps);
-            if (pi == 0) ref[ig] = fixed;
-            if (memcmp(&fixed, &ref[ig], sizeof fixed) != 0 || !same) all_same = 0;
-            if (naive < spread[ig][0]) spread[ig][0] = naive;
-            if (naive > spread[ig][1]) spread[ig][1] = naive;
-            fprintf(f, "%s,%.3f,%s,%s,%.9f,%.9f,%d,%.9f\n", pi < nr ? "steady" : "jitter", mean,
-                    acc_integrator_name[ig], REAL_NAME, naive, fixed, same, exact);
+            naive[pi][ig] = acc_jump_naive(ig, frames, JUMP_FRAMES, JUMP_V0, JUMP_G);
+            fixed[pi][ig] = acc_jump_fixed(ig, 1.0 / 60, frames, JUMP_FRAMES, JUMP_V0, JUMP_G,
+                                           &same[pi][ig], &steps);
         }
     }
-    fclose(f);
+    /* one integrator's runs together, so a plotted series is contiguous */
+    FILE *f = open_csv(dir, "framerate");
+    fprintf(f, "pattern,frame_rate_hz,integrator,real,naive_apex,fixed_apex,identical,exact\n");
     printf("\njump at %.0f m/s (exact apex %.4f m), frames at 30..240 Hz and jittered:\n", JUMP_V0, exact);
-    for (int ig = 0; ig < ACC_INTEGRATORS; ig++)
+    int all_same = 1;
+    for (int ig = 0; ig < ACC_INTEGRATORS; ig++) {
+        double lo = ACC_INF, hi = -ACC_INF;
+        for (int pi = 0; pi < NP; pi++) {
+            fprintf(f, "%s,%.3f,%s,%s,%.9f,%.9f,%d,%.9f\n", pi < NR ? "steady" : "jitter", mean[pi],
+                    acc_integrator_name[ig], REAL_NAME, naive[pi][ig], fixed[pi][ig], same[pi][ig],
+                    exact);
+            if (memcmp(&fixed[pi][ig], &fixed[0][ig], sizeof(double)) != 0 || !same[pi][ig])
+                all_same = 0;
+            if (naive[pi][ig] < lo) lo = naive[pi][ig];
+            if (naive[pi][ig] > hi) hi = naive[pi][ig];
+        }
         printf("  %-20s naive per-frame apex %.4f .. %.4f m; through the 60 Hz accumulator %.6f m\n",
-               acc_integrator_name[ig], spread[ig][0], spread[ig][1], ref[ig]);
+               acc_integrator_name[ig], lo, hi, fixed[0][ig]);
+    }
+    fclose(f);
     printf("  accumulator results bit-identical across every frame pattern: %s\n",
            all_same ? "yes" : "NO");
 }
@@ -356,21 +357,25 @@ static void write_framerate(const char *dir)
 static void write_dissipation(const char *dir)
 {
     /* One step from v = 1 m/s, m = 1 kg: friction with mu*N*dt/m = r (naive: v' = 1 - r),
-     * quadratic drag with quad*|v|*dt/m = r (naive: v' = 1 - r). */
+     * quadratic drag with quad*|v|*dt/m = r (naive: v' = 1 - r).  Grouped by force and
+     * method so each plotted series is contiguous. */
     FILE *f = open_csv(dir, "dissipation");
     fprintf(f, "force,r,method,real,v_after\n");
     const double dt = 1.0 / 60;
-    for (int i = 0; i <= 80; i++) {
-        double r = 0.05 * i, out[1];
-        fprintf(f, "friction,%.3f,naive,%s,%.9g\n", r, REAL_NAME, acc_naive_friction_step(1, r / dt, dt));
-        fprintf(f, "drag,%.3f,naive,%s,%.9g\n", r, REAL_NAME, acc_naive_drag_step(1, 0, r / dt, dt));
-        for (int ig = 0; ig < ACC_INTEGRATORS; ig++) {
-            acc_library_dissipation(ig, 1, 1, r / dt, 0, 0, dt, 1, out);
-            fprintf(f, "friction,%.3f,%s,%s,%.9g\n", r, acc_integrator_name[ig], REAL_NAME, out[0]);
-            acc_library_dissipation(ig, 1, 1, 0, 0, r / dt, dt, 1, out);
-            fprintf(f, "drag,%.3f,%s,%s,%.9g\n", r, acc_integrator_name[ig], REAL_NAME, out[0]);
-        }
-    }
+    for (int force = 0; force < 2; force++)
+        for (int ig = -1; ig < ACC_INTEGRATORS; ig++)
+            for (int i = 0; i <= 80; i++) {
+                double r = 0.05 * i, v = 0;
+                if (ig < 0)
+                    v = force == 0 ? acc_naive_friction_step(1, r / dt, dt)
+                                   : acc_naive_drag_step(1, 0, r / dt, dt);
+                else if (force == 0)
+                    acc_library_dissipation(ig, 1, 1, r / dt, 0, 0, dt, 1, &v);
+                else
+                    acc_library_dissipation(ig, 1, 1, 0, 0, r / dt, dt, 1, &v);
+                fprintf(f, "%s,%.3f,%s,%s,%.9g\n", force == 0 ? "friction" : "drag", r,
+                        ig < 0 ? "naive" : acc_integrator_name[ig], REAL_NAME, v);
+            }
     fclose(f);
 }
 

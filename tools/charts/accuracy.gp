@@ -1,0 +1,22 @@
+# accuracy.gp: renders the accuracy lab's CSV (tools/accuracy in the float and the double
+# build) into SVG and PNG.  Run by `make charts`:  gnuplot -e "dir='build/charts'" tools/charts/accuracy.gp
+if (!exists("dir")) dir = "build/charts"
+if (!exists("src")) src = "tools/charts"
+charts = "pareto energy60 convergence stability framerate dissipation"
+igs = "explicit_euler semi_implicit_euler verlet rk4"
+igl = "explicit\\_Euler semi-implicit\\_Euler Verlet RK4"
+cols = "#d62728 #1f77b4 #2ca02c #9467bd"
+scenes = "oscillator damped_oscillator projectile_linear_drag fall_quadratic_drag throw_up_quadratic_drag slide_friction"
+do for [c in charts] {
+    do for [fmt in "svg png"] {
+        if (fmt eq "svg") {
+            set terminal svg size 1200,780 dynamic enhanced font "Helvetica,12" background rgb "white"
+        } else {
+            set terminal pngcairo size 1200,780 enhanced font "Helvetica,11" background rgb "white"
+        }
+        set output sprintf("%s/%s.%s", dir, c, fmt)
+        load sprintf("%s/acc_%s.gp", src, c)
+        unset multiplot
+        set output
+    }
+}
