@@ -64,15 +64,38 @@ static FILE *open_csv(const char *dir, const char *name)
 
 /* ---------------------------------------------------------------- sweep */
 
+static int cmp_ns(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Cost does not depend on the step (the same work per step), so it is measured once per
+ * scene and integrator: at 60 Hz over the scene's duration with many bodies, so the figure
+ * is per body.  The repetitions go round-robin over all of them, so a burst of load on the
+ * machine spreads over every figure instead of spoiling one, and the median is reported. */
+static void time_all(lab *L)
+{
+    static double t[MAX_SCENES][ACC_INTEGRATORS][64];
+    for (int r = 0; r < L->reps; r++)
+        for (int si = 0; si < L->n_scenes; si++)
+            for (int ig = 0; ig < ACC_INTEGRATORS; ig++)
+                t[si][ig][r] = acc_time_ns(acc_scene_get(si), ig, 1.0 / 60, L->bodies, 1);
+    for (int si = 0; si < L->n_scenes; si++)
+        for (int ig = 0; ig < ACC_INTEGRATORS; ig++) {
+            double *v = t[si][ig];
+            qsort(v, (size_t)L->reps, sizeof v[0], cmp_ns);
+            L->ns[si][ig] = L->reps % 2 ? v[L->reps / 2] : (v[L->reps / 2 - 1] + v[L->reps / 2]) / 2;
+        }
+}
+
 static void sweep(lab *L)
 {
     L->n_scenes = acc_scene_count();
+    time_all(L);
     for (int si = 0; si < L->n_scenes; si++) {
         const acc_scene *s = acc_scene_get(si);
         for (int ig = 0; ig < ACC_INTEGRATORS; ig++) {
-            /* Cost does not depend on the step (the same work per step); measured at 60 Hz
-             * over the scene's duration with many bodies so the figure is per body. */
-            L->ns[si][ig] = acc_time_ns(s, ig, 1.0 / 60, L->bodies, L->reps);
             for (int ri = 0; ri < L->n_rates; ri++) {
                 point *p = &L->pts[si][ig][ri];
                 p->rate = L->rates[ri];
