@@ -8,8 +8,16 @@
 # $(B)/bench (rigid alone) is part of `make`; the peers are compiled only for `make bench`,
 # with their own flags (their headers are not -Wpedantic -Werror clean), into $(B)/bench-peers.
 
-# Scenes with shapes need the collision API; enabled as soon as the header declares it.
-BENCH_COLLISION := $(if $(shell grep -l 'rg_body_set_circle' include/rigid.h 2>/dev/null),-DRG_BENCH_COLLISION)
+# Scenes with shapes need the collision API: enabled as soon as the header declares it and
+# src/ defines every function the bench calls (so a half-landed API never breaks `make`).
+BENCH_COLLISION_FNS := rg_body_set_circle rg_body_set_aabb rg_body_set_friction \
+                       rg_body_set_restitution rg_body_set_sensor
+BENCH_OPEN := (
+BENCH_COLLISION_MISSING := $(foreach f,$(BENCH_COLLISION_FNS),\
+  $(if $(shell grep -l '^RG_API[^;]*[ *]$(f)[$(BENCH_OPEN)]' src/*.c 2>/dev/null),,$(f)))
+BENCH_COLLISION := $(strip $(if $(shell grep -l 'rg_body_set_circle' include/rigid.h 2>/dev/null),\
+  $(if $(strip $(BENCH_COLLISION_MISSING)),,-DRG_BENCH_COLLISION)))
+BENCH_COLLISION_STAMP := $(B)/bench_obj/collision-$(if $(BENCH_COLLISION),on,off)
 BENCH_CFLAGS = $(CFLAGS) $(BENCH_COLLISION)
 BENCH_CXX ?= g++
 BENCH_PEER_LIBS := -lbox2d -lchipmunk
@@ -23,7 +31,12 @@ $(B)/bench_obj/bench.o: tools/bench.c tools/bench.h
 	@mkdir -p $(@D)
 	$(CC) $(BENCH_CFLAGS) -c $< -o $@
 
-$(B)/bench_obj/bench_rigid.o: tools/bench_rigid.c tools/bench.h include/rigid.h
+# The stamp's name changes when collision turns on, which rebuilds the rigid engine.
+$(BENCH_COLLISION_STAMP):
+	@mkdir -p $(@D)
+	@touch $@
+
+$(B)/bench_obj/bench_rigid.o: tools/bench_rigid.c tools/bench.h include/rigid.h $(BENCH_COLLISION_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(BENCH_CFLAGS) -c $< -o $@
 
