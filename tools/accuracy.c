@@ -3,7 +3,8 @@
  * integrator and step a scene should use.
  *
  *   accuracy [--out DIR] [--quick] [--bodies N] [--reps R]
- *       writes DIR/{sweep,orders,energy60,stability,growth,framerate,dissipation}_REAL.csv
+ *       writes DIR/{sweep,orders,energy60,stability,growth,framerate,dissipation}_REAL.csv,
+ *       and tunnel_REAL.csv and pile_REAL.csv when built with collision (ACC_COLLISION)
  *       (REAL = float or double, the build) and prints the 60 Hz table and summaries
  *   accuracy --recommend [BUDGET]
  *       for each scene and error budget (relative; default 1e-2, 1e-3, 1e-4) the cheapest
@@ -16,6 +17,9 @@
 #include <string.h>
 
 #include "accuracy_scenes.h"
+#ifdef ACC_COLLISION
+#include "accuracy_collision.h"
+#endif
 
 #ifdef RG_DOUBLE
 #define REAL_NAME "double"
@@ -402,6 +406,85 @@ static void write_dissipation(const char *dir)
     fclose(f);
 }
 
+#ifdef ACC_COLLISION
+/* ---------------------------------------------------------------- collision scenes */
+
+#define WALL_PHASES 64
+
+/* A 10 cm ball (r = 0.05 m) against a 1 cm wall at 60 Hz, speeds 1..1000 m/s, 64 phases
+ * each: the fraction of runs that end past the wall, with the lab's naive discrete check,
+ * the library's discrete check (continuous off) and the library's continuous collision. */
+static void write_tunnel(const char *dir)
+{
+    FILE *f = open_csv(dir, "tunnel");
+    fprintf(f, "method,real,speed,rate_hz,fraction,theory\n");
+    const double r = 0.05, wall = 0.01, dt = 1.0 / 60;
+    double at300[3] = {0, 0, 0};
+    for (int method = 0; method < 3; method++)
+        for (int k = 0; k <= 30; k++) {
+            double speed = pow(10.0, k / 10.0), vdt = speed * dt;
+            int tunnels = 0;
+            for (int i = 0; i < WALL_PHASES; i++) {
+                acc_wall s = {r, wall, speed, dt, (i + 0.5) / WALL_PHASES};
+                int t = method == 0 ? acc_tunnel_naive(&s)
+                                    : acc_tunnel_library(RG_INTEGRATOR_SEMI_IMPLICIT_EULER, method == 2, &s);
+                tunnels += t > 0;
+            }
+            double frac = (double)tunnels / WALL_PHASES;
+            double theory = method == 0 ? fmax(0, 1 - (wall + 2 * r) / vdt)
+                          : method == 1 ? fmax(0, 1 - (wall / 2 + r) / vdt) : 0;
+            fprintf(f, "%s,%s,%.6g,60,%.6f,%.6f\n",
+                    method == 0 ? "lab_naive" : method == 1 ? "discrete" : "continuous", REAL_NAME,
+                    speed, frac, theory);
+        }
+    for (int method = 0; method < 3; method++) {
+        int tunnels = 0;
+        for (int i = 0; i < WALL_PHASES; i++) {
+            acc_wall s = {r, wall, 300, dt, (i + 0.5) / WALL_PHASES};
+            int t = method == 0 ? acc_tunnel_naive(&s)
+                                : acc_tunnel_library(RG_INTEGRATOR_SEMI_IMPLICIT_EULER, method == 2, &s);
+            tunnels += t > 0;
+        }
+        at300[method] = (double)tunnels / WALL_PHASES;
+    }
+    fclose(f);
+    printf("\n10 cm ball at 300 m/s against a 1 cm wall at 60 Hz (%d start phases): tunnels in\n"
+           "  %.1f%% with the lab's naive discrete check (theory %.1f%%), %.1f%% with the library's\n"
+           "  discrete check (theory %.1f%%), %.1f%% with continuous collision (theory 0)\n",
+           WALL_PHASES, 100 * at300[0], 100 * (1 - 0.11 / 5), 100 * at300[1], 100 * (1 - 0.055 / 5),
+           100 * at300[2]);
+}
+
+/* Five 1 m boxes, masses 1 .. ratio kg from the bottom up, started at rest in contact. */
+static void write_pile(const char *dir)
+{
+    FILE *f = open_csv(dir, "pile");
+    fprintf(f, "integrator,real,ratio,rate_hz,max_err,final_err,final_speed,max_drift\n");
+    static const double ratios[] = {1, 100};
+    static const double prates[] = {30, 60, 120, 240};
+    printf("\npile of 5 boxes started at rest, 5 s: largest sink below the exact rest height (m)\n");
+    printf("  %-20s %6s", "integrator", "ratio");
+    for (int ri = 0; ri < 4; ri++) printf(" %9g Hz", prates[ri]);
+    printf("\n");
+    for (int ig = 0; ig < ACC_INTEGRATORS; ig++)
+        for (int k = 0; k < 2; k++) {
+            printf("  %-20s %6g", acc_integrator_name[ig], ratios[k]);
+            for (int ri = 0; ri < 4; ri++) {
+                acc_pile_result p;
+                if (acc_pile(ig, 1.0 / prates[ri], ratios[k], 5, 5.0, &p) != RG_OK) {
+                    fprintf(stderr, "accuracy: pile failed\n");
+                    exit(1);
+                }
+                fprintf(f, "%s,%s,%g,%g,%.6e,%.6e,%.6e,%.6e\n", acc_integrator_name[ig], REAL_NAME,
+                        ratios[k], prates[ri], p.max_err, p.final_err, p.final_speed, p.max_drift);
+                printf(" %12.2e", p.max_err);
+            }
+            printf("\n");
+        }
+    fclose(f);
+}
+#endif
+
 /* ---------------------------------------------------------------- recommend */
 
 static void recommend(const lab *L, const double *budgets, int nb)
@@ -515,6 +598,10 @@ int main(int argc, char **argv)
     write_stability(dir);
     write_framerate(dir);
     write_dissipation(dir);
+#ifdef ACC_COLLISION
+    write_tunnel(dir);
+    write_pile(dir);
+#endif
     printf("\nCSV written to %s/*_%s.csv\n", dir, REAL_NAME);
     return 0;
 }

@@ -1,0 +1,49 @@
+/* accuracy_collision.h: the accuracy lab's collision scenes (a fast ball against a thin wall,
+ * a pile with a large mass ratio), shared by tools/accuracy.c and tests/test_accuracy.c.
+ * Built only when the library has collision (accuracy.mk defines ACC_COLLISION). */
+#ifndef RG_ACCURACY_COLLISION_H
+#define RG_ACCURACY_COLLISION_H
+
+#include "rigid.h"
+
+/* ---------------------------------------------------------------- tunnelling */
+
+/* The scene: a 1 kg ball of radius r (m) on y = 0 moving at +speed (m/s), no gravity, toward
+ * a static wall at x = 0, wall m thick and 2 m tall.  The ball starts at
+ * x0 = -(0.5 + r + wall/2) - phase*speed*dt (phase in [0, 1) sets where the samples
+ * x0 + n*speed*dt fall relative to the wall) and is stepped until it is 0.5 m past the wall
+ * if nothing stops it. */
+typedef struct acc_wall {
+    double radius, wall, speed, dt, phase;
+} acc_wall;
+
+/* The lab's own naive discrete check, no library collision: the ball moves by speed*dt per
+ * step and is caught only when a sample overlaps the wall, |x| < wall/2 + r.  1 when it
+ * tunnels.  Theory: over uniform phases it tunnels with probability
+ * max(0, 1 - (wall + 2r) / (speed*dt)). */
+int acc_tunnel_naive(const acc_wall *s);
+/* The library: shapes on both bodies, restitution 0, rg_world_set_continuous(continuous).
+ * 1 when the ball ends past the wall (x > 0), 0 when it stayed on its side, -1 on an error
+ * status.  A discrete check catches the ball only when a sample lands in the wall's near
+ * half, -(wall/2 + r) < x < 0 (a sample past the middle is pushed out of the far face):
+ * theory max(0, 1 - (wall/2 + r) / (speed*dt)); continuous collision: never. */
+int acc_tunnel_library(int integrator, int continuous, const acc_wall *s);
+
+/* ---------------------------------------------------------------- pile */
+
+typedef struct acc_pile_result {
+    double max_err;     /* max over the run and the boxes of |y_i - y_i(rest)|, m */
+    double final_err;   /* the same at the end */
+    double final_speed; /* largest |v| at the end, m/s */
+    double max_drift;   /* max over the run of |x_i|, m */
+    int finite;
+} acc_pile_result;
+
+/* n boxes 1 m wide on a static ground, started exactly at rest in contact (box i centred at
+ * y = 0.5 + i), masses ratio^(i/(n-1)) kg from the bottom (1 kg) to the top (ratio kg):
+ * heavy on light, the hard case for an iterative contact solver.  Exact solution: nothing
+ * moves.  Stepped at dt for seconds. */
+rg_status acc_pile(int integrator, double dt, double ratio, int n, double seconds,
+                   acc_pile_result *out);
+
+#endif
