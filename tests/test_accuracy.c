@@ -11,6 +11,9 @@
 #include "testutil.h"
 
 #include "accuracy_scenes.h"
+#ifdef ACC_COLLISION
+#include "accuracy_collision.h"
+#endif
 
 /* ---------------------------------------------------------------- convergence order */
 
@@ -401,6 +404,68 @@ static void test_known_bug_drag_from_rest_keeps_order(void **state)
     assert_near(y, -g * h * h / 2, 64 * REAL_EPS * g * h * h);
 }
 
+#ifdef ACC_COLLISION
+/* ---------------------------------------------------------------- tunnelling */
+
+/* A 10 cm ball (r = 0.05 m) against a 1 cm wall at 60 Hz, N = 64 start phases (i + 1/2)/N.
+ * A discrete check sees the ball only at x0 + n v dt.  The lab's naive check catches it when
+ * a sample overlaps the wall, an interval of length L = wall + 2r = 0.11 m; the library's
+ * discrete check only when a sample is in the near half, L/2 (past the middle the contact
+ * normal points forward and pushes the ball out of the far face).  So the fraction that
+ * tunnels is max(0, 1 - L / (v dt)) resp. max(0, 1 - L / (2 v dt)); counting N equally
+ * spaced phases that fall in an interval misses the fraction by at most 1/N.  With
+ * continuous collision: none, for every phase and integrator. */
+#define PHASES 64
+
+static double tunnel_fraction(int method, int integrator, double speed)
+{
+    int n = 0;
+    for (int i = 0; i < PHASES; i++) {
+        acc_wall s = {0.05, 0.01, speed, 1.0 / 60, (i + 0.5) / PHASES};
+        int t = method == 0 ? acc_tunnel_naive(&s) : acc_tunnel_library(integrator, method == 2, &s);
+        assert_true(t >= 0);
+        n += t;
+    }
+    return (double)n / PHASES;
+}
+
+static void test_thin_wall_tunnels_without_continuous_collision_never_with_it(void **state)
+{
+    (void)state;
+    const double vdt = 300.0 / 60, L = 0.01 + 2 * 0.05;
+    double naive = tunnel_fraction(0, 0, 300), discrete = tunnel_fraction(1, RG_INTEGRATOR_SEMI_IMPLICIT_EULER, 300);
+    print_message("  300 m/s at 60 Hz: tunnels %.1f%% (lab naive), %.1f%% (library discrete)\n",
+                  100 * naive, 100 * discrete);
+    assert_near(naive, 1 - L / vdt, 1.0 / PHASES);
+    assert_near(discrete, 1 - L / (2 * vdt), 1.0 / PHASES);
+    for (int ig = 0; ig < ACC_INTEGRATORS; ig++) assert_true(tunnel_fraction(2, ig, 300) == 0);
+    /* slow enough that v dt < L/2: even the discrete check always catches it */
+    assert_true(tunnel_fraction(1, RG_INTEGRATOR_SEMI_IMPLICIT_EULER, 3.0) == 0);
+    assert_true(tunnel_fraction(0, 0, 3.0) == 0);
+}
+
+/* ---------------------------------------------------------------- pile */
+
+/* Five 1 m boxes, masses 1, 3.2, 10, 32, 100 kg from the bottom up, started at rest in
+ * contact: the exact solution is that nothing moves.  What the physics requires whatever
+ * the solver: the pile stands (no box sinks half a box into the one below, which would be
+ * a pass-through), the state stays finite, and the scene is symmetric about x = 0 with
+ * vertical normals, so no tangential impulse arises and x stays 0 up to rounding. */
+static void test_pile_with_mass_ratio_100_stands(void **state)
+{
+    (void)state;
+    for (int ig = 0; ig < ACC_INTEGRATORS; ig++) {
+        acc_pile_result p;
+        assert_ok(acc_pile(ig, 1.0 / 60, 100, 5, 5.0, &p));
+        print_message("  %s: largest sink %.4f m, at the end %.4f m, speed %.2g m/s\n",
+                      acc_integrator_name[ig], p.max_err, p.final_err, p.final_speed);
+        assert_true(p.finite);
+        assert_true(p.max_err < 0.5);
+        assert_true(p.max_drift <= 64 * REAL_EPS);
+    }
+}
+#endif
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -418,6 +483,10 @@ int main(void)
         cmocka_unit_test(test_drag_naive_overshoots_library_never_reverses),
         cmocka_unit_test(test_jump_height_depends_on_frame_rate_unless_accumulated),
         cmocka_unit_test(test_known_bug_drag_from_rest_keeps_order),
+#ifdef ACC_COLLISION
+        cmocka_unit_test(test_thin_wall_tunnels_without_continuous_collision_never_with_it),
+        cmocka_unit_test(test_pile_with_mass_ratio_100_stands),
+#endif
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

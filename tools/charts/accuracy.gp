@@ -3,6 +3,8 @@
 if (!exists("dir")) dir = "build/charts"
 if (!exists("src")) src = "tools/charts"
 charts = "pareto energy60 convergence stability framerate dissipation"
+# the collision scenes, when the lab was built with collision
+if (system(sprintf("test -f '%s/tunnel_double.csv' && echo yes", dir)) eq "yes") charts = charts." tunnel pile"
 igs = "explicit_euler semi_implicit_euler verlet rk4"
 igl = "explicit\\_Euler semi-implicit\\_Euler Verlet RK4"
 cols = "#d62728 #1f77b4 #2ca02c #9467bd"
