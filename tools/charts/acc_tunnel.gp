@@ -10,10 +10,12 @@ set xrange [1:1000]
 set yrange [-0.05:1.05]
 set grid
 set key top left
-ms = "lab_naive discrete continuous"
-ml = "lab's naive discrete check|library, continuous off (discrete)|library, continuous collision (default)"
-mc = "#d62728 #ff7f0e #2ca02c"
 set arrow 1 from 300, graph 0 to 300, graph 1 nohead dt 3 lc rgb "#888888"
 set label 1 "300 m/s" at 310, 0.5
-plot for [j=1:3] f using ((strcol(1) eq word(ms, j)) ? $3 : NaN):5 with points pt 7 ps 0.9 lc rgb word(mc, j) title sprintf("%s", system(sprintf("echo '%s' | cut -d'|' -f%d", ml, j))), \
-     for [j=1:3] f using ((strcol(1) eq word(ms, j)) ? $3 : NaN):6 with lines lw 1.5 lc rgb word(mc, j) notitle
+sel(m) = strcol(1) eq m ? $3 : NaN
+plot f using (sel("lab_naive")):5 with points pt 7 ps 0.9 lc rgb "#d62728" title "lab's naive discrete check", \
+     f using (sel("lab_naive")):6 with lines lw 1.5 lc rgb "#d62728" notitle, \
+     f using (sel("discrete")):5 with points pt 5 ps 0.8 lc rgb "#ff7f0e" title "library, continuous off (discrete)", \
+     f using (sel("discrete")):6 with lines lw 1.5 lc rgb "#ff7f0e" notitle, \
+     f using (sel("continuous")):5 with points pt 9 ps 1.0 lc rgb "#2ca02c" title "library, continuous collision (default)", \
+     f using (sel("continuous")):6 with lines lw 1.5 lc rgb "#2ca02c" notitle
