@@ -30,12 +30,14 @@ static inline void dissipate_implicit(rg_real vfx, rg_real vfy, rg_real lin, rg_
 }
 
 /* The explicit step is kept unless it would carry the velocity through zero (the new
- * velocity no longer points along v_free), or the body starts at rest, where friction has
- * no direction and acts as static friction.  NaN compares false, so it falls back too. */
+ * velocity no longer points along v_free), or a body with surface friction starts at rest,
+ * where friction has no direction and acts as static friction.  (Drag vanishes smoothly at
+ * rest, so a body with drag alone keeps the explicit step there and the integrator keeps
+ * its order from rest.)  NaN compares false, so it falls back too. */
 static inline int dissipation_overshoots(rg_real v0x, rg_real v0y, rg_real nvx, rg_real nvy,
-                                         rg_real vfx, rg_real vfy)
+                                         rg_real vfx, rg_real vfy, rg_real fric)
 {
-    return (v0x == 0 && v0y == 0) || !(nvx * vfx + nvy * vfy > 0);
+    return (fric > 0 && v0x == 0 && v0y == 0) || !(nvx * vfx + nvy * vfy > 0);
 }
 
 /* The explicit (Euler) dissipation check of body i from v0, given v_free: returns 1 when the
@@ -58,46 +60,225 @@ static inline int dissipation_explicit(const body_store *b, int32_t i, rg_real v
     *ay += day;
     *nvx = vfx + dax * h;
     *nvy = vfy + day * h;
-    return dissipation_overshoots(v0x, v0y, *nvx, *nvy, vfx, vfy);
+    return dissipation_overshoots(v0x, v0y, *nvx, *nvy, vfx, vfy, b->fric[i]);
 }
 
 /* Explicit and semi-implicit Euler in one fused pass: one force evaluation at the start
  * state, so drag and friction are evaluated inline and springs come from one spring pass. */
-static void euler_step(rg_world *w, rg_real h, int explicit_euler)
+typedef struct euler_env {
+    rg_real h, gx, gy, wx, wy;
+    const rg_real *sax, *say;
+    int springs, dissipative, explicit_euler;
+} euler_env;
+
+/* One body of the pass, exactly as specified; the blocked loop below runs it wherever its
+ * fast path does not apply. */
+static inline void euler_body(body_store *b, const euler_env *e, int32_t i)
+{
+    rg_real h = e->h;
+    rg_real im = b->inv_mass[i];
+    rg_real ax = e->gx * b->gscale[i] + (e->wx + b->fx[i]) * im;
+    rg_real ay = e->gy * b->gscale[i] + (e->wy + b->fy[i]) * im;
+    if (e->springs) {
+        ax += e->sax[i];
+        ay += e->say[i];
+    }
+    rg_real v0x = b->vx[i], v0y = b->vy[i];
+    rg_real vfx = v0x + ax * h, vfy = v0y + ay * h; /* without dissipation */
+    rg_real nvx = vfx, nvy = vfy;
+    if (e->dissipative && (b->flags[i] & BODY_F_DISSIPATIVE) &&
+        dissipation_explicit(b, i, v0x, v0y, vfx, vfy, h, &ax, &ay, &nvx, &nvy))
+        dissipate_implicit(vfx, vfy, b->drag_lin[i], b->drag_quad[i], b->fric[i], im, h, &nvx, &nvy);
+    b->ax[i] = ax;
+    b->ay[i] = ay;
+    if (e->explicit_euler) {
+        b->x[i] += v0x * h;
+        b->y[i] += v0y * h;
+    } else {
+        b->x[i] += nvx * h;
+        b->y[i] += nvy * h;
+    }
+    b->vx[i] = nvx;
+    b->vy[i] = nvy;
+}
+
+/* On x86-64 with GCC and glibc the pass is also built for AVX2 and picked at load time
+ * (an ifunc), so the library stays portable and uses the wider vectors where the machine has
+ * them.  No FMA is enabled, and every operation is correctly rounded in either width, so
+ * both versions give bit-identical results.  Define RG_NO_DISPATCH to build SSE2 only. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__GLIBC__) && \
+    !defined(RG_NO_DISPATCH)
+#define EULER_DISPATCH __attribute__((target_clones("avx2", "default")))
+#define EULER_INLINE __attribute__((always_inline)) inline /* into each version */
+#else
+#define EULER_DISPATCH
+#define EULER_INLINE inline
+#endif
+
+/* Blocks of a constant length, so the compiler vectorises them at -O2 without an epilogue;
+ * restrict parameters spare it alias checks. */
+#define EULER_BLOCK 64
+
+#ifdef RG_DOUBLE
+typedef uint64_t euler_bits;
+#define EULER_MAGNITUDE UINT64_C(0x7FFFFFFFFFFFFFFF)
+#else
+typedef uint32_t euler_bits;
+#define EULER_MAGNITUDE UINT32_C(0x7FFFFFFF)
+#endif
+
+static EULER_INLINE euler_bits euler_bits_of(rg_real v)
+{
+    euler_bits u;
+    memcpy(&u, &v, sizeof u);
+    return u;
+}
+
+/* The commit of a block whose bodies all took the fast path: positions from the old
+ * (explicit) or new (semi-implicit) velocities, then the new velocities. */
+static EULER_INLINE void euler_commit(rg_real *restrict x, rg_real *restrict y, rg_real *restrict vx,
+                                rg_real *restrict vy, const rg_real *restrict nvx,
+                                const rg_real *restrict nvy, rg_real h, int explicit_euler)
+{
+    if (explicit_euler) {
+        for (int j = 0; j < EULER_BLOCK; j++) {
+            x[j] += vx[j] * h;
+            y[j] += vy[j] * h;
+            vx[j] = nvx[j];
+            vy[j] = nvy[j];
+        }
+    } else {
+        for (int j = 0; j < EULER_BLOCK; j++) {
+            rg_real px = nvx[j], py = nvy[j];
+            x[j] += px * h;
+            y[j] += py * h;
+            vx[j] = px;
+            vy[j] = py;
+        }
+    }
+}
+
+/* The pass runs in blocks: a branch-free first loop computes every body's new velocity into
+ * block-local arrays (and its acceleration, an output only, in place), and a second loop
+ * commits the block unless one of its bodies needs what the fast path leaves out (quadratic
+ * drag or surface friction, a body at rest or with a huge speed, a dissipation overshoot):
+ * then the block runs body by body.  The fast path does the same IEEE operations in the
+ * same order, so results are bit-identical either way: with quad and fric both +-0 and
+ * 0 < |v|^2 < HUGE, quad*|v| == quad and fric/|v| == fric exactly, so k = (lin + quad +
+ * fric) * im needs no square root, and where every body of the block is dissipative with
+ * quad and fric +-0, each has lin > 0 and k = lin * im exactly; the rest is
+ * dissipation_explicit's arithmetic and dissipation_overshoots' test.  Without springs the
+ * spring term is -0, the exact identity of addition.  Returns 1 when the block must run
+ * body by body. */
+static EULER_INLINE int euler_block(const body_store *b, int32_t i0, const euler_env *e,
+                              const rg_real *restrict spx, const rg_real *restrict spy,
+                              rg_real *restrict nvx, rg_real *restrict nvy,
+                              rg_real *restrict oax, rg_real *restrict oay)
+{
+    const rg_real *restrict im = b->inv_mass + i0, *restrict gs = b->gscale + i0;
+    const rg_real *restrict fx = b->fx + i0, *restrict fy = b->fy + i0;
+    const rg_real *restrict vx = b->vx + i0, *restrict vy = b->vy + i0;
+    const uint32_t *restrict fl = b->flags + i0;
+    const rg_real *restrict lin = b->drag_lin + i0, *restrict quad = b->drag_quad + i0;
+    const rg_real *restrict fric = b->fric + i0;
+    const rg_real h = e->h, gx = e->gx, gy = e->gy, wx = e->wx, wy = e->wy;
+    uint32_t all = BODY_F_DISSIPATIVE, any = 0;
+    euler_bits qf = 0;
+    if (e->dissipative) {
+        for (int j = 0; j < EULER_BLOCK; j++) {
+            all &= fl[j];
+            any |= fl[j];
+            qf |= euler_bits_of(quad[j]) | euler_bits_of(fric[j]);
+        }
+    }
+    int32_t slow = 0;
+    if (!(any & BODY_F_DISSIPATIVE)) { /* no dissipation in this block */
+        for (int j = 0; j < EULER_BLOCK; j++) {
+            rg_real ax = gx * gs[j] + (wx + fx[j]) * im[j] + spx[j];
+            rg_real ay = gy * gs[j] + (wy + fy[j]) * im[j] + spy[j];
+            oax[j] = ax;
+            oay[j] = ay;
+            nvx[j] = vx[j] + ax * h;
+            nvy[j] = vy[j] + ay * h;
+        }
+    } else if ((all & BODY_F_DISSIPATIVE) && !(qf & EULER_MAGNITUDE)) {
+        /* linear drag on every body of the block */
+        for (int j = 0; j < EULER_BLOCK; j++) {
+            rg_real ax = gx * gs[j] + (wx + fx[j]) * im[j] + spx[j];
+            rg_real ay = gy * gs[j] + (wy + fy[j]) * im[j] + spy[j];
+            rg_real v0x = vx[j], v0y = vy[j];
+            rg_real vfx = v0x + ax * h, vfy = v0y + ay * h;
+            rg_real s2 = v0x * v0x + v0y * v0y;
+            rg_real k = lin[j] * im[j];
+            rg_real dax = -k * v0x, day = -k * v0y;
+            rg_real dvx = vfx + dax * h, dvy = vfy + day * h;
+            slow |= !((s2 > 0) & (s2 < RG_HUGE) & (dvx * vfx + dvy * vfy > 0));
+            oax[j] = ax + dax;
+            oay[j] = ay + day;
+            nvx[j] = dvx;
+            nvy[j] = dvy;
+        }
+    } else if (all & BODY_F_DISSIPATIVE) {
+        return 1; /* quadratic drag or friction: square roots, body by body */
+    } else { /* a mixed block */
+        for (int j = 0; j < EULER_BLOCK; j++) {
+            rg_real ax = gx * gs[j] + (wx + fx[j]) * im[j] + spx[j];
+            rg_real ay = gy * gs[j] + (wy + fy[j]) * im[j] + spy[j];
+            rg_real v0x = vx[j], v0y = vy[j];
+            rg_real vfx = v0x + ax * h, vfy = v0y + ay * h;
+            rg_real s2 = v0x * v0x + v0y * v0y;
+            rg_real k = (lin[j] + quad[j] + fric[j]) * im[j];
+            rg_real dax = -k * v0x, day = -k * v0y;
+            rg_real dvx = vfx + dax * h, dvy = vfy + day * h;
+            rg_real tax = ax + dax, tay = ay + day;
+            /* The flag bit moved to the sign bit: a 32-bit compare the vectoriser takes. */
+            int32_t d = (int32_t)(fl[j] * (0x80000000u / BODY_F_DISSIPATIVE)) < 0;
+            /* quad, fric >= 0, so their sum is 0 exactly when both are.  The finiteness
+             * test of tax, tay also keeps their adds out of the selects below (an add there
+             * may trap under -ftrapping-math and would keep a branch). */
+            int32_t ok = (quad[j] + fric[j] == 0) & (s2 > 0) & (s2 < RG_HUGE) &
+                         (dvx * vfx + dvy * vfy > 0) & (tax - tax == 0) & (tay - tay == 0);
+            slow |= d & !ok;
+            oax[j] = d ? tax : ax;
+            oay[j] = d ? tay : ay;
+            nvx[j] = d ? dvx : vfx;
+            nvy[j] = d ? dvy : vfy;
+        }
+    }
+    return slow != 0;
+}
+
+EULER_DISPATCH static void euler_step(rg_world *w, rg_real h, int explicit_euler)
 {
     body_store *b = &w->b;
     int32_t n = b->n_active;
-    rg_real gx = w->gravity.x, gy = w->gravity.y, wx = w->wind.x, wy = w->wind.y;
-    const int springs = w->springs.count > 0;
-    const int dissipative = w->dissipative_count > 0;
-    if (springs) force_springs(w, w->scratch.sax, w->scratch.say);
-    const rg_real *sax = w->scratch.sax, *say = w->scratch.say;
-    for (int32_t i = 0; i < n; i++) {
-        rg_real im = b->inv_mass[i];
-        rg_real ax = gx * b->gscale[i] + (wx + b->fx[i]) * im;
-        rg_real ay = gy * b->gscale[i] + (wy + b->fy[i]) * im;
-        if (springs) {
-            ax += sax[i];
-            ay += say[i];
+    euler_env e;
+    e.h = h;
+    e.gx = w->gravity.x;
+    e.gy = w->gravity.y;
+    e.wx = w->wind.x;
+    e.wy = w->wind.y;
+    e.springs = w->springs.count > 0;
+    e.dissipative = w->dissipative_count > 0;
+    e.explicit_euler = explicit_euler;
+    if (e.springs) force_springs(w, w->scratch.sax, w->scratch.say);
+    e.sax = w->scratch.sax;
+    e.say = w->scratch.say;
+    rg_real no_spring[EULER_BLOCK];
+    for (int j = 0; j < EULER_BLOCK; j++) no_spring[j] = -RG_R(0.0);
+    int32_t i0 = 0;
+    for (; i0 + EULER_BLOCK <= n; i0 += EULER_BLOCK) {
+        rg_real nvx[EULER_BLOCK], nvy[EULER_BLOCK];
+        const rg_real *spx = e.springs ? e.sax + i0 : no_spring;
+        const rg_real *spy = e.springs ? e.say + i0 : no_spring;
+        /* A slow block's accelerations are written again by euler_body. */
+        if (euler_block(b, i0, &e, spx, spy, nvx, nvy, b->ax + i0, b->ay + i0)) {
+            for (int j = 0; j < EULER_BLOCK; j++) euler_body(b, &e, i0 + j);
+            continue;
         }
-        rg_real v0x = b->vx[i], v0y = b->vy[i];
-        rg_real vfx = v0x + ax * h, vfy = v0y + ay * h; /* without dissipation */
-        rg_real nvx = vfx, nvy = vfy;
-        if (dissipative && (b->flags[i] & BODY_F_DISSIPATIVE) &&
-            dissipation_explicit(b, i, v0x, v0y, vfx, vfy, h, &ax, &ay, &nvx, &nvy))
-            dissipate_implicit(vfx, vfy, b->drag_lin[i], b->drag_quad[i], b->fric[i], im, h, &nvx, &nvy);
-        b->ax[i] = ax;
-        b->ay[i] = ay;
-        if (explicit_euler) {
-            b->x[i] += v0x * h;
-            b->y[i] += v0y * h;
-        } else {
-            b->x[i] += nvx * h;
-            b->y[i] += nvy * h;
-        }
-        b->vx[i] = nvx;
-        b->vy[i] = nvy;
+        euler_commit(b->x + i0, b->y + i0, b->vx + i0, b->vy + i0, nvx, nvy, h, explicit_euler);
     }
+    for (int32_t i = i0; i < n; i++) euler_body(b, &e, i);
 }
 
 static void save_start(rg_world *w, int32_t n)
@@ -143,7 +324,8 @@ static void guard_dissipation(rg_world *w, rg_real h)
     for (int32_t i = 0; i < n; i++) {
         if (!(b->flags[i] & BODY_F_DISSIPATIVE)) continue;
         if (!s->implicit[i] &&
-            !dissipation_overshoots(s->vx0[i], s->vy0[i], b->vx[i], b->vy[i], s->vfx[i], s->vfy[i]))
+            !dissipation_overshoots(s->vx0[i], s->vy0[i], b->vx[i], b->vy[i], s->vfx[i], s->vfy[i],
+                                    b->fric[i]))
             continue;
         rg_real vx, vy;
         dissipate_implicit(s->vfx[i], s->vfy[i], b->drag_lin[i], b->drag_quad[i], b->fric[i],
