@@ -2,7 +2,7 @@
  * with them, Box2D 2.4 and Chipmunk 7 side by side.
  *
  *   bench [--quick] [--scene NAME[:N,N...]]... [--engine a,b] [--steps S] [--repeats R]
- *         [--csv FILE] [--list]
+ *         [--csv FILE] [--dump FILE] [--list]
  *
  * Every engine runs the same body list (bench.h) for S steps of 1/60 s on one thread; each
  * step is timed alone.  A run gives the median, mean and 95th percentile of its step times;
@@ -100,15 +100,15 @@ static void particles(bench_scene *s, int32_t n, double x_offset)
     }
 }
 
-/* Platformer walkers: a sideways push that turns every 2 s and a jump every 1.5 s, both
- * staggered per walker. */
+/* Platformer walkers: a sideways push of 8 N (friction holds back 6 N on the ground) that
+ * turns every 2 s and a jump (6 N*s) every 1.5 s, both staggered per walker. */
 #define PLATFORMER_WALKERS 256
 static void platformer_drive(const bench_scene *s, int32_t step, const bench_pusher *p)
 {
     (void)s;
     for (int32_t k = 0; k < PLATFORMER_WALKERS; k++) {
         double dir = (((step + 7 * k) / 120) & 1) ? -1.0 : 1.0;
-        p->force(p->ctx, k, 10.0 * dir, 0.0);
+        p->force(p->ctx, k, 8.0 * dir, 0.0);
         if ((step + 11 * k) % 90 == 0) p->impulse(p->ctx, k, 0.0, 6.0);
     }
 }
@@ -591,6 +591,9 @@ static void push_impulse(void *ctx, int32_t k, double ix, double iy)
     p->e->impulse(p->ctx, k, ix, iy);
 }
 
+/* --dump: the final state of every dynamic body of every run, for a closer look. */
+static FILE *dump_file;
+
 static run_result run_once(const bench_engine *e, const bench_scene *s, const scene_def *d,
                            int32_t steps, double *times, state_buf *st)
 {
@@ -614,6 +617,10 @@ static run_result run_once(const bench_engine *e, const bench_scene *s, const sc
         }
     }
     e->read(ctx, st->x, st->y, st->vx, st->vy);
+    if (dump_file != NULL)
+        for (int32_t k = 0; k < s->ndynamic; k++)
+            fprintf(dump_file, "%s,%d,%s,%d,%.6g,%.6g,%.6g,%.6g\n", s->name, (int)s->size, e->name,
+                    (int)k, (double)st->x[k], (double)st->y[k], (double)st->vx[k], (double)st->vy[k]);
     size_t own = e->bytes(ctx);
     size_t heap1 = heap_in_use();
     r.bytes = own > 0 ? own : (heap1 > heap0 ? heap1 - heap0 : 0);
@@ -847,7 +854,7 @@ typedef struct job {
 static void usage(FILE *f)
 {
     fprintf(f, "usage: bench [--quick] [--scene NAME[:N,N...]]... [--engine a,b,...] [--steps S]\n"
-               "             [--repeats R] [--csv FILE] [--list]\n"
+               "             [--repeats R] [--csv FILE] [--dump FILE] [--list]\n"
                "  --quick     a smoke run: small sizes, 60 steps, 1 run\n"
                "  --scene     a scene, optionally with sizes (default: every scene, default sizes)\n"
                "  --engine    among:");
@@ -855,7 +862,8 @@ static void usage(FILE *f)
     fprintf(f, " (default: all)\n"
                "  --steps     steps per run (default 600)\n"
                "  --repeats   runs per scene and engine; figures are medians over runs (default 3)\n"
-               "  --csv       also write the results as CSV\n");
+               "  --csv       also write the results as CSV\n"
+               "  --dump      write the final state of every dynamic body of every run (CSV)\n");
 }
 
 int main(int argc, char **argv)
@@ -885,6 +893,13 @@ int main(int argc, char **argv)
             else repeats = (int32_t)(v > 64 ? 64 : v);
         } else if (strcmp(a, "--csv") == 0 && i + 1 < argc) {
             csv = argv[++i];
+        } else if (strcmp(a, "--dump") == 0 && i + 1 < argc) {
+            dump_file = fopen(argv[++i], "w");
+            if (dump_file == NULL) {
+                perror(argv[i]);
+                return 1;
+            }
+            fprintf(dump_file, "scene,n,engine,k,x,y,vx,vy\n");
         } else if (strcmp(a, "--engine") == 0 && i + 1 < argc) {
             engines_arg = argv[++i];
         } else if (strcmp(a, "--scene") == 0 && i + 1 < argc) {
@@ -1027,6 +1042,7 @@ int main(int argc, char **argv)
     printf("\n");
     machine(stdout);
     if (cf != NULL) fclose(cf);
+    if (dump_file != NULL) fclose(dump_file);
     free(results);
     free(runs);
     free(times);
