@@ -59,7 +59,7 @@ int acc_tunnel_library(int integrator, int continuous, const acc_wall *s)
 #define PILE_MAX 64
 
 rg_status acc_pile(int integrator, double dt, double ratio, int n, double seconds,
-                   acc_pile_result *out)
+                   int velocity_iterations, acc_pile_result *out)
 {
     rg_world *w = NULL;
     rg_body ground = 0, box[PILE_MAX];
@@ -68,6 +68,8 @@ rg_status acc_pile(int integrator, double dt, double ratio, int n, double second
     if (st != RG_OK) return st;
     st = rg_world_set_gravity(w, cv2(0, -9.81));
     if (st == RG_OK) st = rg_world_set_integrator(w, integrator);
+    if (st == RG_OK && velocity_iterations > 0)
+        st = rg_world_set_solver_iterations(w, velocity_iterations, 2);
     if (st == RG_OK) st = rg_body_create(w, RG_BODY_STATIC, 0, cv2(0, -0.5), &ground);
     if (st == RG_OK) st = rg_body_set_aabb(w, ground, 5, 0.5);
     for (int i = 0; i < n && st == RG_OK; i++) {

@@ -42,8 +42,9 @@ typedef struct acc_pile_result {
 /* n boxes 1 m wide on a static ground, started exactly at rest in contact (box i centred at
  * y = 0.5 + i), masses ratio^(i/(n-1)) kg from the bottom (1 kg) to the top (ratio kg):
  * heavy on light, the hard case for an iterative contact solver.  Exact solution: nothing
- * moves.  Stepped at dt for seconds. */
+ * moves.  Stepped at dt for seconds with the solver's default iterations, or with
+ * velocity_iterations (and 2 relax iterations) when it is > 0. */
 rg_status acc_pile(int integrator, double dt, double ratio, int n, double seconds,
-                   acc_pile_result *out);
+                   int velocity_iterations, acc_pile_result *out);
 
 #endif
