@@ -24,9 +24,10 @@ typedef struct acc_wall {
 int acc_tunnel_naive(const acc_wall *s);
 /* The library: shapes on both bodies, restitution 0, rg_world_set_continuous(continuous).
  * 1 when the ball ends past the wall (x > 0), 0 when it stayed on its side, -1 on an error
- * status.  A discrete check catches the ball only when a sample lands in the wall's near
- * half, -(wall/2 + r) < x < 0 (a sample past the middle is pushed out of the far face):
- * theory max(0, 1 - (wall/2 + r) / (speed*dt)); continuous collision: never. */
+ * status.  A discrete check catches at most the samples that overlap and always one in the
+ * wall's near half, -(wall/2 + r) < x < 0 (past the middle it may push the ball out of the
+ * far face): it tunnels with a probability between max(0, 1 - (wall + 2r) / (speed*dt))
+ * and max(0, 1 - (wall/2 + r) / (speed*dt)); continuous collision: never. */
 int acc_tunnel_library(int integrator, int continuous, const acc_wall *s);
 
 /* ---------------------------------------------------------------- pile */

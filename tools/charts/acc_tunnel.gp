@@ -2,7 +2,7 @@
 reset
 set datafile separator ","
 f = dir."/tunnel_double.csv"
-set title "A 10 cm ball against a 1 cm wall at 60 Hz: share of 64 start phases that end past the wall (double build)\npoints measured, lines theory: naive 1 - (w + 2r)/(v dt), library discrete 1 - (w/2 + r)/(v dt), continuous 0" font ",12"
+set title "A 10 cm ball against a 1 cm wall at 60 Hz: share of 64 start phases that end past the wall (double build)\npoints measured; lines theory: naive check 1 - (w + 2r)/(v dt); the library's discrete check lies between that and\n1 - (w/2 + r)/(v dt) (it catches at most every overlapping sample, always one in the near half); continuous: 0" font ",12"
 set xlabel "ball speed (m/s)"
 set ylabel "share of runs that tunnel"
 set logscale x
