@@ -374,14 +374,13 @@ static void test_jump_height_depends_on_frame_rate_unless_accumulated(void **sta
     assert_true(memcmp(&ref, &jit, sizeof ref) == 0);
 }
 
-/* ---------------------------------------------------------------- a known library bug */
+/* ---------------------------------------------------------------- drag from rest */
 
-/* KNOWN BUG (src/integrator.c, reported from issue 5): a body with drag that starts a step
- * at rest takes the implicit-dissipation fallback (meant for static friction), whose
- * position update x0 + h v1 is first order, so Verlet and RK4 fall a distance g h^2 instead
- * of g h^2 / 2 on that step and the fall-from-rest scene converges at order 2, not 4.
- * The test skips while the bug is there and asserts the fix once it lands. */
-static void test_known_bug_drag_from_rest_keeps_order(void **state)
+/* Found by this lab and fixed in b8d5b08: a body with drag that started a step at rest took
+ * the implicit-dissipation fallback meant for static friction, whose position update
+ * x0 + h v1 is first order, so Verlet and RK4 fell g h^2 instead of g h^2 / 2 on that step
+ * and the fall-from-rest scene converged at order 2, not 4.  Kept as a regression test. */
+static void test_drag_from_rest_keeps_order(void **state)
 {
     (void)state;
     rg_world *w = NULL;
@@ -394,12 +393,6 @@ static void test_known_bug_drag_from_rest_keeps_order(void **state)
     assert_ok(rg_world_step(w, (rg_real)h));
     double y = (double)pos_of(w, b).y, g = (double)(rg_real)9.81;
     rg_world_destroy(w);
-    if (fabs(y + g * h * h) < 1e-3 * g * h * h) {
-        print_message("  KNOWN BUG: RK4 with drag from rest fell %.6g m in one step, g h^2 = %.6g "
-                      "(expected g h^2/2 = %.6g); see the accuracy lab's report\n",
-                      -y, g * h * h, g * h * h / 2);
-        skip();
-    }
     /* drag 1e-9 kg/m changes the step by ~1e-12 m: the exact g h^2/2 within rounding */
     assert_near(y, -g * h * h / 2, 64 * REAL_EPS * g * h * h);
 }
@@ -492,7 +485,7 @@ int main(void)
         cmocka_unit_test(test_friction_naive_overshoots_library_stops_at_zero),
         cmocka_unit_test(test_drag_naive_overshoots_library_never_reverses),
         cmocka_unit_test(test_jump_height_depends_on_frame_rate_unless_accumulated),
-        cmocka_unit_test(test_known_bug_drag_from_rest_keeps_order),
+        cmocka_unit_test(test_drag_from_rest_keeps_order),
 #ifdef ACC_COLLISION
         cmocka_unit_test(test_thin_wall_tunnels_without_continuous_collision_never_with_it),
         cmocka_unit_test(test_pile_with_mass_ratio_100_stands),
