@@ -28,7 +28,7 @@ static void test_create_sets_type_mass_position_and_defaults(void **state)
     assert_ok(rg_body_get_type(w, d, &type));
     assert_int_equal(type, RG_BODY_DYNAMIC);
     assert_ok(rg_body_get_mass(w, d, &mass));
-    assert_true(mass == 2.5f);
+    assert_true(mass == (rg_real)2.5);
     assert_ok(rg_body_get_mass(w, k, &mass));
     assert_true(mass == 0);
     rg_vec2 p = pos_of(w, k), v = vel_of(w, d);
