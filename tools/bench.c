@@ -328,10 +328,11 @@ static void floor_read(void *p, float *x, float *y, float *vx, float *vy)
     memcpy(vy, f->vy, n);
 }
 
-static size_t floor_bytes(void *p)
+static size_t floor_bytes(void *p, size_t *peak)
 {
     const floor_ctx *f = p;
-    return 4 * (size_t)f->n * sizeof(float);
+    *peak = 4 * (size_t)f->n * sizeof(float);
+    return *peak;
 }
 
 static const char *floor_version(void) { return "floor: a vectorised C loop over x, y, vx, vy"; }
@@ -563,7 +564,7 @@ static int32_t count_lost(const bench_scene *s, const float *x, const float *y)
 typedef struct run_result {
     int ok;
     double median, mean, p95;  /* ms per step */
-    size_t bytes;
+    size_t bytes, peak;
     quality q;
 } run_result;
 
@@ -621,7 +622,8 @@ static run_result run_once(const bench_engine *e, const bench_scene *s, const sc
         for (int32_t k = 0; k < s->ndynamic; k++)
             fprintf(dump_file, "%s,%d,%s,%d,%.6g,%.6g,%.6g,%.6g\n", s->name, (int)s->size, e->name,
                     (int)k, (double)st->x[k], (double)st->y[k], (double)st->vx[k], (double)st->vy[k]);
-    size_t own = e->bytes(ctx);
+    size_t peak = 0, own = e->bytes(ctx, &peak);
+    r.peak = peak;
     size_t heap1 = heap_in_use();
     r.bytes = own > 0 ? own : (heap1 > heap0 ? heap1 - heap0 : 0);
     r.q.vmax = max_speed(s, st->vx, st->vy, 0);
@@ -651,7 +653,7 @@ typedef struct result {
     int ok;
     double median, mean, p95, min_median, max_median;
     double ns_body;
-    double bytes_body;
+    double bytes_body, peak_body; /* peak_body 0: unknown */
     quality q;          /* of the last run (every run of a deterministic engine agrees) */
 } result;
 
@@ -666,6 +668,7 @@ static void combine(result *res, run_result *runs, int32_t nruns)
         p95[k] = runs[i].p95;
         res->q = runs[i].q;
         res->bytes_body = (double)runs[i].bytes / (res->nbodies > 0 ? res->nbodies : 1);
+        res->peak_body = (double)runs[i].peak / (res->nbodies > 0 ? res->nbodies : 1);
         k++;
     }
     res->ok = k > 0;
@@ -722,17 +725,17 @@ static void print_result(const result *r, const result *rigid)
 static void csv_header(FILE *f)
 {
     fprintf(f, "scene,n,engine,bodies,dynamic,runs,steps,median_ms,mean_ms,p95_ms,min_median_ms,"
-               "max_median_ms,ns_per_body_step,bytes_per_body,max_overlap_m,max_wall_overlap_m,"
+               "max_median_ms,ns_per_body_step,bytes_per_body,peak_bytes_per_body,max_overlap_m,max_wall_overlap_m,"
                "max_speed_end,rest_s,lost\n");
 }
 
 static void csv_row(FILE *f, const result *r)
 {
     if (!r->ok) return;
-    fprintf(f, "%s,%d,%s,%d,%d,%d,%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%.1f,%.6g,%.6g,%.6g,%.4g,%d\n",
+    fprintf(f, "%s,%d,%s,%d,%d,%d,%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%.1f,%.1f,%.6g,%.6g,%.6g,%.4g,%d\n",
             r->scene, (int)r->n, r->engine->name, (int)r->nbodies, (int)r->ndynamic, (int)r->runs,
             (int)r->steps, r->median, r->mean, r->p95, r->min_median, r->max_median, r->ns_body,
-            r->bytes_body, r->q.overlap, r->q.wall, r->q.vmax, r->q.rest, (int)r->q.lost);
+            r->bytes_body, r->peak_body, r->q.overlap, r->q.wall, r->q.vmax, r->q.rest, (int)r->q.lost);
 }
 
 static void machine(FILE *f)
@@ -982,8 +985,8 @@ int main(int argc, char **argv)
     printf("(built without the peers: `make bench` builds them when libbox2d-dev and "
            "libchipmunk-dev are installed)\n");
 #endif
-    printf("ns/body-step counts dynamic bodies; B/body: rigid's own allocator count (peak), peers' "
-           "heap growth (live at the end), over all bodies incl. static\n"
+    printf("ns/body-step counts dynamic bodies; B/body: bytes held at the end over all bodies incl. "
+           "static (rigid: its allocator's count, peak in the CSV; peers: heap growth)\n"
            "overlap: deepest between two moving bodies; wall: a moving body into a static shape; "
            "vmax at the end; rest: s until the fastest body stays < %.1f m/s\n\n", REST_SPEED);
     print_header();

@@ -62,9 +62,9 @@ typedef struct bench_engine {
     void (*impulse)(void *ctx, int32_t k, double ix, double iy);
     /* State of the dynamic bodies, in list order (arrays of s->ndynamic). */
     void (*read)(void *ctx, float *x, float *y, float *vx, float *vy);
-    /* Bytes the engine holds for this world, or 0 when it cannot tell (the harness then
-     * measures the heap). */
-    size_t (*bytes)(void *ctx);
+    /* Bytes the engine holds for this world now, or 0 when it cannot tell (the harness then
+     * measures the heap); *peak gets the most it held at once, or 0 when unknown. */
+    size_t (*bytes)(void *ctx, size_t *peak);
     void (*destroy)(void *ctx);
     /* Name and version of the library actually linked. */
     const char *(*version)(void);

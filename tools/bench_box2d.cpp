@@ -105,7 +105,11 @@ void box2d_read(void *p, float *x, float *y, float *vx, float *vy)
     }
 }
 
-size_t box2d_bytes(void *) { return 0; }
+size_t box2d_bytes(void *, size_t *peak)
+{
+    *peak = 0;
+    return 0;
+}
 
 char box2d_version[32];
 

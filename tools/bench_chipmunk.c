@@ -109,9 +109,10 @@ static void chipmunk_read(void *p, float *x, float *y, float *vx, float *vy)
     }
 }
 
-static size_t chipmunk_bytes(void *p)
+static size_t chipmunk_bytes(void *p, size_t *peak)
 {
     (void)p;
+    *peak = 0;
     return 0;
 }
 

@@ -143,10 +143,11 @@ static void rigid_read(void *p, float *x, float *y, float *vx, float *vy)
     }
 }
 
-static size_t rigid_bytes(void *p)
+static size_t rigid_bytes(void *p, size_t *peak)
 {
     const rigid_ctx *c = p;
-    return c->mem.peak;
+    *peak = c->mem.peak;
+    return c->mem.live;
 }
 
 #ifdef RG_DOUBLE
