@@ -339,7 +339,7 @@ static const char *floor_version(void) { return "floor: a vectorised C loop over
 
 static const bench_engine floor_engine = {
     "floor", floor_create, floor_step, floor_push, floor_push, floor_read, floor_bytes,
-    floor_destroy, floor_version,
+    floor_destroy, NULL, floor_version,
 };
 
 /* ---------------------------------------------------------------- engines */
@@ -565,6 +565,7 @@ typedef struct run_result {
     int ok;
     double median, mean, p95;  /* ms per step */
     size_t bytes, peak;
+    int64_t steady_allocs;     /* allocator calls in the second half of the steps; -1 unknown */
     quality q;
 } run_result;
 
@@ -607,7 +608,10 @@ static run_result run_once(const bench_engine *e, const bench_scene *s, const sc
     bench_pusher pusher = { &pc, push_force, push_impulse };
     double last_moving = 0; /* time of the last sample with a shaped body above REST_SPEED */
     int sample = d->settles;
+    int64_t calls_half = 0;
+    r.steady_allocs = -1;
     for (int32_t i = 0; i < steps; i++) {
+        if (i == steps / 2 && e->alloc_calls != NULL) calls_half = e->alloc_calls(ctx);
         double t0 = now_ms();
         if (s->drive != NULL) s->drive(s, i, &pusher);
         e->step(ctx, BENCH_DT);
@@ -622,6 +626,7 @@ static run_result run_once(const bench_engine *e, const bench_scene *s, const sc
         for (int32_t k = 0; k < s->ndynamic; k++)
             fprintf(dump_file, "%s,%d,%s,%d,%.6g,%.6g,%.6g,%.6g\n", s->name, (int)s->size, e->name,
                     (int)k, (double)st->x[k], (double)st->y[k], (double)st->vx[k], (double)st->vy[k]);
+    if (e->alloc_calls != NULL) r.steady_allocs = e->alloc_calls(ctx) - calls_half;
     size_t peak = 0, own = e->bytes(ctx, &peak);
     r.peak = peak;
     size_t heap1 = heap_in_use();
@@ -654,6 +659,7 @@ typedef struct result {
     double median, mean, p95, min_median, max_median;
     double ns_body;
     double bytes_body, peak_body; /* peak_body 0: unknown */
+    int64_t steady_allocs;        /* most over the runs; -1 unknown */
     quality q;          /* of the last run (every run of a deterministic engine agrees) */
 } result;
 
@@ -671,6 +677,9 @@ static void combine(result *res, run_result *runs, int32_t nruns)
         res->peak_body = (double)runs[i].peak / (res->nbodies > 0 ? res->nbodies : 1);
         k++;
     }
+    res->steady_allocs = -1;
+    for (int32_t i = 0; i < nruns; i++)
+        if (runs[i].ok && runs[i].steady_allocs > res->steady_allocs) res->steady_allocs = runs[i].steady_allocs;
     res->ok = k > 0;
     res->runs = k;
     if (k == 0) return;
@@ -726,16 +735,17 @@ static void csv_header(FILE *f)
 {
     fprintf(f, "scene,n,engine,bodies,dynamic,runs,steps,median_ms,mean_ms,p95_ms,min_median_ms,"
                "max_median_ms,ns_per_body_step,bytes_per_body,peak_bytes_per_body,max_overlap_m,max_wall_overlap_m,"
-               "max_speed_end,rest_s,lost\n");
+               "max_speed_end,rest_s,lost,steady_state_alloc_calls\n");
 }
 
 static void csv_row(FILE *f, const result *r)
 {
     if (!r->ok) return;
-    fprintf(f, "%s,%d,%s,%d,%d,%d,%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%.1f,%.1f,%.6g,%.6g,%.6g,%.4g,%d\n",
+    fprintf(f, "%s,%d,%s,%d,%d,%d,%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%.1f,%.1f,%.6g,%.6g,%.6g,%.4g,%d,%lld\n",
             r->scene, (int)r->n, r->engine->name, (int)r->nbodies, (int)r->ndynamic, (int)r->runs,
             (int)r->steps, r->median, r->mean, r->p95, r->min_median, r->max_median, r->ns_body,
-            r->bytes_body, r->peak_body, r->q.overlap, r->q.wall, r->q.vmax, r->q.rest, (int)r->q.lost);
+            r->bytes_body, r->peak_body, r->q.overlap, r->q.wall, r->q.vmax, r->q.rest, (int)r->q.lost,
+            (long long)r->steady_allocs);
 }
 
 static void machine(FILE *f)
@@ -811,6 +821,22 @@ static void print_reference(const result *rs, int32_t nr)
         printf("%-7s %7s %9s %9.1f %9.1f %9s   (the issue's own Box2D 2.4.1 / Chipmunk 7.0.3 figures)\n",
                "", "", "", ref->box2d24, ref->chipmunk7, "");
     }
+}
+
+/* No allocation in a steady-state step: rigid's allocator calls in the second half. */
+static void print_allocs(const result *rs, int32_t nr)
+{
+    int any = 0, nonzero = 0;
+    for (int32_t i = 0; i < nr; i++) {
+        if (!rs[i].ok || rs[i].steady_allocs < 0 || rs[i].engine != &bench_rigid_engine) continue;
+        if (!any) printf("\nrigid's allocator calls in the second half of each run (steady state):");
+        any = 1;
+        if (rs[i].steady_allocs > 0) {
+            printf(" %s %d: %lld;", rs[i].scene, (int)rs[i].n, (long long)rs[i].steady_allocs);
+            nonzero = 1;
+        }
+    }
+    if (any) printf("%s\n", nonzero ? "" : " none in any scene");
 }
 
 /* What the step costs for stages a scene does not use: should be (about) nothing. */
@@ -1042,6 +1068,7 @@ int main(int argc, char **argv)
     }
     print_reference(results, nres);
     print_stage_costs(results, nres);
+    print_allocs(results, nres);
     printf("\n");
     machine(stdout);
     if (cf != NULL) fclose(cf);

@@ -66,6 +66,9 @@ typedef struct bench_engine {
      * measures the heap); *peak gets the most it held at once, or 0 when unknown. */
     size_t (*bytes)(void *ctx, size_t *peak);
     void (*destroy)(void *ctx);
+    /* Allocator calls so far (allocations, reallocations and frees), or NULL when the
+     * engine cannot tell: the harness checks that a steady-state step makes none. */
+    int64_t (*alloc_calls)(void *ctx);
     /* Name and version of the library actually linked. */
     const char *(*version)(void);
 } bench_engine;

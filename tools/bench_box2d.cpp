@@ -124,5 +124,5 @@ const char *box2d_version_string(void)
 
 extern "C" const bench_engine bench_box2d_engine = {
     "box2d", box2d_create, box2d_step, box2d_force, box2d_impulse, box2d_read, box2d_bytes,
-    box2d_destroy, box2d_version_string,
+    box2d_destroy, nullptr, box2d_version_string,
 };

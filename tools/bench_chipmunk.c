@@ -126,5 +126,5 @@ static const char *chipmunk_version(void)
 
 const bench_engine bench_chipmunk_engine = {
     "chipmunk", chipmunk_create, chipmunk_step, chipmunk_force, chipmunk_impulse, chipmunk_read,
-    chipmunk_bytes, chipmunk_destroy, chipmunk_version,
+    chipmunk_bytes, chipmunk_destroy, NULL, chipmunk_version,
 };

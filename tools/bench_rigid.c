@@ -14,11 +14,13 @@
 /* Counts every byte the world holds through rg_world_create_with_allocator. */
 typedef struct counting_alloc {
     size_t live, peak;
+    int64_t calls;
 } counting_alloc;
 
 static void *count_alloc(void *user, void *ptr, size_t old_size, size_t new_size)
 {
     counting_alloc *c = user;
+    c->calls++;
     if (new_size == 0) {
         free(ptr);
         c->live -= old_size;
@@ -150,6 +152,12 @@ static size_t rigid_bytes(void *p, size_t *peak)
     return c->mem.live;
 }
 
+static int64_t rigid_alloc_calls(void *p)
+{
+    const rigid_ctx *c = p;
+    return c->mem.calls;
+}
+
 #ifdef RG_DOUBLE
 #define RIGID_BUILD "double"
 #else
@@ -167,5 +175,5 @@ static const char *rigid_version(void)
 
 const bench_engine bench_rigid_engine = {
     "rigid", rigid_create, rigid_step, rigid_force, rigid_impulse, rigid_read, rigid_bytes,
-    rigid_destroy, rigid_version,
+    rigid_destroy, rigid_alloc_calls, rigid_version,
 };
