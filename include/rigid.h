@@ -203,6 +203,161 @@ RG_API rg_status rg_spring_destroy(rg_world *world, uint64_t spring);
 /* 1 when spring is a live spring of this world, else 0. */
 RG_API int32_t rg_spring_is_valid(const rg_world *world, uint64_t spring);
 
+/* ---------------------------------------------------------------- collision
+ *
+ * A body has at most one shape: a circle or an axis-aligned box centred on its position.
+ * A body without a shape never collides and costs nothing in the collision stage; a world
+ * where no body has a shape skips the stage entirely.  Contacts are resolved with impulses
+ * (restitution, Coulomb friction) and a position correction that adds no energy; bodies
+ * at rest fall asleep and stop costing time until something touches or pushes them. */
+
+#define RG_SHAPE_NONE   0
+#define RG_SHAPE_CIRCLE 1
+#define RG_SHAPE_AABB   2
+
+/* Largest radius or half extent a shape may have, in m. */
+#define RG_MAX_SHAPE_SIZE 1.0e7
+
+/* Gives the body a circle of radius r in m (0 < r <= RG_MAX_SHAPE_SIZE), replacing any
+ * shape it had.  Static, kinematic and dynamic bodies may all have shapes. */
+RG_API rg_status rg_body_set_circle(rg_world *world, rg_body body, rg_real radius);
+/* Gives the body an axis-aligned box of half extents in m (each in (0, RG_MAX_SHAPE_SIZE]). */
+RG_API rg_status rg_body_set_aabb(rg_world *world, rg_body body, rg_real half_width,
+                                  rg_real half_height);
+/* Removes the body's shape; its touching contacts end (end events after the next step). */
+RG_API rg_status rg_body_clear_shape(rg_world *world, rg_body body);
+/* RG_SHAPE_* and the half extents in m ((r, r) for a circle, (0, 0) without a shape).
+ * Either output may be NULL, not both. */
+RG_API rg_status rg_body_get_shape(const rg_world *world, rg_body body, int32_t *out_kind,
+                                   rg_vec2 *out_half_extents);
+
+/* Materials.  A touching pair uses the larger of the two restitutions and the geometric mean
+ * of the two frictions.  Defaults: restitution 0, friction 0.6.  restitution in [0, 1]
+ * (0: no bounce, 1: elastic); friction >= 0 and finite (the Coulomb coefficient: the
+ * tangential impulse is at most friction * normal impulse). */
+RG_API rg_status rg_body_set_restitution(rg_world *world, rg_body body, rg_real restitution);
+RG_API rg_status rg_body_get_restitution(const rg_world *world, rg_body body, rg_real *out);
+RG_API rg_status rg_body_set_friction(rg_world *world, rg_body body, rg_real mu);
+RG_API rg_status rg_body_get_friction(const rg_world *world, rg_body body, rg_real *out);
+
+/* A sensor (is_sensor 1; 0 makes it solid again) reports begin/end contacts (with sensor = 1)
+ * but never pushes nor is pushed.  Sensors see every shape their filter admits, other
+ * sensors included.  Changing it ends the body's current contacts. */
+RG_API rg_status rg_body_set_sensor(rg_world *world, rg_body body, int32_t is_sensor);
+RG_API rg_status rg_body_is_sensor(const rg_world *world, rg_body body, int32_t *out_is_sensor);
+
+/* Two bodies collide when (a.category & b.mask) and (b.category & a.mask) are both non-zero.
+ * Default: category 1, mask 0xFFFFFFFF.  Contacts the new filter rejects end. */
+RG_API rg_status rg_body_set_filter(rg_world *world, rg_body body, uint32_t category,
+                                    uint32_t mask);
+RG_API rg_status rg_body_get_filter(const rg_world *world, rg_body body, uint32_t *out_category,
+                                    uint32_t *out_mask);
+
+/* 1 when, after the last step, the body touches a solid (non-sensor) surface whose normal
+ * points against the body's gravity (world gravity * gravity scale) within 45 degrees; 0 in
+ * the air, for non-dynamic bodies and when the body feels no gravity.  A sleeping body keeps
+ * the value it fell asleep with. */
+RG_API rg_status rg_body_is_grounded(const rg_world *world, rg_body body, int32_t *out_grounded);
+
+/* ---- sleeping: an island of touching dynamic bodies whose speeds all stayed below
+ * sleep_speed for sleep_time seconds stops moving and costs nothing per step.  It wakes
+ * when a moving body touches it, when a force, impulse, velocity or position is given to
+ * one of its bodies, or when something it rests on is moved or destroyed.  Changing world
+ * gravity does not wake sleeping bodies (call rg_body_wake or toggle sleeping).  Only
+ * dynamic bodies with a shape sleep. */
+
+/* enabled 1 (the default) or 0; disabling wakes every sleeping body. */
+RG_API rg_status rg_world_set_sleeping(rg_world *world, int32_t enabled);
+RG_API rg_status rg_world_get_sleeping(const rg_world *world, int32_t *out_enabled);
+/* speed in m/s (>= 0), time in s (> 0).  Defaults 0.05 m/s and 0.5 s. */
+RG_API rg_status rg_world_set_sleep_thresholds(rg_world *world, rg_real speed, rg_real time);
+RG_API rg_status rg_world_get_sleep_thresholds(const rg_world *world, rg_real *out_speed,
+                                               rg_real *out_time);
+/* 1 when the body takes part in the next step: awake dynamic and every kinematic body;
+ * 0 for sleeping and static bodies. */
+RG_API rg_status rg_body_is_awake(const rg_world *world, rg_body body, int32_t *out_awake);
+/* Wakes a sleeping body and its island (no effect on awake or static bodies). */
+RG_API rg_status rg_body_wake(rg_world *world, rg_body body);
+/* Bodies that take part in the next step (awake dynamic + kinematic); 0 for NULL. */
+RG_API int32_t rg_world_awake_body_count(const rg_world *world);
+
+/* ---- solver and continuous collision */
+
+/* Sequential-impulse iterations per step: `velocity` (1..64, default 8) over the contact
+ * velocities, warm-started from the last step, then `position` (0..64, default 3) over
+ * pseudo-velocities that move bodies out of penetration without touching their velocities,
+ * so position correction never adds energy.  More iterations: stiffer piles, more time. */
+RG_API rg_status rg_world_set_solver_iterations(rg_world *world, int32_t velocity,
+                                                int32_t position);
+RG_API rg_status rg_world_get_solver_iterations(const rg_world *world, int32_t *out_velocity,
+                                                int32_t *out_position);
+/* Contact tuning: slop in m (>= 0, default 0.005): penetration left uncorrected so resting
+ * contacts stay touching; bias_rate in (0, 1] (default 0.2): fraction of the remaining
+ * penetration removed per step; max_push in m/s (> 0, default 2): fastest correction;
+ * restitution_threshold in m/s (>= 0, default 1): slower impacts do not bounce. */
+RG_API rg_status rg_world_set_contact_tuning(rg_world *world, rg_real slop, rg_real bias_rate,
+                                             rg_real max_push, rg_real restitution_threshold);
+RG_API rg_status rg_world_get_contact_tuning(const rg_world *world, rg_real *out_slop,
+                                             rg_real *out_bias_rate, rg_real *out_max_push,
+                                             rg_real *out_restitution_threshold);
+/* Continuous collision (1, the default): the broadphase sees each body's swept path over
+ * the step, and a pair whose relative motion in the step exceeds half the smaller shape
+ * is solved at its time of impact, so fast bodies never pass through thin walls.  0
+ * checks only the shapes where the step leaves them (a discrete check: fast bodies
+ * tunnel), for comparison. */
+RG_API rg_status rg_world_set_continuous(rg_world *world, int32_t enabled);
+RG_API rg_status rg_world_get_continuous(const rg_world *world, int32_t *out_enabled);
+/* Pairs touching after the last step (sensor overlaps included); 0 for NULL. */
+RG_API int32_t rg_world_touching_count(const rg_world *world);
+
+/* ---- contact events of the last step, read after it */
+
+#define RG_CONTACT_BEGIN 0
+#define RG_CONTACT_END   1
+
+typedef struct rg_contact_event {
+    rg_body a, b;       /* a < b */
+    rg_vec2 normal;     /* unit, from a toward b */
+    rg_vec2 point;      /* world point of contact, m */
+    rg_real depth;      /* penetration when the contact began, m (>= 0) */
+    rg_real speed;      /* approach speed along the normal when it began, m/s (>= 0) */
+    int32_t kind;       /* RG_CONTACT_BEGIN = 0, RG_CONTACT_END = 1 */
+    int32_t sensor;     /* 1 when either body is a sensor */
+} rg_contact_event;
+
+/* Returns how many events the last step produced and copies min(count, capacity) of them to
+ * out, sorted by (a, b), an end before a begin of the same pair.  out may be NULL when
+ * capacity is 0.  RG_ERR_INVALID_ARGUMENT for a NULL world, capacity < 0, or out NULL with
+ * capacity > 0.  A pair that touches once gives exactly one begin and one end.  Contacts
+ * ended between steps (a body destroyed, its shape, sensor flag or filter changed) are
+ * reported with the next step's events; an end event repeats the begin's normal, point,
+ * depth and speed. */
+RG_API int32_t rg_world_get_contact_events(const rg_world *world, rg_contact_event *out,
+                                           int32_t capacity);
+
+/* ---- queries: they see bodies as they are now, also before the first step */
+
+typedef struct rg_ray_hit {
+    rg_body body;
+    rg_vec2 point;      /* m */
+    rg_vec2 normal;     /* unit, the surface normal at point, facing the ray */
+    rg_real fraction;   /* of the translation, in [0, 1] */
+    int32_t pad;
+} rg_ray_hit;
+
+/* The closest shape along origin + t * translation, t in [0, 1], among bodies with
+ * (category & mask) != 0 (sensors too).  Shapes that contain the origin are ignored.  Ties
+ * go to the lower handle.  Returns 1 and fills *out_hit on a hit, 0 when nothing is hit, < 0
+ * (RG_ERR_INVALID_ARGUMENT) for NULL world or out_hit or a non-finite origin or translation. */
+RG_API int32_t rg_world_raycast(const rg_world *world, rg_vec2 origin, rg_vec2 translation,
+                                uint32_t mask, rg_ray_hit *out_hit);
+/* Bodies whose shape's bounding box overlaps [lower, upper] (touching counts) and whose
+ * (category & mask) != 0; returns the count and copies min(count, capacity) handles to out,
+ * in ascending handle order.  < 0 (RG_ERR_INVALID_ARGUMENT) for NULL world, non-finite
+ * bounds, lower > upper in x or y, capacity < 0, or out NULL with capacity > 0. */
+RG_API int32_t rg_world_query_aabb(const rg_world *world, rg_vec2 lower, rg_vec2 upper,
+                                   uint32_t mask, rg_body *out, int32_t capacity);
+
 #ifdef __cplusplus
 }
 #endif

@@ -157,6 +157,7 @@ RG_API rg_status rg_body_create(rg_world *world, int32_t type, rg_real mass, rg_
     b->y[i] = b->py[i] = position.y;
     b->slot[i] = pool_slot(h);
     b->type[i] = type;
+    contact_body_init(world, i);
     if (type == RG_BODY_DYNAMIC) {
         b->mass[i] = mass;
         b->inv_mass[i] = 1 / mass;
@@ -174,6 +175,7 @@ RG_API rg_status rg_body_destroy(rg_world *world, rg_body body)
     int32_t i = body_lookup(world, body);
     if (i < 0) return RG_ERR_STALE_HANDLE;
     body_store *b = &world->b;
+    i = contact_body_destroy(world, i); /* ends its contacts, wakes what rested on it */
     force_detach_body(world, b->slot[i]);
     /* Clear its counted flags, move it to the end of the static partition, drop it. */
     b->type[i] = RG_BODY_STATIC;
@@ -272,8 +274,10 @@ RG_API rg_status rg_body_set_position(rg_world *world, rg_body body, rg_vec2 pos
     BODY_GET(world, body, i);
     if (!rg_vec2_finite(position)) return RG_ERR_INVALID_ARGUMENT;
     body_store *b = &world->b;
+    i = contact_body_wake(world, i);
     b->x[i] = b->px[i] = position.x; /* a teleport is not interpolated */
     b->y[i] = b->py[i] = position.y;
+    contact_body_moved(world, i);
     return RG_OK;
 }
 
@@ -284,6 +288,7 @@ RG_API rg_status rg_body_set_velocity(rg_world *world, rg_body body, rg_vec2 vel
     body_store *b = &world->b;
     if (b->type[i] == RG_BODY_STATIC && (velocity.x != 0 || velocity.y != 0))
         return RG_ERR_INVALID_ARGUMENT;
+    i = contact_body_wake(world, i);
     b->vx[i] = velocity.x;
     b->vy[i] = velocity.y;
     return RG_OK;
@@ -297,6 +302,7 @@ RG_API rg_status rg_body_apply_force(rg_world *world, rg_body body, rg_vec2 forc
     if (b->type[i] != RG_BODY_DYNAMIC) return RG_OK;
     rg_real fx = b->fx[i] + force.x, fy = b->fy[i] + force.y;
     if (!rg_finite(fx) || !rg_finite(fy)) return RG_ERR_INVALID_ARGUMENT; /* sum overflowed */
+    i = contact_body_wake(world, i);
     b->fx[i] = fx;
     b->fy[i] = fy;
     return RG_OK;
@@ -311,6 +317,7 @@ RG_API rg_status rg_body_apply_impulse(rg_world *world, rg_body body, rg_vec2 im
     rg_real vx = b->vx[i] + impulse.x * b->inv_mass[i];
     rg_real vy = b->vy[i] + impulse.y * b->inv_mass[i];
     if (!rg_finite(vx) || !rg_finite(vy)) return RG_ERR_INVALID_ARGUMENT;
+    i = contact_body_wake(world, i);
     b->vx[i] = vx;
     b->vy[i] = vy;
     return RG_OK;

@@ -24,7 +24,17 @@
     X(uint64_t, user)                    /* caller's data */                           \
     X(int32_t, slot)                     /* pool slot of the body in this dense place */ \
     X(int32_t, type)                     /* RG_BODY_* */                               \
-    X(uint32_t, flags)                   /* BODY_F_* */
+    X(uint32_t, flags)                   /* BODY_F_* */                                \
+    /* collision (src/contact.c) */                                                    \
+    X(int32_t, shape)                    /* RG_SHAPE_* */                              \
+    X(rg_real, hx) X(rg_real, hy)        /* half extents, m ((r, r) for a circle) */   \
+    X(rg_real, rest) X(rg_real, mu)      /* restitution, contact friction */           \
+    X(uint32_t, cat) X(uint32_t, mask)   /* collision filter */                        \
+    X(uint32_t, cflags)                  /* CF_* */                                    \
+    X(int32_t, chead)                    /* first contact id + 1; 0: none */           \
+    X(rg_real, dx) X(rg_real, dy)        /* displacement of the last integration, m */ \
+    X(rg_real, sleep_t)                  /* s spent below the sleep speed */           \
+    X(int32_t, isl_head) X(int32_t, isl_next) /* sleeping island list: slot + 1 */
 
 #define BODY_F_DISSIPATIVE 1u /* has drag or surface friction (and is dynamic) */
 #define BODY_F_LIMITED     2u /* has a speed limit (and is dynamic) */

@@ -59,6 +59,7 @@ RG_API rg_status rg_world_create_with_allocator(rg_alloc_fn alloc, void *user, r
     w->integrator = RG_INTEGRATOR_SEMI_IMPLICIT_EULER;
     w->fixed_dt = 1.0 / 60.0;
     w->max_steps = 8;
+    contact_init(w);
     *out_world = w;
     return RG_OK;
 }
@@ -72,6 +73,7 @@ RG_API void rg_world_destroy(rg_world *world)
 {
     if (world == NULL) return;
     force_release(world);
+    contact_release(world);
     body_store_release(world);
     rg_mem mem = world->mem;
     mem_free(&mem, world, sizeof *world);
@@ -124,7 +126,10 @@ RG_API rg_status rg_world_get_integrator(const rg_world *world, int32_t *out_int
 static void world_step_prepared(rg_world *w, rg_real dt)
 {
     body_store *b = &w->b;
+    int collide = contact_stage_needed(w);
+    if (collide) contact_begin(w);
     integrator_step(w, dt);
+    if (collide) contact_step(w, dt);
     /* Applied forces last one step. */
     memset(b->fx, 0, (size_t)b->n_moving * sizeof *b->fx);
     memset(b->fy, 0, (size_t)b->n_moving * sizeof *b->fy);
@@ -135,6 +140,7 @@ RG_API rg_status rg_world_step(rg_world *world, rg_real dt)
 {
     if (world == NULL || !rg_finite(dt) || !(dt > 0)) return RG_ERR_INVALID_ARGUMENT;
     rg_status st = integrator_prepare(world);
+    if (st == RG_OK) st = contact_prepare(world);
     if (st != RG_OK) return st;
     world_step_prepared(world, dt);
     world->prev_valid = 0;
@@ -162,6 +168,7 @@ RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *
 {
     if (world == NULL || !rg_finite(frame_time) || frame_time < 0) return RG_ERR_INVALID_ARGUMENT;
     rg_status st = integrator_prepare(world);
+    if (st == RG_OK) st = contact_prepare(world);
     if (st != RG_OK) return st;
     body_store *b = &world->b;
     rg_real dt = (rg_real)world->fixed_dt;

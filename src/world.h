@@ -5,6 +5,7 @@
 #include <stdint.h>
 
 #include "body.h"
+#include "contact.h"
 #include "force.h"
 #include "mem.h"
 #include "pool.h"
@@ -32,6 +33,9 @@ struct rg_world {
 
     /* Per-body scratch for the integrators, grown with the body capacity when first needed. */
     scratch_store scratch;
+
+    /* Collision: broadphase, contacts, events, sleeping (src/contact.c). */
+    contact_world coll;
 };
 
 #endif

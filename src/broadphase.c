@@ -1,0 +1,334 @@
+/* broadphase.c: the hierarchical hashed grid (see broadphase.h). */
+#include <math.h>
+#include <string.h>
+
+#include "broadphase.h"
+#include "vec2.h"
+
+/* Cell coordinates are clamped to [-LIM, LIM): the clamp is monotone, so two boxes in
+ * neighbouring cells stay in neighbouring (or the same) cells, only more crowded. */
+#define BP_LIM 268435456 /* 2^28 */
+#define BP_MIN_BUCKET_BITS 6
+
+static inline rg_real level_cell(int li) { return (rg_real)ldexp(1.0, li + BP_LEVEL_MIN); }
+static inline rg_real level_inv(int li) { return (rg_real)ldexp(1.0, -(li + BP_LEVEL_MIN)); }
+
+/* floor(v * inv) clamped to [-LIM, LIM - 1]; inv is a power of two, so v * inv is exact. */
+static inline int64_t cell_coord(rg_real v, rg_real inv)
+{
+    rg_real s = v * inv;
+    if (!(s > -(rg_real)BP_LIM)) return -BP_LIM; /* also NaN */
+    if (s >= (rg_real)BP_LIM) return BP_LIM - 1;
+    return (int64_t)rg_floor(s);
+}
+
+static inline uint64_t cell_key(int li, int64_t cx, int64_t cy)
+{
+    return ((uint64_t)li << 58) | ((uint64_t)(cx + BP_LIM) << 29) | (uint64_t)(cy + BP_LIM);
+}
+
+static inline uint32_t bucket_of(const broadphase *bp, uint64_t key)
+{
+    return (uint32_t)((key * 0x9E3779B97F4A7C15ull) >> (64 - bp->bucket_bits));
+}
+
+/* The finest level whose cell exceeds the box by a 1/256 margin (which absorbs the rounding
+ * of the box's width), or BP_HUGE. */
+static int level_of(rg_real lx, rg_real ly, rg_real ux, rg_real uy)
+{
+    rg_real ext = rg_max(ux - lx, uy - ly);
+    if (!(ext <= level_cell(BP_LEVELS - 1) * RG_R(0.99609375))) return BP_HUGE;
+    if (!(ext > 0)) return 0;
+    int e;
+    frexp((double)ext, &e); /* ext < 2^e */
+    int li = e - BP_LEVEL_MIN;
+    if (li < 0) return 0;
+    if (!(ext <= level_cell(li) * RG_R(0.99609375))) li++;
+    return li < BP_LEVELS ? li : BP_HUGE;
+}
+
+static void chain_link(broadphase *bp, int32_t slot)
+{
+    bp_entry *e = &bp->e[slot];
+    if (e->level == BP_HUGE) {
+        e->next = bp->n_huge;
+        bp->huge[bp->n_huge++] = slot;
+        return;
+    }
+    uint32_t k = bucket_of(bp, e->key);
+    e->prev = -1;
+    e->next = bp->head[k];
+    if (e->next >= 0) bp->e[e->next].prev = slot;
+    bp->head[k] = slot;
+}
+
+static void chain_unlink(broadphase *bp, int32_t slot)
+{
+    bp_entry *e = &bp->e[slot];
+    if (e->level == BP_HUGE) {
+        int32_t i = e->next, last = bp->huge[--bp->n_huge];
+        bp->huge[i] = last;
+        bp->e[last].next = i;
+        return;
+    }
+    if (e->prev >= 0)
+        bp->e[e->prev].next = e->next;
+    else
+        bp->head[bucket_of(bp, e->key)] = e->next;
+    if (e->next >= 0) bp->e[e->next].prev = e->prev;
+}
+
+static void set_box(broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_real ux, rg_real uy)
+{
+    bp_entry *e = &bp->e[slot];
+    e->lx = lx;
+    e->ly = ly;
+    e->ux = ux;
+    e->uy = uy;
+    int li = level_of(lx, ly, ux, uy);
+    e->level = (int16_t)li;
+    if (li != BP_HUGE) {
+        rg_real inv = level_inv(li);
+        e->key = cell_key(li, cell_coord(lx, inv), cell_coord(ly, inv));
+    } else {
+        e->key = 0;
+    }
+}
+
+rg_status broadphase_reserve(broadphase *bp, const rg_mem *m, int32_t slots, int32_t members)
+{
+    int32_t cap = bp->cap;
+    if (slots > cap) {
+        cap = cap < 64 ? 64 : cap;
+        while (cap < slots) cap = cap > (INT32_MAX / 2) ? INT32_MAX : cap * 2;
+    }
+    int bits = bp->bucket_bits < BP_MIN_BUCKET_BITS ? BP_MIN_BUCKET_BITS : bp->bucket_bits;
+    while (((int64_t)1 << bits) < 2 * (int64_t)members) bits++;
+    if (cap == bp->cap && bits == bp->bucket_bits) return RG_OK;
+
+    bp_entry *e = NULL;
+    int32_t *mem_ = NULL, *huge = NULL, *moved = NULL, *head = NULL;
+    size_t nb = (size_t)1 << bits;
+    if (cap != bp->cap) {
+        e = mem_alloc(m, mem_array_size((size_t)cap, sizeof *e));
+        mem_ = mem_alloc(m, mem_array_size((size_t)cap, sizeof *mem_));
+        huge = mem_alloc(m, mem_array_size((size_t)cap, sizeof *huge));
+        moved = mem_alloc(m, mem_array_size((size_t)cap, sizeof *moved));
+    }
+    if (bits != bp->bucket_bits) head = mem_alloc(m, nb * sizeof *head);
+    if ((cap != bp->cap && (e == NULL || mem_ == NULL || huge == NULL || moved == NULL)) ||
+        (bits != bp->bucket_bits && head == NULL)) {
+        mem_free(m, e, (size_t)cap * sizeof *e);
+        mem_free(m, mem_, (size_t)cap * sizeof *mem_);
+        mem_free(m, huge, (size_t)cap * sizeof *huge);
+        mem_free(m, moved, (size_t)cap * sizeof *moved);
+        mem_free(m, head, nb * sizeof *head);
+        return RG_ERR_OUT_OF_MEMORY;
+    }
+    if (cap != bp->cap) {
+        if (bp->cap > 0) {
+            memcpy(e, bp->e, (size_t)bp->cap * sizeof *e);
+            memcpy(mem_, bp->members, (size_t)bp->count * sizeof *mem_);
+            memcpy(huge, bp->huge, (size_t)bp->n_huge * sizeof *huge);
+            memcpy(moved, bp->moved, (size_t)bp->n_moved * sizeof *moved);
+        }
+        for (int32_t s = bp->cap; s < cap; s++) {
+            memset(&e[s], 0, sizeof e[s]);
+            e[s].member = -1;
+            e[s].next = e[s].prev = -1;
+        }
+        mem_free(m, bp->e, (size_t)bp->cap * sizeof *bp->e);
+        mem_free(m, bp->members, (size_t)bp->cap * sizeof *bp->members);
+        mem_free(m, bp->huge, (size_t)bp->cap * sizeof *bp->huge);
+        mem_free(m, bp->moved, (size_t)bp->cap * sizeof *bp->moved);
+        bp->e = e;
+        bp->members = mem_;
+        bp->huge = huge;
+        bp->moved = moved;
+        bp->cap = cap;
+    }
+    if (head != NULL) {
+        mem_free(m, bp->head, ((size_t)1 << bp->bucket_bits) * sizeof *bp->head);
+        bp->head = head;
+        bp->bucket_bits = bits;
+        for (size_t k = 0; k < nb; k++) head[k] = -1;
+        /* rechain in member order (deterministic) */
+        for (int32_t i = 0; i < bp->count; i++) {
+            int32_t s = bp->members[i];
+            if (bp->e[s].level != BP_HUGE) chain_link(bp, s);
+        }
+    }
+    return RG_OK;
+}
+
+void broadphase_release(broadphase *bp, const rg_mem *m)
+{
+    mem_free(m, bp->e, (size_t)bp->cap * sizeof *bp->e);
+    mem_free(m, bp->members, (size_t)bp->cap * sizeof *bp->members);
+    mem_free(m, bp->huge, (size_t)bp->cap * sizeof *bp->huge);
+    mem_free(m, bp->moved, (size_t)bp->cap * sizeof *bp->moved);
+    if (bp->head != NULL) mem_free(m, bp->head, ((size_t)1 << bp->bucket_bits) * sizeof *bp->head);
+    memset(bp, 0, sizeof *bp);
+}
+
+void broadphase_insert(broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_real ux, rg_real uy)
+{
+    set_box(bp, slot, lx, ly, ux, uy);
+    bp_entry *e = &bp->e[slot];
+    e->member = bp->count;
+    e->moved = 0;
+    bp->members[bp->count++] = slot;
+    bp->level_count[e->level]++;
+    chain_link(bp, slot);
+}
+
+void broadphase_move(broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_real ux, rg_real uy)
+{
+    bp_entry *e = &bp->e[slot];
+    int old_level = e->level;
+    uint64_t old_key = e->key;
+    e->lx = lx;
+    e->ly = ly;
+    e->ux = ux;
+    e->uy = uy;
+    int li = level_of(lx, ly, ux, uy);
+    uint64_t key = 0;
+    if (li != BP_HUGE) {
+        rg_real inv = level_inv(li);
+        key = cell_key(li, cell_coord(lx, inv), cell_coord(ly, inv));
+    }
+    if (li == old_level && key == old_key) return; /* same cell: the box alone changed */
+    /* unlink with the old level and key, relink with the new */
+    e->level = (int16_t)old_level;
+    e->key = old_key;
+    chain_unlink(bp, slot);
+    bp->level_count[old_level]--;
+    e->level = (int16_t)li;
+    e->key = key;
+    bp->level_count[li]++;
+    chain_link(bp, slot);
+}
+
+void broadphase_remove(broadphase *bp, int32_t slot)
+{
+    bp_entry *e = &bp->e[slot];
+    chain_unlink(bp, slot);
+    bp->level_count[e->level]--;
+    int32_t i = e->member, last = bp->members[--bp->count];
+    bp->members[i] = last;
+    bp->e[last].member = i;
+    e->member = -1;
+    e->next = e->prev = -1;
+    if (e->moved) {
+        for (int32_t k = 0; k < bp->n_moved; k++) {
+            if (bp->moved[k] == slot) {
+                memmove(&bp->moved[k], &bp->moved[k + 1], (size_t)(bp->n_moved - k - 1) * sizeof *bp->moved);
+                bp->n_moved--;
+                break;
+            }
+        }
+        e->moved = 0;
+    }
+}
+
+void broadphase_mark_moved(broadphase *bp, int32_t slot)
+{
+    bp_entry *e = &bp->e[slot];
+    if (e->moved) return;
+    e->moved = 1;
+    bp->moved[bp->n_moved++] = slot;
+}
+
+static inline int box_overlap(const bp_entry *e, rg_real lx, rg_real ly, rg_real ux, rg_real uy)
+{
+    return e->lx <= ux && lx <= e->ux && e->ly <= uy && ly <= e->uy;
+}
+
+/* Members of level li overlapping the box: visit the candidate cells, or scan the members
+ * when the box spans more cells than the level has members. */
+static void query_level(const broadphase *bp, int li, rg_real lx, rg_real ly, rg_real ux, rg_real uy,
+                        bp_visit_fn visit, void *ctx)
+{
+    rg_real inv = level_inv(li);
+    int64_t x0 = cell_coord(lx, inv) - 1, y0 = cell_coord(ly, inv) - 1;
+    int64_t x1 = cell_coord(ux, inv), y1 = cell_coord(uy, inv);
+    if (x0 < -BP_LIM) x0 = -BP_LIM;
+    if (y0 < -BP_LIM) y0 = -BP_LIM;
+    int64_t cells = (x1 - x0 + 1) * (y1 - y0 + 1);
+    if (cells > (int64_t)bp->level_count[li] + 8) {
+        for (int32_t i = 0; i < bp->count; i++) {
+            int32_t s = bp->members[i];
+            const bp_entry *e = &bp->e[s];
+            if (e->level == li && box_overlap(e, lx, ly, ux, uy)) visit(ctx, s);
+        }
+        return;
+    }
+    for (int64_t cx = x0; cx <= x1; cx++) {
+        for (int64_t cy = y0; cy <= y1; cy++) {
+            uint64_t key = cell_key(li, cx, cy);
+            for (int32_t s = bp->head[bucket_of(bp, key)]; s >= 0;) {
+                const bp_entry *e = &bp->e[s];
+                int32_t next = e->next;
+                if (e->key == key && box_overlap(e, lx, ly, ux, uy)) visit(ctx, s);
+                s = next;
+            }
+        }
+    }
+}
+
+void broadphase_query(const broadphase *bp, rg_real lx, rg_real ly, rg_real ux, rg_real uy,
+                      bp_visit_fn visit, void *ctx)
+{
+    if (bp->count == 0) return;
+    for (int li = 0; li < BP_LEVELS; li++)
+        if (bp->level_count[li] > 0) query_level(bp, li, lx, ly, ux, uy, visit, ctx);
+    for (int32_t i = 0; i < bp->n_huge; i++) {
+        int32_t s = bp->huge[i];
+        if (box_overlap(&bp->e[s], lx, ly, ux, uy)) visit(ctx, s);
+    }
+}
+
+typedef struct ray_ctx {
+    bp_ray_fn fn;
+    void *ctx;
+    rg_real max_t;
+} ray_ctx;
+
+static void ray_visit(void *p, int32_t slot)
+{
+    ray_ctx *r = p;
+    r->max_t = r->fn(r->ctx, slot, r->max_t);
+}
+
+/* The ray walks each level in chunks no longer than one cell per axis, each chunk a box
+ * query; chunks beyond the closest hit so far are never visited. */
+void broadphase_raycast(const broadphase *bp, rg_vec2 o, rg_vec2 d, bp_ray_fn visit, void *ctx)
+{
+    if (bp->count == 0) return;
+    ray_ctx r = {visit, ctx, 1};
+    rg_real span = rg_max(rg_fabs(d.x), rg_fabs(d.y));
+    for (int i = 0; i < bp->n_huge; i++) ray_visit(&r, bp->huge[i]);
+    for (int li = BP_LEVELS - 1; li >= 0; li--) {
+        if (bp->level_count[li] == 0) continue;
+        rg_real c = level_cell(li);
+        /* chunk length in t; a whole-ray chunk when the ray is shorter than a cell */
+        rg_real step = span > c ? c / span : 1;
+        rg_real nchunks = span > c ? r.max_t / step + 1 : 1;
+        if (nchunks * 4 > (rg_real)bp->level_count[li] + 8) {
+            /* long ray over a sparse level: test each member of the level once */
+            for (int32_t k = 0; k < bp->count; k++) {
+                int32_t s = bp->members[k];
+                if (bp->e[s].level == li) ray_visit(&r, s);
+            }
+            continue;
+        }
+        for (rg_real t0 = 0; t0 <= r.max_t; t0 += step) {
+            rg_real t1 = rg_min(t0 + step, r.max_t);
+            rg_real ax = o.x + d.x * t0, ay = o.y + d.y * t0;
+            rg_real bx = o.x + d.x * t1, by = o.y + d.y * t1;
+            query_level(bp, li, rg_min(ax, bx), rg_min(ay, by), rg_max(ax, bx), rg_max(ay, by),
+                        ray_visit, &r);
+            if (step >= 1) break;
+        }
+    }
+}

@@ -1,0 +1,1306 @@
+/* contact.c: the collide stage (see contact.h) and the collision API of bodies and world. */
+#include <string.h>
+
+#include "collision.h"
+#include "contact.h"
+#include "vec2.h"
+#include "world.h"
+
+#define DEFAULT_FRICTION RG_R(0.6)
+#define FAT_MARGIN       RG_R(0.1)  /* m, at most the shape's larger half extent */
+#define LOOKAHEAD        RG_R(2)    /* fat boxes reach this many steps of motion ahead */
+#define SPECULATIVE      RG_R(4)    /* solve pairs predicted within SPECULATIVE * slop */
+#define COS45            RG_R(0.70710678)
+#define SORT_BYTES       (2 * sizeof(int32_t) + 2 * sizeof(uint16_t)) /* per contact */
+
+static inline int32_t dense_of(const rg_world *w, int32_t slot)
+{
+    return pool_dense(&w->body_pool, slot);
+}
+
+static inline int32_t other_of(const contact *c, int32_t slot) { return c->sa == slot ? c->sb : c->sa; }
+static inline int32_t next_of(const contact *c, int32_t slot) { return c->sa == slot ? c->na : c->nb; }
+
+static inline void set_next(contact *c, int32_t slot, int32_t v)
+{
+    if (c->sa == slot) c->na = v; else c->nb = v;
+}
+
+static inline void set_prev(contact *c, int32_t slot, int32_t v)
+{
+    if (c->sa == slot) c->pa = v; else c->pb = v;
+}
+
+/* ---------------------------------------------------------------- storage */
+
+void contact_init(rg_world *w)
+{
+    contact_world *cw = &w->coll;
+    memset(cw, 0, sizeof *cw);
+    cw->free_head = -1;
+    cw->iterations = 8;
+    cw->position = 3;
+    cw->sleeping = 1;
+    cw->sleep_speed = RG_R(0.05);
+    cw->sleep_time = RG_R(0.5);
+    cw->continuous = 1;
+    cw->slop = RG_R(0.005);
+    cw->bias_rate = RG_R(0.2);
+    cw->max_push = RG_R(2);
+    cw->restitution_threshold = RG_R(1);
+}
+
+static size_t scratch_block_size(int32_t n)
+{
+    return (size_t)n * (5 * sizeof(rg_real) + 4 * sizeof(rg_real) + 4 * sizeof(int32_t)) + 64;
+}
+
+void contact_release(rg_world *w)
+{
+    contact_world *cw = &w->coll;
+    const rg_mem *m = &w->mem;
+    broadphase_release(&cw->bp, m);
+    mem_free(m, cw->c, (size_t)cw->cap * sizeof *cw->c);
+    mem_free(m, cw->awake, (size_t)cw->cap * sizeof *cw->awake);
+    mem_free(m, cw->con, (size_t)cw->cap * sizeof *cw->con);
+    mem_free(m, cw->ev, (size_t)cw->cap * 3 * sizeof *cw->ev);
+    mem_free(m, cw->pend, (size_t)cw->cap * sizeof *cw->pend);
+    mem_free(m, cw->ord, (size_t)cw->cap * SORT_BYTES);
+    mem_free(m, cw->sx0, scratch_block_size(cw->scap));
+    cw->c = NULL;
+    cw->cap = 0;
+}
+
+/* Doubles contact storage (contacts, awake list, solver rows, events); all-or-nothing. */
+static rg_status contact_grow(rg_world *w)
+{
+    contact_world *cw = &w->coll;
+    const rg_mem *m = &w->mem;
+    int32_t old = cw->cap;
+    if (old > INT32_MAX / 8) return RG_ERR_CAPACITY;
+    int32_t cap = old < 256 ? 256 : old * 2;
+    contact *c = mem_alloc(m, (size_t)cap * sizeof *c);
+    int32_t *awake = mem_alloc(m, (size_t)cap * sizeof *awake);
+    solver_constraint *con = mem_alloc(m, (size_t)cap * sizeof *con);
+    rg_contact_event *ev = mem_alloc(m, (size_t)cap * 3 * sizeof *ev);
+    rg_contact_event *pend = mem_alloc(m, (size_t)cap * sizeof *pend);
+    char *sortbuf = mem_alloc(m, (size_t)cap * SORT_BYTES);
+    if (c == NULL || awake == NULL || con == NULL || ev == NULL || pend == NULL || sortbuf == NULL) {
+        mem_free(m, sortbuf, (size_t)cap * SORT_BYTES);
+        mem_free(m, c, (size_t)cap * sizeof *c);
+        mem_free(m, awake, (size_t)cap * sizeof *awake);
+        mem_free(m, con, (size_t)cap * sizeof *con);
+        mem_free(m, ev, (size_t)cap * 3 * sizeof *ev);
+        mem_free(m, pend, (size_t)cap * sizeof *pend);
+        return RG_ERR_OUT_OF_MEMORY;
+    }
+    if (old > 0) {
+        memcpy(c, cw->c, (size_t)old * sizeof *c);
+        memcpy(awake, cw->awake, (size_t)cw->n_awake * sizeof *awake);
+        memcpy(ev, cw->ev, (size_t)cw->n_ev * sizeof *ev);
+        memcpy(pend, cw->pend, (size_t)cw->n_pend * sizeof *pend);
+    }
+    mem_free(m, cw->c, (size_t)old * sizeof *cw->c);
+    mem_free(m, cw->awake, (size_t)old * sizeof *cw->awake);
+    mem_free(m, cw->con, (size_t)old * sizeof *cw->con);
+    mem_free(m, cw->ev, (size_t)old * 3 * sizeof *cw->ev);
+    mem_free(m, cw->pend, (size_t)old * sizeof *cw->pend);
+    mem_free(m, cw->ord, (size_t)old * SORT_BYTES);
+    cw->ord = (int32_t *)(void *)sortbuf;
+    cw->tord = cw->ord + cap;
+    cw->key = (uint16_t *)(void *)(cw->tord + cap);
+    cw->tkey = cw->key + cap;
+    cw->c = c;
+    cw->awake = awake;
+    cw->con = con;
+    cw->ev = ev;
+    cw->pend = pend;
+    cw->cap = cap;
+    /* new ids on the free list, lowest first */
+    for (int32_t id = cap - 1; id >= old; id--) {
+        memset(&c[id], 0, sizeof c[id]);
+        c[id].na = cw->free_head;
+        c[id].awake = -1;
+        cw->free_head = id;
+    }
+    return RG_OK;
+}
+
+rg_status contact_prepare(rg_world *w)
+{
+    contact_world *cw = &w->coll;
+    if (cw->shape_count == 0) return RG_OK;
+    int32_t n = w->b.capacity + 1;
+    if (cw->scap >= n) return RG_OK;
+    size_t size = scratch_block_size(n);
+    char *p = mem_alloc(&w->mem, size);
+    if (p == NULL) return RG_ERR_OUT_OF_MEMORY;
+    mem_free(&w->mem, cw->sx0, scratch_block_size(cw->scap));
+    size_t r = (size_t)n * sizeof(rg_real), q = (size_t)n * sizeof(int32_t);
+    cw->sx0 = (rg_real *)(void *)p; p += r;
+    cw->sy0 = (rg_real *)(void *)p; p += r;
+    cw->umin = (rg_real *)(void *)p; p += r;
+    cw->lx = (rg_real *)(void *)p; p += r;
+    cw->ly = (rg_real *)(void *)p; p += r;
+    cw->sv = (rg_real *)(void *)p; p += 2 * r;
+    cw->spv = (rg_real *)(void *)p; p += 2 * r;
+    cw->uf = (int32_t *)(void *)p; p += q;
+    cw->ihead = (int32_t *)(void *)p; p += q;
+    cw->itail = (int32_t *)(void *)p; p += q;
+    cw->list = (int32_t *)(void *)p;
+    cw->scap = n;
+    return RG_OK;
+}
+
+int contact_stage_needed(const rg_world *w)
+{
+    const contact_world *cw = &w->coll;
+    return cw->shape_count > 0 || cw->n_ev > 0 || cw->n_pend > 0;
+}
+
+/* ---------------------------------------------------------------- contacts */
+
+static void awake_add(contact_world *cw, int32_t id)
+{
+    cw->c[id].awake = cw->n_awake;
+    cw->awake[cw->n_awake++] = id;
+}
+
+static void awake_remove(contact_world *cw, int32_t id)
+{
+    int32_t k = cw->c[id].awake, last = cw->awake[--cw->n_awake];
+    cw->awake[k] = last;
+    cw->c[last].awake = k;
+    cw->c[id].awake = -1;
+}
+
+static void emit(rg_world *w, const contact *c, int32_t kind)
+{
+    contact_world *cw = &w->coll;
+    rg_contact_event *e = cw->in_step ? &cw->ev[cw->n_ev++] : &cw->pend[cw->n_pend++];
+    e->a = pool_handle(&w->body_pool, c->sa);
+    e->b = pool_handle(&w->body_pool, c->sb);
+    e->normal = rg_v2(c->nx, c->ny);
+    e->point = rg_v2(c->px, c->py);
+    e->depth = c->depth;
+    e->speed = c->speed;
+    e->kind = kind;
+    e->sensor = (c->flags & CT_SENSOR) != 0;
+}
+
+static void list_link(rg_world *w, int32_t id, int32_t slot)
+{
+    contact_world *cw = &w->coll;
+    int32_t i = dense_of(w, slot);
+    int32_t head = w->b.chead[i] - 1;
+    set_prev(&cw->c[id], slot, -1);
+    set_next(&cw->c[id], slot, head);
+    if (head >= 0) set_prev(&cw->c[head], slot, id);
+    w->b.chead[i] = id + 1;
+}
+
+static void list_unlink(rg_world *w, int32_t id, int32_t slot)
+{
+    contact_world *cw = &w->coll;
+    contact *c = &cw->c[id];
+    int32_t next = c->sa == slot ? c->na : c->nb;
+    int32_t prev = c->sa == slot ? c->pa : c->pb;
+    if (prev >= 0)
+        set_next(&cw->c[prev], slot, next);
+    else
+        w->b.chead[dense_of(w, slot)] = next + 1;
+    if (next >= 0) set_prev(&cw->c[next], slot, prev);
+}
+
+/* A new contact between slots s and t, or -1 when memory runs out. */
+static int32_t contact_create(rg_world *w, int32_t s, int32_t t)
+{
+    contact_world *cw = &w->coll;
+    if (cw->free_head < 0 && contact_grow(w) != RG_OK) return -1;
+    if (pool_handle(&w->body_pool, s) > pool_handle(&w->body_pool, t)) {
+        int32_t tmp = s;
+        s = t;
+        t = tmp;
+    }
+    const body_store *b = &w->b;
+    int32_t id = cw->free_head;
+    contact *c = &cw->c[id];
+    cw->free_head = c->na;
+    cw->live++;
+    int32_t ia = dense_of(w, s), ib = dense_of(w, t);
+    memset(c, 0, sizeof *c);
+    c->sa = s;
+    c->sb = t;
+    c->awake = -1;
+    c->flags = ((b->cflags[ia] | b->cflags[ib]) & CF_SENSOR) ? CT_SENSOR : 0;
+    c->mu = rg_sqrt(b->mu[ia] * b->mu[ib]);
+    c->e = rg_max(b->rest[ia], b->rest[ib]);
+    list_link(w, id, s);
+    list_link(w, id, t);
+    if (ia < b->n_active || ib < b->n_active) awake_add(cw, id);
+    return id;
+}
+
+static void contact_destroy(rg_world *w, int32_t id)
+{
+    contact_world *cw = &w->coll;
+    contact *c = &cw->c[id];
+    if (c->flags & CT_TOUCHING) {
+        emit(w, c, RG_CONTACT_END);
+        cw->n_touching--;
+    }
+    list_unlink(w, id, c->sa);
+    list_unlink(w, id, c->sb);
+    if (c->awake >= 0) awake_remove(cw, id);
+    c->flags = 0;
+    c->na = cw->free_head;
+    cw->free_head = id;
+    cw->live--;
+}
+
+/* ---------------------------------------------------------------- sleeping */
+
+static void wake_island(rg_world *w, int32_t i)
+{
+    contact_world *cw = &w->coll;
+    body_store *b = &w->b;
+    if (body_partition(w, i) != BODY_PART_ASLEEP) return;
+    int32_t s = b->isl_head[i] - 1;
+    if (s < 0) s = b->slot[i]; /* not in a list: wake it alone */
+    while (s >= 0) {
+        int32_t j = dense_of(w, s);
+        int32_t next = b->isl_next[j] - 1;
+        b->isl_head[j] = 0;
+        b->isl_next[j] = 0;
+        b->sleep_t[j] = 0;
+        b->dx[j] = 0;
+        b->dy[j] = 0;
+        if (body_partition(w, j) == BODY_PART_ASLEEP) j = body_move_to_partition(w, j, BODY_PART_ACTIVE);
+        for (int32_t id = b->chead[j] - 1; id >= 0; id = next_of(&cw->c[id], s))
+            if (cw->c[id].awake < 0) awake_add(cw, id);
+        s = next;
+    }
+}
+
+static void wake_all(rg_world *w)
+{
+    while (w->b.n_moving > w->b.n_active) wake_island(w, w->b.n_active);
+}
+
+/* Wakes the sleeping bodies that touch slot's body (it moved, changed or goes away). */
+static void wake_touching(rg_world *w, int32_t slot)
+{
+    contact_world *cw = &w->coll;
+    int32_t id = w->b.chead[dense_of(w, slot)] - 1;
+    while (id >= 0) {
+        const contact *c = &cw->c[id];
+        int32_t next = next_of(c, slot);
+        int32_t j = dense_of(w, other_of(c, slot));
+        if (body_partition(w, j) == BODY_PART_ASLEEP) wake_island(w, j);
+        id = next;
+    }
+}
+
+static int32_t find_root(int32_t *uf, int32_t i)
+{
+    while (uf[i] != i) {
+        uf[i] = uf[uf[i]];
+        i = uf[i];
+    }
+    return i;
+}
+
+static void unite(int32_t *uf, int32_t a, int32_t b)
+{
+    a = find_root(uf, a);
+    b = find_root(uf, b);
+    /* the lower index becomes the root: deterministic */
+    if (a < b) uf[b] = a; else if (b < a) uf[a] = b;
+}
+
+/* Islands: dynamic bodies joined by touching solid contacts and springs.  An island whose
+ * every body rested (speed below sleep_speed) for sleep_time falls asleep as a whole. */
+static void sleep_islands(rg_world *w, rg_real dt)
+{
+    contact_world *cw = &w->coll;
+    body_store *b = &w->b;
+    int32_t n = b->n_active;
+    int32_t *uf = cw->uf;
+    rg_real thr2 = cw->sleep_speed * cw->sleep_speed;
+    int any = 0;
+    for (int32_t i = 0; i < n; i++) {
+        uf[i] = i;
+        if (b->type[i] == RG_BODY_DYNAMIC && b->shape[i] != RG_SHAPE_NONE) {
+            rg_real v2 = b->vx[i] * b->vx[i] + b->vy[i] * b->vy[i];
+            b->sleep_t[i] = v2 < thr2 ? b->sleep_t[i] + dt : 0;
+            any |= b->sleep_t[i] >= cw->sleep_time;
+        }
+    }
+    if (!any) return;
+    for (int32_t k = 0; k < cw->n_awake; k++) {
+        const contact *c = &cw->c[cw->awake[k]];
+        if ((c->flags & (CT_TOUCHING | CT_SENSOR)) != CT_TOUCHING) continue;
+        int32_t ia = dense_of(w, c->sa), ib = dense_of(w, c->sb);
+        if (ia < n && ib < n && b->type[ia] == RG_BODY_DYNAMIC && b->type[ib] == RG_BODY_DYNAMIC)
+            unite(uf, ia, ib);
+    }
+    for (int32_t k = 0; k < w->springs.count; k++) {
+        const spring *sp = &w->springs.items[k];
+        if (sp->slot_b < 0) continue;
+        int32_t ia = dense_of(w, sp->slot_a), ib = dense_of(w, sp->slot_b);
+        if (ia < n && ib < n && b->type[ia] == RG_BODY_DYNAMIC && b->type[ib] == RG_BODY_DYNAMIC)
+            unite(uf, ia, ib);
+    }
+    /* island minimum of the rest time; a body without a shape never rests */
+    rg_real *umin = cw->umin;
+    for (int32_t i = 0; i < n; i++) umin[i] = RG_HUGE;
+    for (int32_t i = 0; i < n; i++) {
+        if (b->type[i] != RG_BODY_DYNAMIC) continue;
+        int32_t r = find_root(uf, i);
+        rg_real t = b->shape[i] != RG_SHAPE_NONE ? b->sleep_t[i] : 0;
+        if (t < umin[r]) umin[r] = t;
+    }
+    /* a spring to a sleeping body keeps the island awake: wake the sleeper instead */
+    for (int32_t k = 0; k < w->springs.count; k++) {
+        const spring *sp = &w->springs.items[k];
+        if (sp->slot_b < 0) continue;
+        int32_t ia = dense_of(w, sp->slot_a), ib = dense_of(w, sp->slot_b);
+        if (ia < n && body_partition(w, ib) == BODY_PART_ASLEEP) umin[find_root(uf, ia)] = 0;
+        if (ib < n && body_partition(w, ia) == BODY_PART_ASLEEP) umin[find_root(uf, ib)] = 0;
+    }
+    /* link each sleeping island's members, in dense order */
+    int32_t *head = cw->ihead, *tail = cw->itail, *list = cw->list;
+    int32_t count = 0;
+    for (int32_t i = 0; i < n; i++) head[i] = -1;
+    for (int32_t i = 0; i < n; i++) {
+        if (b->type[i] != RG_BODY_DYNAMIC) continue;
+        int32_t r = find_root(uf, i);
+        if (!(umin[r] >= cw->sleep_time)) continue;
+        int32_t s = b->slot[i];
+        if (head[r] < 0) {
+            head[r] = s;
+        } else {
+            b->isl_next[dense_of(w, tail[r])] = s + 1;
+        }
+        tail[r] = s;
+        b->isl_head[i] = head[r] + 1;
+        b->isl_next[i] = 0;
+        list[count++] = s;
+    }
+    if (count == 0) return;
+    for (int32_t k = 0; k < count; k++) {
+        int32_t i = dense_of(w, list[k]);
+        b->vx[i] = b->vy[i] = 0;
+        b->dx[i] = b->dy[i] = 0;
+        b->cflags[i] &= ~CF_FAST;
+        body_move_to_partition(w, i, BODY_PART_ASLEEP);
+    }
+    /* contacts with no awake body leave the awake list */
+    for (int32_t k = 0; k < count; k++) {
+        int32_t s = list[k];
+        for (int32_t id = b->chead[dense_of(w, s)] - 1; id >= 0; id = next_of(&cw->c[id], s)) {
+            contact *c = &cw->c[id];
+            if (c->awake < 0) continue;
+            if (dense_of(w, c->sa) >= b->n_active && dense_of(w, c->sb) >= b->n_active)
+                awake_remove(cw, id);
+        }
+    }
+}
+
+/* ---------------------------------------------------------------- broadphase upkeep */
+
+static inline rg_real fat_margin(const body_store *b, int32_t i)
+{
+    return rg_min(FAT_MARGIN, rg_max(b->hx[i], b->hy[i]));
+}
+
+/* The fat box of a body at rest: its box grown by the margin. */
+static void rest_box(const body_store *b, int32_t i, rg_real box[4])
+{
+    rg_real m = fat_margin(b, i);
+    box[0] = b->x[i] - b->hx[i] - m;
+    box[1] = b->y[i] - b->hy[i] - m;
+    box[2] = b->x[i] + b->hx[i] + m;
+    box[3] = b->y[i] + b->hy[i] + m;
+}
+
+static inline int box_inside(const bp_entry *e, rg_real lx, rg_real ly, rg_real ux, rg_real uy)
+{
+    return lx >= e->lx && ly >= e->ly && ux <= e->ux && uy <= e->uy;
+}
+
+/* Refreshes the fat box of active body i from its box [l, u] and a displacement (mx, my)
+ * to look ahead by, when the box [l, u] left the fat box; marks it moved. */
+static void refresh_fat(rg_world *w, int32_t i, rg_real lx, rg_real ly, rg_real ux, rg_real uy,
+                        rg_real mx, rg_real my)
+{
+    broadphase *bp = &w->coll.bp;
+    int32_t slot = w->b.slot[i];
+    if (box_inside(&bp->e[slot], lx, ly, ux, uy)) return;
+    rg_real m = fat_margin(&w->b, i);
+    mx *= LOOKAHEAD;
+    my *= LOOKAHEAD;
+    rg_real flx = rg_min(lx, lx + mx) - m, fly = rg_min(ly, ly + my) - m;
+    rg_real fux = rg_max(ux, ux + mx) + m, fuy = rg_max(uy, uy + my) + m;
+    broadphase_move(bp, slot, flx, fly, fux, fuy);
+    broadphase_mark_moved(bp, slot);
+}
+
+/* ---------------------------------------------------------------- pairs */
+
+typedef struct pair_ctx {
+    rg_world *w;
+    int32_t s, is;
+    int teleported;
+    int failed;
+} pair_ctx;
+
+static int pair_admitted(const body_store *b, int32_t i, int32_t j)
+{
+    int32_t ti = b->type[i], tj = b->type[j];
+    int sensor = ((b->cflags[i] | b->cflags[j]) & CF_SENSOR) != 0;
+    if (ti != RG_BODY_DYNAMIC && tj != RG_BODY_DYNAMIC) {
+        if (!sensor || (ti == RG_BODY_STATIC && tj == RG_BODY_STATIC)) return 0;
+    }
+    return (b->cat[i] & b->mask[j]) != 0 && (b->cat[j] & b->mask[i]) != 0;
+}
+
+static void pair_visit(void *p, int32_t t)
+{
+    pair_ctx *q = p;
+    rg_world *w = q->w;
+    contact_world *cw = &w->coll;
+    int32_t s = q->s;
+    if (t == s) return;
+    if (cw->bp.e[t].moved && t < s) return; /* t's own query finds the pair */
+    const body_store *b = &w->b;
+    int32_t it = dense_of(w, t);
+    if (!pair_admitted(b, q->is, it)) return;
+    for (int32_t id = b->chead[q->is] - 1; id >= 0; id = next_of(&cw->c[id], s))
+        if (other_of(&cw->c[id], s) == t) return;
+    if (contact_create(w, s, t) < 0) {
+        q->failed = 1;
+        return;
+    }
+    /* a teleported body landing on a sleeping one wakes it */
+    if (q->teleported && body_partition(w, it) == BODY_PART_ASLEEP) {
+        wake_island(w, it);
+        q->is = dense_of(w, s);
+    }
+}
+
+static void find_pairs(rg_world *w)
+{
+    contact_world *cw = &w->coll;
+    broadphase *bp = &cw->bp;
+    int32_t n = bp->n_moved, kept = 0;
+    for (int32_t k = 0; k < n; k++) {
+        int32_t s = bp->moved[k];
+        const bp_entry *e = &bp->e[s];
+        pair_ctx q;
+        q.w = w;
+        q.s = s;
+        q.is = dense_of(w, s);
+        q.teleported = (w->b.cflags[q.is] & CF_TELEPORTED) != 0;
+        q.failed = 0;
+        broadphase_query(bp, e->lx, e->ly, e->ux, e->uy, pair_visit, &q);
+        if (q.failed)
+            bp->e[s].moved = 2; /* out of memory: search again next step */
+        else
+            w->b.cflags[dense_of(w, s)] &= ~CF_TELEPORTED;
+    }
+    for (int32_t k = 0; k < n; k++) {
+        int32_t s = bp->moved[k];
+        if (bp->e[s].moved == 2) {
+            bp->e[s].moved = 1;
+            bp->moved[kept++] = s;
+        } else {
+            bp->e[s].moved = 0;
+        }
+    }
+    bp->n_moved = kept;
+}
+
+/* ---------------------------------------------------------------- narrowphase */
+
+static int pusher(const body_store *b, int32_t j, int touching)
+{
+    if (b->type[j] == RG_BODY_DYNAMIC) return touching;
+    return b->type[j] == RG_BODY_KINEMATIC && (b->vx[j] != 0 || b->vy[j] != 0);
+}
+
+/* Updates contact id from the step's motion; returns 1 when it was destroyed. */
+static int narrow_one(rg_world *w, int32_t id)
+{
+    contact_world *cw = &w->coll;
+    const body_store *b = &w->b;
+    contact *c = &cw->c[id];
+    if (!broadphase_overlap(&cw->bp, c->sa, c->sb)) {
+        contact_destroy(w, id);
+        return 1;
+    }
+    int32_t ia = dense_of(w, c->sa), ib = dense_of(w, c->sb);
+    int32_t ka = b->shape[ia], kb = b->shape[ib];
+    rg_vec2 ha = rg_v2(b->hx[ia], b->hy[ia]), hb = rg_v2(b->hx[ib], b->hy[ib]);
+    rg_vec2 pa = rg_v2(b->x[ia], b->y[ia]), pb = rg_v2(b->x[ib], b->y[ib]);
+    rg_vec2 da = rg_v2(b->dx[ia], b->dy[ia]), db = rg_v2(b->dx[ib], b->dy[ib]);
+    rg_vec2 r = rg_v2_sub(db, da); /* b's motion relative to a over the step */
+    coll_manifold m;
+    rg_real s0 = RG_HUGE;
+    int active = 1;
+    if (!cw->continuous) {
+        /* discrete: the shapes where the step left them, extrapolated back */
+        coll_manifold_of(ka, pa, ha, kb, pb, hb, &m);
+        s0 = -m.depth - rg_v2_dot(r, m.normal);
+    } else {
+        rg_vec2 pa0 = rg_v2_sub(pa, da), pb0 = rg_v2_sub(pb, db);
+        rg_real size = rg_min(rg_min(ha.x, ha.y), rg_min(hb.x, hb.y));
+        if (rg_v2_len2(r) > RG_R(0.25) * size * size) {
+            rg_real t;
+            if (coll_sweep(ka, pa0, ha, kb, pb0, hb, r, &t, &m))
+                s0 = t > 0 ? -t * rg_v2_dot(r, m.normal) : -m.depth;
+            else
+                active = 0;
+        } else {
+            coll_manifold_of(ka, pa0, ha, kb, pb0, hb, &m);
+            s0 = -m.depth;
+        }
+    }
+    uint32_t was = c->flags & CT_TOUCHING, now = 0;
+    c->flags &= ~CT_SOLVE;
+    if (active) {
+        rg_vec2 n = m.normal;
+        rg_real vn0 = (b->vx[ib] - b->vx[ia]) * n.x + (b->vy[ib] - b->vy[ia]) * n.y;
+        rg_real d = s0 + rg_v2_dot(r, n); /* predicted separation */
+        rg_real gap = rg_min(s0, d);
+        if (gap <= 0 || (was && gap < cw->slop)) now = CT_TOUCHING;
+        c->nx = n.x;
+        c->ny = n.y;
+        c->px = m.point.x;
+        c->py = m.point.y;
+        c->s0 = s0;
+        c->vn0 = vn0;
+        if (!(c->flags & CT_SENSOR) && d < SPECULATIVE * cw->slop) c->flags |= CT_SOLVE;
+    }
+    if (now != was) {
+        c->flags ^= CT_TOUCHING;
+        if (now) {
+            c->depth = rg_max(-c->s0, 0);
+            c->speed = rg_max(-c->vn0, 0);
+            cw->n_touching++;
+            emit(w, c, RG_CONTACT_BEGIN);
+        } else {
+            cw->n_touching--;
+            emit(w, c, RG_CONTACT_END);
+        }
+    }
+    if ((now | was) && !(c->flags & CT_SENSOR)) {
+        int pa_ = body_partition(w, ia), pb_ = body_partition(w, ib);
+        if (pa_ == BODY_PART_ASLEEP && pb_ == BODY_PART_ACTIVE && pusher(b, ib, now != 0))
+            wake_island(w, ia);
+        else if (pb_ == BODY_PART_ASLEEP && pa_ == BODY_PART_ACTIVE && pusher(b, ia, now != 0))
+            wake_island(w, ib);
+    }
+    return 0;
+}
+
+/* ---------------------------------------------------------------- the stage */
+
+void contact_begin(rg_world *w)
+{
+    contact_world *cw = &w->coll;
+    if (cw->shape_count == 0) return;
+    int32_t n = w->b.n_active;
+    memcpy(cw->sx0, w->b.x, (size_t)n * sizeof *cw->sx0);
+    memcpy(cw->sy0, w->b.y, (size_t)n * sizeof *cw->sy0);
+}
+
+static int event_less(const rg_contact_event *p, const rg_contact_event *q)
+{
+    if (p->a != q->a) return p->a < q->a;
+    if (p->b != q->b) return p->b < q->b;
+    return p->kind > q->kind; /* an end before a begin */
+}
+
+static void sift_down(rg_contact_event *e, int32_t root, int32_t n)
+{
+    for (;;) {
+        int32_t child = 2 * root + 1;
+        if (child >= n) return;
+        if (child + 1 < n && event_less(&e[child], &e[child + 1])) child++;
+        if (!event_less(&e[root], &e[child])) return;
+        rg_contact_event t = e[root];
+        e[root] = e[child];
+        e[child] = t;
+        root = child;
+    }
+}
+
+/* Heapsort: in place, no allocation; (a, b, kind) is unique within a step. */
+static void sort_events(rg_contact_event *e, int32_t n)
+{
+    for (int32_t i = n / 2 - 1; i >= 0; i--) sift_down(e, i, n);
+    for (int32_t i = n - 1; i > 0; i--) {
+        rg_contact_event t = e[0];
+        e[0] = e[i];
+        e[i] = t;
+        sift_down(e, 0, i);
+    }
+}
+
+/* Post-solve safety net for fast bodies: sweep the final path against the non-dynamic
+ * shapes they touch and stop at the first impact if the solver left them through one. */
+static void clamp_fast(rg_world *w, int32_t n_fast)
+{
+    contact_world *cw = &w->coll;
+    body_store *b = &w->b;
+    for (int32_t k = 0; k < n_fast; k++) {
+        int32_t s = cw->list[k];
+        int32_t i = dense_of(w, s);
+        rg_vec2 p0 = rg_v2(cw->lx[k], cw->ly[k]), p1 = rg_v2(b->x[i], b->y[i]);
+        rg_vec2 D = rg_v2_sub(p1, p0), hf = rg_v2(b->hx[i], b->hy[i]);
+        rg_real tmin = 1;
+        rg_vec2 nbest = rg_v2(0, 0), vbest = rg_v2(0, 0);
+        for (int32_t id = b->chead[i] - 1; id >= 0; id = next_of(&cw->c[id], s)) {
+            const contact *c = &cw->c[id];
+            if (c->flags & CT_SENSOR) continue;
+            int32_t j = dense_of(w, other_of(c, s));
+            int active = j < b->n_active;
+            if (b->type[j] == RG_BODY_DYNAMIC && active) continue;
+            rg_vec2 ho = rg_v2(b->hx[j], b->hy[j]);
+            rg_vec2 o1 = rg_v2(b->x[j], b->y[j]);
+            rg_vec2 dob = active ? rg_v2(b->dx[j], b->dy[j]) : rg_v2(0, 0);
+            rg_vec2 o0 = rg_v2_sub(o1, dob);
+            rg_real t;
+            coll_manifold m;
+            if (!coll_sweep(b->shape[j], o0, ho, b->shape[i], p0, hf, rg_v2_sub(D, dob), &t, &m)) continue;
+            if (!(t > 0 && t < tmin)) continue;
+            coll_manifold_of(b->shape[j], o1, ho, b->shape[i], p1, hf, &m);
+            if (m.depth >= 0 && m.depth <= cw->slop) continue; /* resting at the end */
+            tmin = t;
+            nbest = m.normal;
+            vbest = active ? rg_v2(b->vx[j], b->vy[j]) : rg_v2(0, 0);
+            coll_sweep(b->shape[j], o0, ho, b->shape[i], p0, hf, rg_v2_sub(D, dob), &t, &m);
+            nbest = m.normal;
+        }
+        if (tmin >= 1) continue;
+        rg_real len = rg_v2_len(D);
+        rg_real tb = len > 0 ? rg_max(tmin - RG_R(0.5) * cw->slop / len, 0) : 0;
+        b->x[i] = p0.x + D.x * tb;
+        b->y[i] = p0.y + D.y * tb;
+        rg_real vn = (b->vx[i] - vbest.x) * nbest.x + (b->vy[i] - vbest.y) * nbest.y;
+        if (vn < 0) {
+            b->vx[i] -= vn * nbest.x;
+            b->vy[i] -= vn * nbest.y;
+        }
+    }
+}
+
+/* LSD radix sort of n (key, value) pairs by 16-bit key, two passes of 8 bits; stable. */
+static void radix_sort16(uint16_t *key, int32_t *val, uint16_t *tkey, int32_t *tval, int32_t n)
+{
+    for (int shift = 0; shift < 16; shift += 8) {
+        int32_t count[257];
+        memset(count, 0, sizeof count);
+        for (int32_t i = 0; i < n; i++) count[((key[i] >> shift) & 255) + 1]++;
+        for (int d = 0; d < 256; d++) count[d + 1] += count[d];
+        for (int32_t i = 0; i < n; i++) {
+            int32_t at = count[(key[i] >> shift) & 255]++;
+            tkey[at] = key[i];
+            tval[at] = val[i];
+        }
+        uint16_t *kt = key;
+        key = tkey;
+        tkey = kt;
+        int32_t *vt = val;
+        val = tval;
+        tval = vt;
+    }
+}
+
+static void solve(rg_world *w, rg_real dt)
+{
+    contact_world *cw = &w->coll;
+    body_store *b = &w->b;
+    int32_t n = b->n_active, nc = 0;
+    solver_constraint *con = cw->con;
+    /* the rows to solve, in the awake order */
+    int32_t *ord = cw->ord;
+    for (int32_t k = 0; k < cw->n_awake; k++) {
+        int32_t id = cw->awake[k];
+        contact *c = &cw->c[id];
+        if (!(c->flags & CT_SOLVE) || !rg_finite(c->s0) || !rg_finite(c->vn0)) {
+            c->pn = c->pt = 0;
+            continue;
+        }
+        int32_t ia = dense_of(w, c->sa), ib = dense_of(w, c->sb);
+        if (!((ia < n ? b->inv_mass[ia] : 0) + (ib < n ? b->inv_mass[ib] : 0) > 0)) {
+            c->pn = c->pt = 0;
+            continue;
+        }
+        ord[nc++] = id;
+    }
+    if (nc == 0) return;
+    /* under gravity, bottom-up by the height of the contact point: Gauss-Seidel then
+     * carries support up a stack within a sweep, and the shock sweep needs the order */
+    rg_real gx = w->gravity.x, gy = w->gravity.y, gl = rg_sqrt(gx * gx + gy * gy);
+    int shock = gl > 0 && rg_finite(gl);
+    if (shock) {
+        gx /= gl;
+        gy /= gl;
+        rg_real hmin = RG_HUGE, hmax = -RG_HUGE;
+        for (int32_t k = 0; k < nc; k++) {
+            const contact *c = &cw->c[ord[k]];
+            rg_real h = -(c->px * gx + c->py * gy);
+            hmin = rg_min(hmin, h);
+            hmax = rg_max(hmax, h);
+        }
+        rg_real scale = hmax > hmin ? RG_R(65535) / (hmax - hmin) : 0;
+        if (!rg_finite(scale)) scale = 0;
+        for (int32_t k = 0; k < nc; k++) {
+            const contact *c = &cw->c[ord[k]];
+            rg_real q = (-(c->px * gx + c->py * gy) - hmin) * scale;
+            cw->key[k] = (uint16_t)(q >= 0 && q <= RG_R(65535) ? q : 0);
+        }
+        radix_sort16(cw->key, ord, cw->tkey, cw->tord, nc);
+    }
+    for (int32_t k = 0; k < nc; k++) {
+        int32_t id = ord[k];
+        const contact *c = &cw->c[id];
+        int32_t ia = dense_of(w, c->sa), ib = dense_of(w, c->sb);
+        int32_t a = ia < n ? ia : n, bb = ib < n ? ib : n;
+        rg_real ima = a < n ? b->inv_mass[ia] : 0, imb = bb < n ? b->inv_mass[ib] : 0;
+        solver_constraint *q = &con[k];
+        q->a = a;
+        q->b = bb;
+        q->ima = ima;
+        q->imb = imb;
+        q->nx = c->nx;
+        q->ny = c->ny;
+        q->m = 1 / (ima + imb);
+        q->mu = c->mu;
+        q->s0 = c->s0;
+        q->pn = c->pn;
+        q->pt = c->pt;
+        q->cid = id;
+    }
+    if (nc == 0) return;
+    solver_params p;
+    p.dt = dt;
+    p.inv_dt = 1 / dt;
+    p.slop = cw->slop;
+    p.bias_rate = cw->bias_rate;
+    p.max_push = cw->max_push;
+    p.restitution_threshold = cw->restitution_threshold;
+    for (int32_t k = 0; k < nc; k++) {
+        const contact *c = &cw->c[con[k].cid];
+        con[k].vmin = solver_vmin(c->s0, c->vn0, c->e, &p);
+    }
+    rg_real *v = cw->sv;
+    for (int32_t i = 0; i < n; i++) {
+        v[2 * i] = b->vx[i];
+        v[2 * i + 1] = b->vy[i];
+    }
+    v[2 * n] = v[2 * n + 1] = 0;
+    solver_warm_start(con, nc, v);
+    for (int32_t it = 0; it < cw->iterations; it++) solver_iterate(con, nc, v);
+    if (shock) solver_shock(con, nc, v, gx, gy);
+    /* positions move with the solved velocities, then by the pseudo-velocities of the
+     * position pass, which leave the velocities alone */
+    for (int32_t i = 0; i < n; i++) {
+        b->x[i] += (v[2 * i] - b->vx[i]) * dt;
+        b->y[i] += (v[2 * i + 1] - b->vy[i]) * dt;
+        b->vx[i] = v[2 * i];
+        b->vy[i] = v[2 * i + 1];
+    }
+    if (cw->position > 0 && solver_prepare_position(con, nc, v, &p) > 0) {
+        rg_real *pv = cw->spv;
+        memset(pv, 0, (size_t)(2 * n + 2) * sizeof *pv);
+        for (int32_t it = 0; it < cw->position; it++) solver_iterate_position(con, nc, pv);
+        for (int32_t i = 0; i < n; i++) {
+            b->x[i] += pv[2 * i] * dt;
+            b->y[i] += pv[2 * i + 1] * dt;
+        }
+    }
+    for (int32_t k = 0; k < nc; k++) {
+        contact *c = &cw->c[con[k].cid];
+        c->pn = con[k].pn;
+        c->pt = con[k].pt;
+    }
+}
+
+static void update_grounded(rg_world *w)
+{
+    contact_world *cw = &w->coll;
+    body_store *b = &w->b;
+    int32_t n = b->n_active;
+    for (int32_t i = 0; i < n; i++) b->cflags[i] &= ~CF_GROUNDED;
+    rg_real gx = w->gravity.x, gy = w->gravity.y;
+    if (gx == 0 && gy == 0) return;
+    for (int32_t k = 0; k < cw->n_awake; k++) {
+        const contact *c = &cw->c[cw->awake[k]];
+        if ((c->flags & (CT_TOUCHING | CT_SENSOR)) != CT_TOUCHING) continue;
+        int32_t ia = dense_of(w, c->sa), ib = dense_of(w, c->sb);
+        /* b rests on a when the normal a -> b points against b's gravity */
+        for (int side = 0; side < 2; side++) {
+            int32_t i = side ? ia : ib;
+            rg_real sgn = side ? RG_R(-1) : RG_R(1);
+            if (i >= n || b->type[i] != RG_BODY_DYNAMIC) continue;
+            rg_real ex = gx * b->gscale[i], ey = gy * b->gscale[i];
+            rg_real up = -(c->nx * ex + c->ny * ey) * sgn;
+            rg_real g = rg_sqrt(ex * ex + ey * ey);
+            if (g > 0 && up >= COS45 * g) b->cflags[i] |= CF_GROUNDED;
+        }
+    }
+}
+
+void contact_step(rg_world *w, rg_real dt)
+{
+    contact_world *cw = &w->coll;
+    body_store *b = &w->b;
+    /* the events of this step start with the ends reported between steps */
+    if (cw->n_pend > 0) memcpy(cw->ev, cw->pend, (size_t)cw->n_pend * sizeof *cw->ev);
+    cw->n_ev = cw->n_pend;
+    cw->n_pend = 0;
+    cw->in_step = 1;
+    if (cw->shape_count > 0) {
+        int32_t n = b->n_active, n_fast = 0;
+        /* displacements of the integration, swept boxes, fat boxes */
+        for (int32_t i = 0; i < n; i++) {
+            b->dx[i] = b->x[i] - cw->sx0[i];
+            b->dy[i] = b->y[i] - cw->sy0[i];
+        }
+        for (int32_t i = 0; i < n; i++) {
+            if (b->shape[i] == RG_SHAPE_NONE) continue;
+            rg_real x1 = b->x[i], y1 = b->y[i], hx = b->hx[i], hy = b->hy[i];
+            rg_real mx = b->dx[i], my = b->dy[i];
+            rg_real lx = x1 - hx, ly = y1 - hy, ux = x1 + hx, uy = y1 + hy;
+            if (cw->continuous) {
+                lx = rg_min(lx, lx - mx);
+                ly = rg_min(ly, ly - my);
+                ux = rg_max(ux, ux - mx);
+                uy = rg_max(uy, uy - my);
+            }
+            refresh_fat(w, i, lx, ly, ux, uy, mx, my);
+            rg_real h = rg_min(hx, hy);
+            if (b->type[i] == RG_BODY_DYNAMIC && mx * mx + my * my > RG_R(0.25) * h * h) {
+                b->cflags[i] |= CF_FAST;
+                cw->list[n_fast] = b->slot[i];
+                cw->lx[n_fast] = x1 - mx;
+                cw->ly[n_fast] = y1 - my;
+                n_fast++;
+            } else {
+                b->cflags[i] &= ~CF_FAST;
+            }
+        }
+        find_pairs(w);
+        for (int32_t k = 0; k < cw->n_awake;)
+            if (!narrow_one(w, cw->awake[k])) k++;
+        solve(w, dt);
+        if (n_fast > 0 && cw->continuous) clamp_fast(w, n_fast);
+        update_grounded(w);
+        /* fat boxes must hold the final boxes, for queries and the next step */
+        n = b->n_active;
+        for (int32_t i = 0; i < n; i++) {
+            if (b->shape[i] == RG_SHAPE_NONE) continue;
+            rg_real x1 = b->x[i], y1 = b->y[i], hx = b->hx[i], hy = b->hy[i];
+            refresh_fat(w, i, x1 - hx, y1 - hy, x1 + hx, y1 + hy, b->vx[i] * dt, b->vy[i] * dt);
+        }
+        if (cw->sleeping) sleep_islands(w, dt);
+    }
+    sort_events(cw->ev, cw->n_ev);
+    cw->in_step = 0;
+}
+
+/* ---------------------------------------------------------------- hooks for the body API */
+
+void contact_body_init(rg_world *w, int32_t i)
+{
+    body_store *b = &w->b;
+    b->mu[i] = DEFAULT_FRICTION;
+    b->cat[i] = 1;
+    b->mask[i] = 0xFFFFFFFFu;
+}
+
+int32_t contact_body_wake(rg_world *w, int32_t i)
+{
+    body_store *b = &w->b;
+    if (body_partition(w, i) == BODY_PART_ASLEEP) {
+        int32_t s = b->slot[i];
+        wake_island(w, i);
+        i = dense_of(w, s);
+    }
+    b->sleep_t[i] = 0;
+    return i;
+}
+
+/* The body's fat box becomes its box at rest, and its pairs are searched at the next step. */
+static void teleported(rg_world *w, int32_t i)
+{
+    body_store *b = &w->b;
+    int32_t s = b->slot[i];
+    rg_real box[4];
+    rest_box(b, i, box);
+    broadphase_move(&w->coll.bp, s, box[0], box[1], box[2], box[3]);
+    broadphase_mark_moved(&w->coll.bp, s);
+    b->cflags[i] |= CF_TELEPORTED;
+    wake_touching(w, s);
+}
+
+void contact_body_moved(rg_world *w, int32_t i)
+{
+    if (w->b.shape[i] != RG_SHAPE_NONE) teleported(w, i);
+}
+
+/* Ends every contact of slot s (end events reported with the next step), waking the
+ * sleeping bodies on the other side. */
+static void end_contacts(rg_world *w, int32_t s)
+{
+    contact_world *cw = &w->coll;
+    for (;;) {
+        int32_t id = w->b.chead[dense_of(w, s)] - 1;
+        if (id < 0) return;
+        int32_t j = dense_of(w, other_of(&cw->c[id], s));
+        if (body_partition(w, j) == BODY_PART_ASLEEP) wake_island(w, j);
+        contact_destroy(w, id);
+    }
+}
+
+static void remove_shape(rg_world *w, int32_t i)
+{
+    body_store *b = &w->b;
+    int32_t s = b->slot[i];
+    end_contacts(w, s);
+    i = dense_of(w, s);
+    broadphase_remove(&w->coll.bp, s);
+    w->coll.shape_count--;
+    b->shape[i] = RG_SHAPE_NONE;
+    b->hx[i] = b->hy[i] = 0;
+    b->cflags[i] &= ~(CF_GROUNDED | CF_FAST | CF_TELEPORTED);
+}
+
+int32_t contact_body_destroy(rg_world *w, int32_t i)
+{
+    int32_t s = w->b.slot[i];
+    i = contact_body_wake(w, i);
+    if (w->b.shape[i] != RG_SHAPE_NONE) remove_shape(w, i);
+    return dense_of(w, s);
+}
+
+/* ---------------------------------------------------------------- body API */
+
+#define BODY_GET(world, body, i)                               \
+    if ((world) == NULL) return RG_ERR_INVALID_ARGUMENT;       \
+    int32_t i = body_lookup((world), (body));                  \
+    if (i < 0) return RG_ERR_STALE_HANDLE
+
+static int size_ok(rg_real v) { return rg_finite(v) && v > 0 && v <= (rg_real)RG_MAX_SHAPE_SIZE; }
+
+static rg_status set_shape(rg_world *w, int32_t i, int32_t kind, rg_real hx, rg_real hy)
+{
+    contact_world *cw = &w->coll;
+    body_store *b = &w->b;
+    int32_t s = b->slot[i];
+    int fresh = b->shape[i] == RG_SHAPE_NONE;
+    if (fresh) {
+        rg_status st = broadphase_reserve(&cw->bp, &w->mem, w->body_pool.slot_count, cw->bp.count + 1);
+        if (st != RG_OK) return st;
+    }
+    i = contact_body_wake(w, i);
+    b->shape[i] = kind;
+    b->hx[i] = hx;
+    b->hy[i] = hy;
+    if (fresh) {
+        rg_real box[4];
+        rest_box(b, i, box);
+        broadphase_insert(&cw->bp, s, box[0], box[1], box[2], box[3]);
+        cw->shape_count++;
+    }
+    teleported(w, i);
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_set_circle(rg_world *world, rg_body body, rg_real radius)
+{
+    BODY_GET(world, body, i);
+    if (!size_ok(radius)) return RG_ERR_INVALID_ARGUMENT;
+    return set_shape(world, i, RG_SHAPE_CIRCLE, radius, radius);
+}
+
+RG_API rg_status rg_body_set_aabb(rg_world *world, rg_body body, rg_real half_width,
+                                  rg_real half_height)
+{
+    BODY_GET(world, body, i);
+    if (!size_ok(half_width) || !size_ok(half_height)) return RG_ERR_INVALID_ARGUMENT;
+    return set_shape(world, i, RG_SHAPE_AABB, half_width, half_height);
+}
+
+RG_API rg_status rg_body_clear_shape(rg_world *world, rg_body body)
+{
+    BODY_GET(world, body, i);
+    if (world->b.shape[i] == RG_SHAPE_NONE) return RG_OK;
+    i = contact_body_wake(world, i);
+    remove_shape(world, i);
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_get_shape(const rg_world *world, rg_body body, int32_t *out_kind,
+                                   rg_vec2 *out_half_extents)
+{
+    BODY_GET(world, body, i);
+    if (out_kind == NULL && out_half_extents == NULL) return RG_ERR_INVALID_ARGUMENT;
+    if (out_kind != NULL) *out_kind = world->b.shape[i];
+    if (out_half_extents != NULL) *out_half_extents = rg_v2(world->b.hx[i], world->b.hy[i]);
+    return RG_OK;
+}
+
+/* Refreshes the mixed materials of slot s's contacts. */
+static void refresh_materials(rg_world *w, int32_t s)
+{
+    contact_world *cw = &w->coll;
+    const body_store *b = &w->b;
+    for (int32_t id = b->chead[dense_of(w, s)] - 1; id >= 0; id = next_of(&cw->c[id], s)) {
+        contact *c = &cw->c[id];
+        int32_t ia = dense_of(w, c->sa), ib = dense_of(w, c->sb);
+        c->mu = rg_sqrt(b->mu[ia] * b->mu[ib]);
+        c->e = rg_max(b->rest[ia], b->rest[ib]);
+    }
+}
+
+RG_API rg_status rg_body_set_restitution(rg_world *world, rg_body body, rg_real restitution)
+{
+    BODY_GET(world, body, i);
+    if (!rg_finite(restitution) || restitution < 0 || restitution > 1) return RG_ERR_INVALID_ARGUMENT;
+    world->b.rest[i] = restitution;
+    refresh_materials(world, world->b.slot[i]);
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_get_restitution(const rg_world *world, rg_body body, rg_real *out)
+{
+    BODY_GET(world, body, i);
+    if (out == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out = world->b.rest[i];
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_set_friction(rg_world *world, rg_body body, rg_real mu)
+{
+    BODY_GET(world, body, i);
+    if (!rg_finite(mu) || mu < 0) return RG_ERR_INVALID_ARGUMENT;
+    world->b.mu[i] = mu;
+    refresh_materials(world, world->b.slot[i]);
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_get_friction(const rg_world *world, rg_body body, rg_real *out)
+{
+    BODY_GET(world, body, i);
+    if (out == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out = world->b.mu[i];
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_set_sensor(rg_world *world, rg_body body, int32_t is_sensor)
+{
+    BODY_GET(world, body, i);
+    if (is_sensor != 0 && is_sensor != 1) return RG_ERR_INVALID_ARGUMENT;
+    body_store *b = &world->b;
+    if (((b->cflags[i] & CF_SENSOR) != 0) == (is_sensor != 0)) return RG_OK;
+    int32_t s = b->slot[i];
+    i = contact_body_wake(world, i);
+    if (b->shape[i] != RG_SHAPE_NONE) {
+        end_contacts(world, s);
+        i = dense_of(world, s);
+        broadphase_mark_moved(&world->coll.bp, s);
+    }
+    b->cflags[i] ^= CF_SENSOR;
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_is_sensor(const rg_world *world, rg_body body, int32_t *out_is_sensor)
+{
+    BODY_GET(world, body, i);
+    if (out_is_sensor == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out_is_sensor = (world->b.cflags[i] & CF_SENSOR) != 0;
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_set_filter(rg_world *world, rg_body body, uint32_t category, uint32_t mask)
+{
+    BODY_GET(world, body, i);
+    body_store *b = &world->b;
+    contact_world *cw = &world->coll;
+    if (b->cat[i] == category && b->mask[i] == mask) return RG_OK;
+    int32_t s = b->slot[i];
+    i = contact_body_wake(world, i);
+    b->cat[i] = category;
+    b->mask[i] = mask;
+    if (b->shape[i] == RG_SHAPE_NONE) return RG_OK;
+    /* end the contacts the new filter rejects; new pairs are searched at the next step */
+    int32_t id = b->chead[i] - 1;
+    while (id >= 0) {
+        int32_t next = next_of(&cw->c[id], s);
+        int32_t j = dense_of(world, other_of(&cw->c[id], s));
+        if (!pair_admitted(b, dense_of(world, s), j)) {
+            if (body_partition(world, j) == BODY_PART_ASLEEP) {
+                wake_island(world, j);
+                next = next_of(&cw->c[id], s);
+            }
+            contact_destroy(world, id);
+        }
+        id = next;
+    }
+    broadphase_mark_moved(&cw->bp, s);
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_get_filter(const rg_world *world, rg_body body, uint32_t *out_category,
+                                    uint32_t *out_mask)
+{
+    BODY_GET(world, body, i);
+    if (out_category == NULL || out_mask == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out_category = world->b.cat[i];
+    *out_mask = world->b.mask[i];
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_is_grounded(const rg_world *world, rg_body body, int32_t *out_grounded)
+{
+    BODY_GET(world, body, i);
+    if (out_grounded == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out_grounded = world->b.type[i] == RG_BODY_DYNAMIC && (world->b.cflags[i] & CF_GROUNDED) != 0;
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_is_awake(const rg_world *world, rg_body body, int32_t *out_awake)
+{
+    BODY_GET(world, body, i);
+    if (out_awake == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out_awake = body_partition(world, i) == BODY_PART_ACTIVE;
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_wake(rg_world *world, rg_body body)
+{
+    BODY_GET(world, body, i);
+    if (world->b.type[i] != RG_BODY_STATIC) contact_body_wake(world, i);
+    return RG_OK;
+}
+
+/* ---------------------------------------------------------------- world API */
+
+RG_API int32_t rg_world_awake_body_count(const rg_world *world)
+{
+    return world != NULL ? world->b.n_active : 0;
+}
+
+RG_API int32_t rg_world_touching_count(const rg_world *world)
+{
+    return world != NULL ? world->coll.n_touching : 0;
+}
+
+RG_API rg_status rg_world_set_sleeping(rg_world *world, int32_t enabled)
+{
+    if (world == NULL || (enabled != 0 && enabled != 1)) return RG_ERR_INVALID_ARGUMENT;
+    if (!enabled) wake_all(world);
+    world->coll.sleeping = enabled;
+    return RG_OK;
+}
+
+RG_API rg_status rg_world_get_sleeping(const rg_world *world, int32_t *out_enabled)
+{
+    if (world == NULL || out_enabled == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out_enabled = world->coll.sleeping;
+    return RG_OK;
+}
+
+RG_API rg_status rg_world_set_sleep_thresholds(rg_world *world, rg_real speed, rg_real time)
+{
+    if (world == NULL || !rg_finite(speed) || !rg_finite(time) || speed < 0 || !(time > 0))
+        return RG_ERR_INVALID_ARGUMENT;
+    world->coll.sleep_speed = speed;
+    world->coll.sleep_time = time;
+    return RG_OK;
+}
+
+RG_API rg_status rg_world_get_sleep_thresholds(const rg_world *world, rg_real *out_speed,
+                                               rg_real *out_time)
+{
+    if (world == NULL || out_speed == NULL || out_time == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out_speed = world->coll.sleep_speed;
+    *out_time = world->coll.sleep_time;
+    return RG_OK;
+}
+
+RG_API rg_status rg_world_set_solver_iterations(rg_world *world, int32_t velocity, int32_t position)
+{
+    if (world == NULL || velocity < 1 || velocity > 64 || position < 0 || position > 64)
+        return RG_ERR_INVALID_ARGUMENT;
+    world->coll.iterations = velocity;
+    world->coll.position = position;
+    return RG_OK;
+}
+
+RG_API rg_status rg_world_get_solver_iterations(const rg_world *world, int32_t *out_velocity,
+                                                int32_t *out_position)
+{
+    if (world == NULL || out_velocity == NULL || out_position == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out_velocity = world->coll.iterations;
+    *out_position = world->coll.position;
+    return RG_OK;
+}
+
+RG_API rg_status rg_world_set_contact_tuning(rg_world *world, rg_real slop, rg_real bias_rate,
+                                             rg_real max_push, rg_real restitution_threshold)
+{
+    if (world == NULL || !rg_finite(slop) || !rg_finite(bias_rate) || !rg_finite(max_push) ||
+        !rg_finite(restitution_threshold) || slop < 0 || !(bias_rate > 0) || bias_rate > 1 ||
+        !(max_push > 0) || restitution_threshold < 0)
+        return RG_ERR_INVALID_ARGUMENT;
+    contact_world *cw = &world->coll;
+    cw->slop = slop;
+    cw->bias_rate = bias_rate;
+    cw->max_push = max_push;
+    cw->restitution_threshold = restitution_threshold;
+    return RG_OK;
+}
+
+RG_API rg_status rg_world_get_contact_tuning(const rg_world *world, rg_real *out_slop,
+                                             rg_real *out_bias_rate, rg_real *out_max_push,
+                                             rg_real *out_restitution_threshold)
+{
+    if (world == NULL || out_slop == NULL || out_bias_rate == NULL || out_max_push == NULL ||
+        out_restitution_threshold == NULL)
+        return RG_ERR_INVALID_ARGUMENT;
+    const contact_world *cw = &world->coll;
+    *out_slop = cw->slop;
+    *out_bias_rate = cw->bias_rate;
+    *out_max_push = cw->max_push;
+    *out_restitution_threshold = cw->restitution_threshold;
+    return RG_OK;
+}
+
+RG_API rg_status rg_world_set_continuous(rg_world *world, int32_t enabled)
+{
+    if (world == NULL || (enabled != 0 && enabled != 1)) return RG_ERR_INVALID_ARGUMENT;
+    world->coll.continuous = enabled;
+    return RG_OK;
+}
+
+RG_API rg_status rg_world_get_continuous(const rg_world *world, int32_t *out_enabled)
+{
+    if (world == NULL || out_enabled == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out_enabled = world->coll.continuous;
+    return RG_OK;
+}
+
+RG_API int32_t rg_world_get_contact_events(const rg_world *world, rg_contact_event *out,
+                                           int32_t capacity)
+{
+    if (world == NULL || capacity < 0 || (out == NULL && capacity > 0)) return RG_ERR_INVALID_ARGUMENT;
+    const contact_world *cw = &world->coll;
+    int32_t n = cw->n_ev < capacity ? cw->n_ev : capacity;
+    if (n > 0) memcpy(out, cw->ev, (size_t)n * sizeof *out);
+    return cw->n_ev;
+}

@@ -1,0 +1,116 @@
+/* contact.h: the collide stage of the step: persistent contacts, narrowphase, the solver
+ * call, continuous collision, events, grounded flags and sleeping islands.
+ *
+ * Pairs: every body with a shape has a fat box in the broadphase (its box grown by a margin,
+ * the path of its last step and a look-ahead).  A body whose swept box leaves its fat box
+ * gets a new fat box and joins the move buffer; only moved bodies query the broadphase, and
+ * a query creates a contact for each new overlapping fat box that the filter admits.  A
+ * contact lives while the two fat boxes overlap, so a settled pile finds no pairs at all.
+ *
+ * Narrowphase: the manifold is taken at the start of the step (positions minus the step's
+ * displacement) and extrapolated linearly: s0 is the start separation along the normal and
+ * the solver keeps s0 + vn*dt >= 0 (speculative contacts), so a body moving less than its
+ * size stops exactly at a surface.  A pair whose relative motion exceeds half the smaller
+ * shape uses the time of impact instead (continuous collision).
+ *
+ * Contacts are identified by an id into `c`; the awake ones (at least one body awake) are
+ * listed in `awake`, in a deterministic order; each body heads a doubly linked list of its
+ * contacts (`chead` in the body fields). */
+#ifndef RG_CONTACT_H
+#define RG_CONTACT_H
+
+#include <stdint.h>
+
+#include "broadphase.h"
+#include "rigid.h"
+#include "solver.h"
+
+/* body cflags */
+#define CF_SENSOR   1u
+#define CF_GROUNDED 2u
+#define CF_FAST     4u  /* moved more than half its size in the last step */
+#define CF_TELEPORTED 8u /* placed by the API since its last pair search */
+
+/* contact flags */
+#define CT_TOUCHING 1u
+#define CT_SENSOR   2u
+#define CT_SOLVE    4u  /* solved in this step */
+
+typedef struct contact {
+    int32_t sa, sb;           /* body slots; a has the lower handle */
+    int32_t na, pa, nb, pb;   /* next/prev contact ids in a's and b's lists (-1 ends) */
+    int32_t awake;            /* index in awake[], -1 while both bodies rest */
+    uint32_t flags;           /* CT_* */
+    rg_real mu, e;            /* mixed friction and restitution */
+    rg_real nx, ny;           /* last normal, from a to b */
+    rg_real px, py;           /* last contact point, m */
+    rg_real s0;               /* last start separation, m */
+    rg_real vn0;              /* last relative normal velocity before solving, m/s */
+    rg_real depth, speed;     /* at the begin, for the events */
+    rg_real pn, pt;           /* accumulated impulses, N*s (warm start) */
+} contact;
+
+typedef struct contact_world {
+    broadphase bp;
+
+    contact *c;               /* [0, cap) by id */
+    int32_t cap, live, free_head;
+    int32_t *awake;           /* ids of awake contacts, [0, n_awake) */
+    int32_t n_awake;
+    int32_t n_touching;
+    solver_constraint *con;   /* [0, cap) */
+    int32_t *ord, *tord;      /* [0, cap): contact ids in solving order, radix scratch */
+    uint16_t *key, *tkey;     /* [0, cap): their sort keys, radix scratch */
+
+    rg_contact_event *ev;     /* events of the last step (3 * cap) */
+    int32_t n_ev;
+    rg_contact_event *pend;   /* ends between steps, reported with the next step (cap) */
+    int32_t n_pend;
+    int32_t in_step;
+
+    /* per-body scratch, body capacity + 1 */
+    rg_real *sx0, *sy0;       /* positions before integration (dense) */
+    rg_real *sv;              /* solver velocities, pairs */
+    rg_real *spv;             /* solver pseudo-velocities of the position pass, pairs */
+    int32_t *uf;              /* union-find parents */
+    rg_real *umin;            /* island minimum rest time */
+    int32_t *ihead, *itail;   /* island member lists while falling asleep */
+    int32_t *list;            /* slots */
+    rg_real *lx, *ly;         /* start positions of fast bodies */
+    int32_t scap;
+
+    /* what the scene uses */
+    int32_t shape_count;
+
+    /* settings */
+    int32_t iterations, position;
+    int32_t sleeping;
+    rg_real sleep_speed, sleep_time;
+    int32_t continuous;
+    rg_real slop, bias_rate, max_push, restitution_threshold;
+} contact_world;
+
+struct rg_world;
+
+void contact_init(struct rg_world *w);
+void contact_release(struct rg_world *w);
+/* Scratch a step needs; call before anything changes. */
+rg_status contact_prepare(struct rg_world *w);
+/* Whether the step must run the collide stage (shapes, or events to deliver or clear). */
+int contact_stage_needed(const struct rg_world *w);
+/* Before integration: remembers where the awake bodies start. */
+void contact_begin(struct rg_world *w);
+/* After integration: the collide stage. */
+void contact_step(struct rg_world *w, rg_real dt);
+
+/* Hooks for the body API.  Dense indices in, new dense indices out where bodies move. */
+void contact_body_init(struct rg_world *w, int32_t i);
+/* Wakes the body's island if it sleeps and restarts its rest timer; returns its index. */
+int32_t contact_body_wake(struct rg_world *w, int32_t i);
+/* The body was teleported: refresh its fat box, wake what rested on it. */
+void contact_body_moved(struct rg_world *w, int32_t i);
+/* The body is about to be destroyed: end its contacts, leave the broadphase.  Returns its
+ * (possibly new) dense index. */
+int32_t contact_body_destroy(struct rg_world *w, int32_t i);
+
+#endif

@@ -1,0 +1,78 @@
+/* solver.h: contact resolution for translation-only bodies by sequential impulses.
+ *
+ * One contact point per pair and no angular terms: the normal and the friction rows share
+ * one effective mass m = 1 / (1/ma + 1/mb) and, being orthogonal, never disturb each other
+ * within a contact.  Accumulated impulses are clamped (normal >= 0, |friction| <= mu *
+ * normal) and kept across steps for warm starting.
+ *
+ * A step solves in two passes (split impulses):
+ *   1. velocity iterations: vn >= vmin, where vmin = -s0/dt lets a pair that starts a gap
+ *      s0 apart close it within the step and no further (a speculative contact), vmin = 0
+ *      holds a touching pair, and vmin = -e * vn0 bounces an impact faster than the
+ *      restitution threshold.  No position error enters these rows, so the velocities
+ *      that leave the step carry no push.
+ *      Under gravity a final shock-propagation sweep (below) settles stacks at once.
+ *   2. position iterations on pseudo-velocities that start at zero each step and only move
+ *      positions: the penetration left after the velocity pass, s1 = s0 + vn*dt < -slop, is
+ *      removed at bias_rate * (depth - slop) / dt (at most max_push).  Position correction
+ *      therefore never adds kinetic energy. */
+#ifndef RG_SOLVER_H
+#define RG_SOLVER_H
+
+#include <stdint.h>
+
+#include "rigid.h"
+
+typedef struct solver_constraint {
+    int32_t a, b;      /* solver body indices (velocity pairs) */
+    rg_real ima, imb;  /* inverse masses, 1/kg */
+    rg_real nx, ny;    /* unit normal from a to b */
+    rg_real m;         /* effective mass, kg */
+    rg_real mu;        /* friction coefficient */
+    rg_real vmin;      /* velocity row: vn >= vmin, m/s */
+    rg_real s0;        /* separation along n at the start of the step, m (< 0: depth) */
+    rg_real pmin;      /* position row: pseudo vn >= pmin, m/s */
+    rg_real pn, pt;    /* accumulated normal and friction impulses, N*s */
+    rg_real pp;        /* accumulated pseudo impulse, N*s */
+    int32_t cid;       /* the contact it came from */
+} solver_constraint;
+
+typedef struct solver_params {
+    rg_real dt, inv_dt;
+    rg_real slop;          /* m */
+    rg_real bias_rate;     /* 1 */
+    rg_real max_push;      /* m/s */
+    rg_real restitution_threshold; /* m/s */
+} solver_params;
+
+/* The velocity row of a contact that starts s0 apart (m) with relative normal velocity
+ * vn0 (m/s, before solving) and restitution e. */
+static inline rg_real solver_vmin(rg_real s0, rg_real vn0, rg_real e, const solver_params *p)
+{
+    rg_real vmin = s0 > 0 ? -s0 * p->inv_dt : 0;
+    /* an impact this step closes bounces: vn >= -e vn0 */
+    if (e > 0 && vn0 < -p->restitution_threshold && vn0 < vmin) {
+        rg_real bounce = -e * vn0;
+        if (bounce > vmin) vmin = bounce;
+    }
+    return vmin;
+}
+
+/* Applies the accumulated impulses to the velocities v (pairs vx, vy per solver body). */
+void solver_warm_start(const solver_constraint *c, int32_t n, rg_real *v);
+/* One Gauss-Seidel sweep over the velocity rows. */
+void solver_iterate(solver_constraint *c, int32_t n, rg_real *v);
+/* Shock propagation (one sweep, rows ordered bottom-up along gravity): each row whose
+ * normal lies within 60 degrees of gravity direction (gx, gy) (unit) is solved as if its
+ * lower body were immovable, so only the upper body changes.  What the sweeps before it left
+ * of a stack's compression is removed in one pass from the ground up; a light body under a
+ * heavy one holds.  Dissipative: it only takes approach velocity out of upper bodies. */
+void solver_shock(solver_constraint *c, int32_t n, rg_real *v, rg_real gx, rg_real gy);
+/* Position rows from the penetration the velocities v leave; returns how many rows need a
+ * push (0: the position pass can be skipped). */
+int32_t solver_prepare_position(solver_constraint *c, int32_t n, const rg_real *v,
+                                const solver_params *p);
+/* One Gauss-Seidel sweep over the position rows on pseudo-velocities pv. */
+void solver_iterate_position(solver_constraint *c, int32_t n, rg_real *pv);
+
+#endif
