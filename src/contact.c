@@ -11,7 +11,8 @@
 #define LOOKAHEAD        RG_R(2)    /* fat boxes reach this many steps of motion ahead */
 #define SPECULATIVE      RG_R(4)    /* solve pairs predicted within SPECULATIVE * slop */
 #define COS45            RG_R(0.70710678)
-#define SORT_BYTES       (2 * sizeof(int32_t) + 2 * sizeof(uint16_t)) /* per contact */
+/* per contact: ord, tord, key, tkey, hgt, hgx, stage */
+#define SORT_BYTES (2 * sizeof(int32_t) + 2 * sizeof(uint16_t) + 2 * sizeof(rg_real) + sizeof(solver_constraint))
 
 static inline int32_t dense_of(const rg_world *w, int32_t slot)
 {
@@ -52,7 +53,7 @@ void contact_init(rg_world *w)
 
 static size_t scratch_block_size(int32_t n)
 {
-    return (size_t)n * (5 * sizeof(rg_real) + 4 * sizeof(rg_real) + 4 * sizeof(int32_t)) + 64;
+    return (size_t)n * (9 * sizeof(rg_real) + 4 * sizeof(int32_t) + sizeof(cbody)) + 64;
 }
 
 void contact_release(rg_world *w)
@@ -65,7 +66,7 @@ void contact_release(rg_world *w)
     mem_free(m, cw->con, (size_t)cw->cap * sizeof *cw->con);
     mem_free(m, cw->ev, (size_t)cw->cap * 3 * sizeof *cw->ev);
     mem_free(m, cw->pend, (size_t)cw->cap * sizeof *cw->pend);
-    mem_free(m, cw->ord, (size_t)cw->cap * SORT_BYTES);
+    mem_free(m, cw->stage, (size_t)cw->cap * SORT_BYTES);
     mem_free(m, cw->sx0, scratch_block_size(cw->scap));
     cw->c = NULL;
     cw->cap = 0;
@@ -105,8 +106,11 @@ static rg_status contact_grow(rg_world *w)
     mem_free(m, cw->con, (size_t)old * sizeof *cw->con);
     mem_free(m, cw->ev, (size_t)old * 3 * sizeof *cw->ev);
     mem_free(m, cw->pend, (size_t)old * sizeof *cw->pend);
-    mem_free(m, cw->ord, (size_t)old * SORT_BYTES);
-    cw->ord = (int32_t *)(void *)sortbuf;
+    mem_free(m, cw->stage, (size_t)old * SORT_BYTES);
+    cw->stage = (solver_constraint *)(void *)sortbuf;
+    cw->hgt = (rg_real *)(void *)(cw->stage + cap);
+    cw->hgx = cw->hgt + cap;
+    cw->ord = (int32_t *)(void *)(cw->hgx + cap);
     cw->tord = cw->ord + cap;
     cw->key = (uint16_t *)(void *)(cw->tord + cap);
     cw->tkey = cw->key + cap;
@@ -147,7 +151,8 @@ rg_status contact_prepare(rg_world *w)
     cw->uf = (int32_t *)(void *)p; p += q;
     cw->ihead = (int32_t *)(void *)p; p += q;
     cw->itail = (int32_t *)(void *)p; p += q;
-    cw->list = (int32_t *)(void *)p;
+    cw->list = (int32_t *)(void *)p; p += q;
+    cw->cb = (cbody *)(void *)p;
     cw->scap = n;
     return RG_OK;
 }
@@ -275,6 +280,7 @@ static void wake_island(rg_world *w, int32_t i)
         b->sleep_t[j] = 0;
         b->dx[j] = 0;
         b->dy[j] = 0;
+        b->cflags[j] &= ~CF_GROUNDED;
         if (body_partition(w, j) == BODY_PART_ASLEEP) j = body_move_to_partition(w, j, BODY_PART_ACTIVE);
         for (int32_t id = b->chead[j] - 1; id >= 0; id = next_of(&cw->c[id], s))
             if (cw->c[id].awake < 0) awake_add(cw, id);
@@ -320,29 +326,35 @@ static void unite(int32_t *uf, int32_t a, int32_t b)
 
 /* Islands: dynamic bodies joined by touching solid contacts and springs.  An island whose
  * every body rested (speed below sleep_speed) for sleep_time falls asleep as a whole. */
-static void sleep_islands(rg_world *w, rg_real dt)
+static void sleep_islands(rg_world *w, rg_real dt, int united)
 {
     contact_world *cw = &w->coll;
     body_store *b = &w->b;
     int32_t n = b->n_active;
     int32_t *uf = cw->uf;
     rg_real thr2 = cw->sleep_speed * cw->sleep_speed;
-    int any = 0;
+    int any = 0, near = 0;
     for (int32_t i = 0; i < n; i++) {
-        uf[i] = i;
         if (b->type[i] == RG_BODY_DYNAMIC && b->shape[i] != RG_SHAPE_NONE) {
             rg_real v2 = b->vx[i] * b->vx[i] + b->vy[i] * b->vy[i];
-            b->sleep_t[i] = v2 < thr2 ? b->sleep_t[i] + dt : 0;
-            any |= b->sleep_t[i] >= cw->sleep_time;
+            rg_real t = v2 < thr2 ? b->sleep_t[i] + dt : 0;
+            b->sleep_t[i] = t;
+            any |= t >= cw->sleep_time;
+            near |= t + 2 * dt >= cw->sleep_time;
         }
     }
+    /* the narrowphase joins islands only when some body is about to fall asleep */
+    cw->near_sleep = near;
     if (!any) return;
-    for (int32_t k = 0; k < cw->n_awake; k++) {
-        const contact *c = &cw->c[cw->awake[k]];
-        if ((c->flags & (CT_TOUCHING | CT_SENSOR)) != CT_TOUCHING) continue;
-        int32_t ia = dense_of(w, c->sa), ib = dense_of(w, c->sb);
-        if (ia < n && ib < n && b->type[ia] == RG_BODY_DYNAMIC && b->type[ib] == RG_BODY_DYNAMIC)
-            unite(uf, ia, ib);
+    if (!united) {
+        for (int32_t i = 0; i < n; i++) uf[i] = i;
+        for (int32_t k = 0; k < cw->n_awake; k++) {
+            const contact *c = &cw->c[cw->awake[k]];
+            if ((c->flags & (CT_TOUCHING | CT_SENSOR)) != CT_TOUCHING) continue;
+            int32_t ia = dense_of(w, c->sa), ib = dense_of(w, c->sb);
+            if (ia < n && ib < n && b->type[ia] == RG_BODY_DYNAMIC && b->type[ib] == RG_BODY_DYNAMIC)
+                unite(uf, ia, ib);
+        }
     }
     for (int32_t k = 0; k < w->springs.count; k++) {
         const spring *sp = &w->springs.items[k];
@@ -411,7 +423,7 @@ static void sleep_islands(rg_world *w, rg_real dt)
 
 static inline rg_real fat_margin(const body_store *b, int32_t i)
 {
-    return rg_min(FAT_MARGIN, rg_max(b->hx[i], b->hy[i]));
+    return rg_min(FAT_MARGIN, RG_R(0.1) * rg_max(b->hx[i], b->hy[i]));
 }
 
 /* The fat box of a body at rest: its box grown by the margin. */
@@ -497,6 +509,12 @@ static void find_pairs(rg_world *w)
     for (int32_t k = 0; k < n; k++) {
         int32_t s = bp->moved[k];
         const bp_entry *e = &bp->e[s];
+        /* contacts whose fat boxes no longer overlap end */
+        for (int32_t id = w->b.chead[dense_of(w, s)] - 1; id >= 0;) {
+            int32_t next = next_of(&cw->c[id], s);
+            if (!broadphase_overlap(bp, s, other_of(&cw->c[id], s))) contact_destroy(w, id);
+            id = next;
+        }
         pair_ctx q;
         q.w = w;
         q.s = s;
@@ -529,59 +547,132 @@ static int pusher(const body_store *b, int32_t j, int touching)
     return b->type[j] == RG_BODY_KINEMATIC && (b->vx[j] != 0 || b->vy[j] != 0);
 }
 
-/* Updates contact id from the step's motion; returns 1 when it was destroyed. */
-static int narrow_one(rg_world *w, int32_t id)
+/* Grounded flag of a body with gravity scale gs touching a surface whose normal, pointing
+ * toward the body, is (nx, ny): the normal points against its gravity within 45 degrees. */
+static inline int is_ground(rg_real gx, rg_real gy, rg_real gs, rg_real nx, rg_real ny)
+{
+    rg_real ex = gx * gs, ey = gy * gs;
+    rg_real up = -(nx * ex + ny * ey);
+    rg_real g2 = ex * ex + ey * ey;
+    return g2 > 0 && up > 0 && up * up >= COS45 * COS45 * g2;
+}
+
+/* What the narrowphase hands on: solver rows staged in contact order with their sort keys,
+ * and whether it woke anything (then the rows are rebuilt). */
+typedef struct narrow_ctx {
+    int32_t n;          /* active bodies when the stage started; index n is the ground */
+    int32_t nc;         /* staged rows */
+    int woke;
+    int unite;          /* join islands (sleeping is near) */
+    solver_params p;
+} narrow_ctx;
+
+/* The step's view of body i: start position, displacement, velocity, half extents.  Awake
+ * bodies come from the per-step cache, the others rest: no displacement, no velocity. */
+static inline void body_view(const rg_world *w, int32_t i, int32_t n, cbody *o)
+{
+    if (i < n) {
+        *o = w->coll.cb[i];
+        return;
+    }
+    const body_store *b = &w->b;
+    o->sx = b->x[i];
+    o->sy = b->y[i];
+    o->dx = o->dy = o->vx = o->vy = 0;
+    o->hx = b->hx[i];
+    o->hy = b->hy[i];
+    o->gs = o->im = 0;
+    o->kind = b->shape[i];
+}
+
+/* Updates contact id from the step's motion (the broadphase keeps only pairs whose fat
+ * boxes overlap): manifold at the start of the step or at the time of impact, touching
+ * state and events, grounded flags, islands, waking, and the solver row. */
+static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
 {
     contact_world *cw = &w->coll;
-    const body_store *b = &w->b;
+    body_store *b = &w->b;
     contact *c = &cw->c[id];
-    if (!broadphase_overlap(&cw->bp, c->sa, c->sb)) {
-        contact_destroy(w, id);
-        return 1;
-    }
     int32_t ia = dense_of(w, c->sa), ib = dense_of(w, c->sb);
-    int32_t ka = b->shape[ia], kb = b->shape[ib];
-    rg_vec2 ha = rg_v2(b->hx[ia], b->hy[ia]), hb = rg_v2(b->hx[ib], b->hy[ib]);
-    rg_vec2 pa = rg_v2(b->x[ia], b->y[ia]), pb = rg_v2(b->x[ib], b->y[ib]);
-    rg_vec2 da = rg_v2(b->dx[ia], b->dy[ia]), db = rg_v2(b->dx[ib], b->dy[ib]);
-    rg_vec2 r = rg_v2_sub(db, da); /* b's motion relative to a over the step */
+    cbody A, B;
+    body_view(w, ia, x->n, &A);
+    body_view(w, ib, x->n, &B);
+    int32_t ka = A.kind, kb = B.kind;
+    rg_vec2 ha = rg_v2(A.hx, A.hy), hb = rg_v2(B.hx, B.hy);
+    rg_vec2 r = rg_v2(B.dx - A.dx, B.dy - A.dy); /* b's motion relative to a over the step */
     coll_manifold m;
     rg_real s0 = RG_HUGE;
     int active = 1;
-    if (!cw->continuous) {
-        /* discrete: the shapes where the step left them, extrapolated back */
-        coll_manifold_of(ka, pa, ha, kb, pb, hb, &m);
-        s0 = -m.depth - rg_v2_dot(r, m.normal);
-    } else {
-        rg_vec2 pa0 = rg_v2_sub(pa, da), pb0 = rg_v2_sub(pb, db);
-        rg_real size = rg_min(rg_min(ha.x, ha.y), rg_min(hb.x, hb.y));
-        if (rg_v2_len2(r) > RG_R(0.25) * size * size) {
-            rg_real t;
-            if (coll_sweep(ka, pa0, ha, kb, pb0, hb, r, &t, &m))
-                s0 = t > 0 ? -t * rg_v2_dot(r, m.normal) : -m.depth;
-            else
-                active = 0;
-        } else {
-            coll_manifold_of(ka, pa0, ha, kb, pb0, hb, &m);
-            s0 = -m.depth;
+    rg_real size = rg_min(rg_min(ha.x, ha.y), rg_min(hb.x, hb.y));
+    int slow = r.x * r.x + r.y * r.y <= RG_R(0.25) * size * size;
+    if (cw->continuous && slow && ka == RG_SHAPE_CIRCLE && kb == RG_SHAPE_CIRCLE) {
+        /* the common case inline: two circles at the start of the step */
+        rg_real ex = B.sx - A.sx, ey = B.sy - A.sy;
+        rg_real dist = rg_sqrt(ex * ex + ey * ey);
+        rg_real nx = 0, ny = 1;
+        if (dist > 0) {
+            rg_real inv = 1 / dist;
+            nx = ex * inv;
+            ny = ey * inv;
         }
+        m.normal = rg_v2(nx, ny);
+        s0 = dist - ha.x - hb.x;
+        rg_real f = ha.x + RG_R(0.5) * s0; /* halfway between the surfaces, from a */
+        m.point = rg_v2(A.sx + nx * f, A.sy + ny * f);
+    } else if (!cw->continuous) {
+        /* discrete: the shapes where the step left them, extrapolated back */
+        coll_manifold_of(ka, rg_v2(A.sx + A.dx, A.sy + A.dy), ha, kb, rg_v2(B.sx + B.dx, B.sy + B.dy), hb, &m);
+        s0 = -m.depth - rg_v2_dot(r, m.normal);
+    } else if (!slow) {
+        rg_real t;
+        if (coll_sweep(ka, rg_v2(A.sx, A.sy), ha, kb, rg_v2(B.sx, B.sy), hb, r, &t, &m))
+            s0 = t > 0 ? -t * rg_v2_dot(r, m.normal) : -m.depth;
+        else
+            active = 0;
+    } else {
+        coll_manifold_of(ka, rg_v2(A.sx, A.sy), ha, kb, rg_v2(B.sx, B.sy), hb, &m);
+        s0 = -m.depth;
     }
     uint32_t was = c->flags & CT_TOUCHING, now = 0;
     c->flags &= ~CT_SOLVE;
     if (active) {
-        rg_vec2 n = m.normal;
-        rg_real vn0 = (b->vx[ib] - b->vx[ia]) * n.x + (b->vy[ib] - b->vy[ia]) * n.y;
-        rg_real d = s0 + rg_v2_dot(r, n); /* predicted separation */
+        rg_real nx = m.normal.x, ny = m.normal.y;
+        rg_real vn0 = (B.vx - A.vx) * nx + (B.vy - A.vy) * ny;
+        rg_real d = s0 + r.x * nx + r.y * ny; /* predicted separation */
         rg_real gap = rg_min(s0, d);
         if (gap <= 0 || (was && gap < cw->slop)) now = CT_TOUCHING;
-        c->nx = n.x;
-        c->ny = n.y;
+        c->nx = nx;
+        c->ny = ny;
         c->px = m.point.x;
         c->py = m.point.y;
         c->s0 = s0;
         c->vn0 = vn0;
-        if (!(c->flags & CT_SENSOR) && d < SPECULATIVE * cw->slop) c->flags |= CT_SOLVE;
+        if (!(c->flags & CT_SENSOR) && d < SPECULATIVE * cw->slop && rg_finite(s0) && rg_finite(vn0)) {
+            int32_t n = x->n;
+            rg_real ima = A.im, imb = B.im;
+            if (ima + imb > 0) {
+                c->flags |= CT_SOLVE;
+                solver_constraint *q = &cw->stage[x->nc];
+                cw->hgt[x->nc] = m.point.y; /* replaced by the height along gravity */
+                cw->hgx[x->nc] = m.point.x;
+                q->a = ia < n ? ia : n;
+                q->b = ib < n ? ib : n;
+                q->ima = ima;
+                q->imb = imb;
+                q->nx = nx;
+                q->ny = ny;
+                q->m = 1 / (ima + imb);
+                q->mu = c->mu;
+                q->s0 = s0;
+                q->vmin = solver_vmin(s0, vn0, c->e, &x->p);
+                q->pn = c->pn;
+                q->pt = c->pt;
+                q->cid = id;
+                x->nc++;
+            }
+        }
     }
+    if (!(c->flags & CT_SOLVE)) c->pn = c->pt = 0;
     if (now != was) {
         c->flags ^= CT_TOUCHING;
         if (now) {
@@ -594,14 +685,26 @@ static int narrow_one(rg_world *w, int32_t id)
             emit(w, c, RG_CONTACT_END);
         }
     }
-    if ((now | was) && !(c->flags & CT_SENSOR)) {
-        int pa_ = body_partition(w, ia), pb_ = body_partition(w, ib);
-        if (pa_ == BODY_PART_ASLEEP && pb_ == BODY_PART_ACTIVE && pusher(b, ib, now != 0))
-            wake_island(w, ia);
-        else if (pb_ == BODY_PART_ASLEEP && pa_ == BODY_PART_ACTIVE && pusher(b, ia, now != 0))
-            wake_island(w, ib);
+    if (c->flags & CT_SENSOR) return;
+    if (now) {
+        if (A.gs != 0 && is_ground(w->gravity.x, w->gravity.y, A.gs, -c->nx, -c->ny))
+            b->cflags[ia] |= CF_GROUNDED;
+        if (B.gs != 0 && is_ground(w->gravity.x, w->gravity.y, B.gs, c->nx, c->ny))
+            b->cflags[ib] |= CF_GROUNDED;
+        if (x->unite && ia < b->n_active && ib < b->n_active && b->type[ia] == RG_BODY_DYNAMIC &&
+            b->type[ib] == RG_BODY_DYNAMIC)
+            unite(cw->uf, ia, ib);
     }
-    return 0;
+    if (now | was) {
+        int pa_ = body_partition(w, ia), pb_ = body_partition(w, ib);
+        if (pa_ == BODY_PART_ASLEEP && pb_ == BODY_PART_ACTIVE && pusher(b, ib, now != 0)) {
+            wake_island(w, ia);
+            x->woke = 1;
+        } else if (pb_ == BODY_PART_ASLEEP && pa_ == BODY_PART_ACTIVE && pusher(b, ia, now != 0)) {
+            wake_island(w, ib);
+            x->woke = 1;
+        }
+    }
 }
 
 /* ---------------------------------------------------------------- the stage */
@@ -718,61 +821,29 @@ static void radix_sort16(uint16_t *key, int32_t *val, uint16_t *tkey, int32_t *t
     }
 }
 
-static void solve(rg_world *w, rg_real dt)
+/* Rows staged again from the contacts flagged CT_SOLVE, after the narrowphase woke bodies
+ * (their indices and the ground index changed). */
+static void restage(rg_world *w, narrow_ctx *x)
 {
     contact_world *cw = &w->coll;
-    body_store *b = &w->b;
+    const body_store *b = &w->b;
     int32_t n = b->n_active, nc = 0;
-    solver_constraint *con = cw->con;
-    /* the rows to solve, in the awake order */
-    int32_t *ord = cw->ord;
     for (int32_t k = 0; k < cw->n_awake; k++) {
         int32_t id = cw->awake[k];
         contact *c = &cw->c[id];
-        if (!(c->flags & CT_SOLVE) || !rg_finite(c->s0) || !rg_finite(c->vn0)) {
+        if (!(c->flags & CT_SOLVE)) continue;
+        int32_t ia = dense_of(w, c->sa), ib = dense_of(w, c->sb);
+        rg_real ima = ia < n ? b->inv_mass[ia] : 0, imb = ib < n ? b->inv_mass[ib] : 0;
+        if (!(ima + imb > 0)) {
+            c->flags &= ~CT_SOLVE;
             c->pn = c->pt = 0;
             continue;
         }
-        int32_t ia = dense_of(w, c->sa), ib = dense_of(w, c->sb);
-        if (!((ia < n ? b->inv_mass[ia] : 0) + (ib < n ? b->inv_mass[ib] : 0) > 0)) {
-            c->pn = c->pt = 0;
-            continue;
-        }
-        ord[nc++] = id;
-    }
-    if (nc == 0) return;
-    /* under gravity, bottom-up by the height of the contact point: Gauss-Seidel then
-     * carries support up a stack within a sweep, and the shock sweep needs the order */
-    rg_real gx = w->gravity.x, gy = w->gravity.y, gl = rg_sqrt(gx * gx + gy * gy);
-    int shock = gl > 0 && rg_finite(gl);
-    if (shock) {
-        gx /= gl;
-        gy /= gl;
-        rg_real hmin = RG_HUGE, hmax = -RG_HUGE;
-        for (int32_t k = 0; k < nc; k++) {
-            const contact *c = &cw->c[ord[k]];
-            rg_real h = -(c->px * gx + c->py * gy);
-            hmin = rg_min(hmin, h);
-            hmax = rg_max(hmax, h);
-        }
-        rg_real scale = hmax > hmin ? RG_R(65535) / (hmax - hmin) : 0;
-        if (!rg_finite(scale)) scale = 0;
-        for (int32_t k = 0; k < nc; k++) {
-            const contact *c = &cw->c[ord[k]];
-            rg_real q = (-(c->px * gx + c->py * gy) - hmin) * scale;
-            cw->key[k] = (uint16_t)(q >= 0 && q <= RG_R(65535) ? q : 0);
-        }
-        radix_sort16(cw->key, ord, cw->tkey, cw->tord, nc);
-    }
-    for (int32_t k = 0; k < nc; k++) {
-        int32_t id = ord[k];
-        const contact *c = &cw->c[id];
-        int32_t ia = dense_of(w, c->sa), ib = dense_of(w, c->sb);
-        int32_t a = ia < n ? ia : n, bb = ib < n ? ib : n;
-        rg_real ima = a < n ? b->inv_mass[ia] : 0, imb = bb < n ? b->inv_mass[ib] : 0;
-        solver_constraint *q = &con[k];
-        q->a = a;
-        q->b = bb;
+        solver_constraint *q = &cw->stage[nc];
+        cw->hgt[nc] = c->py;
+        cw->hgx[nc] = c->px;
+        q->a = ia < n ? ia : n;
+        q->b = ib < n ? ib : n;
         q->ima = ima;
         q->imb = imb;
         q->nx = c->nx;
@@ -780,21 +851,49 @@ static void solve(rg_world *w, rg_real dt)
         q->m = 1 / (ima + imb);
         q->mu = c->mu;
         q->s0 = c->s0;
+        q->vmin = solver_vmin(c->s0, c->vn0, c->e, &x->p);
         q->pn = c->pn;
         q->pt = c->pt;
         q->cid = id;
+        nc++;
     }
+    x->n = n;
+    x->nc = nc;
+}
+
+static void solve(rg_world *w, narrow_ctx *x)
+{
+    contact_world *cw = &w->coll;
+    body_store *b = &w->b;
+    if (x->woke) restage(w, x);
+    int32_t n = x->n, nc = x->nc;
     if (nc == 0) return;
-    solver_params p;
-    p.dt = dt;
-    p.inv_dt = 1 / dt;
-    p.slop = cw->slop;
-    p.bias_rate = cw->bias_rate;
-    p.max_push = cw->max_push;
-    p.restitution_threshold = cw->restitution_threshold;
-    for (int32_t k = 0; k < nc; k++) {
-        const contact *c = &cw->c[con[k].cid];
-        con[k].vmin = solver_vmin(c->s0, c->vn0, c->e, &p);
+    rg_real dt = x->p.dt;
+    solver_constraint *con = cw->stage;
+    /* under gravity, bottom-up by the height of the contact point: Gauss-Seidel then
+     * carries support up a stack within a sweep, and the shock sweep needs the order */
+    rg_real gx = w->gravity.x, gy = w->gravity.y, gl = rg_sqrt(gx * gx + gy * gy);
+    int shock = gl > 0 && rg_finite(gl);
+    if (shock) {
+        gx /= gl;
+        gy /= gl;
+        rg_real *h = cw->hgt;
+        rg_real hmin = RG_HUGE, hmax = -RG_HUGE;
+        for (int32_t k = 0; k < nc; k++) {
+            h[k] = -(cw->hgx[k] * gx + h[k] * gy);
+            hmin = rg_min(hmin, h[k]);
+            hmax = rg_max(hmax, h[k]);
+        }
+        rg_real scale = hmax > hmin ? RG_R(65535) / (hmax - hmin) : 0;
+        if (!rg_finite(scale)) scale = 0;
+        for (int32_t k = 0; k < nc; k++) {
+            rg_real q = (h[k] - hmin) * scale;
+            cw->key[k] = (uint16_t)(q >= 0 && q <= RG_R(65535) ? q : 0);
+            cw->ord[k] = k;
+        }
+        radix_sort16(cw->key, cw->ord, cw->tkey, cw->tord, nc);
+        con = cw->con;
+        for (int32_t k = 0; k < nc; k++) con[k] = cw->stage[cw->ord[k]];
     }
     rg_real *v = cw->sv;
     for (int32_t i = 0; i < n; i++) {
@@ -813,7 +912,7 @@ static void solve(rg_world *w, rg_real dt)
         b->vx[i] = v[2 * i];
         b->vy[i] = v[2 * i + 1];
     }
-    if (cw->position > 0 && solver_prepare_position(con, nc, v, &p) > 0) {
+    if (cw->position > 0 && solver_prepare_position(con, nc, v, &x->p) > 0) {
         rg_real *pv = cw->spv;
         memset(pv, 0, (size_t)(2 * n + 2) * sizeof *pv);
         for (int32_t it = 0; it < cw->position; it++) solver_iterate_position(con, nc, pv);
@@ -829,30 +928,33 @@ static void solve(rg_world *w, rg_real dt)
     }
 }
 
-static void update_grounded(rg_world *w)
+/* Optional phase timers for development: build with -DRG_CONTACT_PROFILE (POSIX clock). */
+#ifdef RG_CONTACT_PROFILE
+#include <stdio.h>
+#include <time.h>
+static double prof_acc[8], prof_last;
+static double prof_now(void)
 {
-    contact_world *cw = &w->coll;
-    body_store *b = &w->b;
-    int32_t n = b->n_active;
-    for (int32_t i = 0; i < n; i++) b->cflags[i] &= ~CF_GROUNDED;
-    rg_real gx = w->gravity.x, gy = w->gravity.y;
-    if (gx == 0 && gy == 0) return;
-    for (int32_t k = 0; k < cw->n_awake; k++) {
-        const contact *c = &cw->c[cw->awake[k]];
-        if ((c->flags & (CT_TOUCHING | CT_SENSOR)) != CT_TOUCHING) continue;
-        int32_t ia = dense_of(w, c->sa), ib = dense_of(w, c->sb);
-        /* b rests on a when the normal a -> b points against b's gravity */
-        for (int side = 0; side < 2; side++) {
-            int32_t i = side ? ia : ib;
-            rg_real sgn = side ? RG_R(-1) : RG_R(1);
-            if (i >= n || b->type[i] != RG_BODY_DYNAMIC) continue;
-            rg_real ex = gx * b->gscale[i], ey = gy * b->gscale[i];
-            rg_real up = -(c->nx * ex + c->ny * ey) * sgn;
-            rg_real g = rg_sqrt(ex * ex + ey * ey);
-            if (g > 0 && up >= COS45 * g) b->cflags[i] |= CF_GROUNDED;
-        }
-    }
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
 }
+#define PROF(k) do { double t_ = prof_now(); if ((k) >= 0) prof_acc[(k)] += t_ - prof_last; prof_last = t_; } while (0)
+#define PROF_REPORT(w)                                                                         \
+    do {                                                                                       \
+        if ((w)->step_count % 60 == 59) {                                                      \
+            fprintf(stderr, "contacts %d rows %d active %d | ms/step:", (w)->coll.n_awake,     \
+                    nx.nc, (w)->b.n_active);                                                   \
+            const char *names[] = {"bodies", "pairs", "narrow", "solve", "fast+fat", "sleep"}; \
+            for (int q_ = 0; q_ < 6; q_++) fprintf(stderr, " %s %.3f", names[q_], prof_acc[q_] * 1e3 / 60); \
+            fprintf(stderr, "\n");                                                             \
+            memset(prof_acc, 0, sizeof prof_acc);                                              \
+        }                                                                                      \
+    } while (0)
+#else
+#define PROF(k) ((void)0)
+#define PROF_REPORT(w) ((void)0)
+#endif
 
 void contact_step(rg_world *w, rg_real dt)
 {
@@ -864,12 +966,42 @@ void contact_step(rg_world *w, rg_real dt)
     cw->n_pend = 0;
     cw->in_step = 1;
     if (cw->shape_count > 0) {
+        PROF(-1);
         int32_t n = b->n_active, n_fast = 0;
-        /* displacements of the integration, swept boxes, fat boxes */
+        narrow_ctx nx;
+        nx.n = n;
+        nx.nc = 0;
+        nx.woke = 0;
+        nx.unite = cw->sleeping && cw->near_sleep;
+        nx.p.dt = dt;
+        nx.p.inv_dt = 1 / dt;
+        nx.p.slop = cw->slop;
+        nx.p.bias_rate = cw->bias_rate;
+        nx.p.max_push = cw->max_push;
+        nx.p.restitution_threshold = cw->restitution_threshold;
+        /* displacements of the integration, the step's view of each body, swept boxes */
+        cbody *cb = cw->cb;
         for (int32_t i = 0; i < n; i++) {
-            b->dx[i] = b->x[i] - cw->sx0[i];
-            b->dy[i] = b->y[i] - cw->sy0[i];
+            rg_real x1 = b->x[i], y1 = b->y[i];
+            rg_real mx = x1 - cw->sx0[i], my = y1 - cw->sy0[i];
+            b->dx[i] = mx;
+            b->dy[i] = my;
+            b->cflags[i] &= ~CF_GROUNDED; /* set again by the touching contacts */
+            cb[i].sx = x1 - mx;
+            cb[i].sy = y1 - my;
+            cb[i].dx = mx;
+            cb[i].dy = my;
+            cb[i].vx = b->vx[i];
+            cb[i].vy = b->vy[i];
+            cb[i].hx = b->hx[i];
+            cb[i].hy = b->hy[i];
+            cb[i].gs = b->type[i] == RG_BODY_DYNAMIC ? b->gscale[i] : 0;
+            cb[i].im = b->inv_mass[i];
+            cb[i].kind = b->shape[i];
+            cb[i].pad = 0;
         }
+        if (nx.unite)
+            for (int32_t i = 0; i < b->n_moving; i++) cw->uf[i] = i;
         for (int32_t i = 0; i < n; i++) {
             if (b->shape[i] == RG_SHAPE_NONE) continue;
             rg_real x1 = b->x[i], y1 = b->y[i], hx = b->hx[i], hy = b->hy[i];
@@ -893,12 +1025,26 @@ void contact_step(rg_world *w, rg_real dt)
                 b->cflags[i] &= ~CF_FAST;
             }
         }
+        PROF(0);
         find_pairs(w);
-        for (int32_t k = 0; k < cw->n_awake;)
-            if (!narrow_one(w, cw->awake[k])) k++;
-        solve(w, dt);
+        PROF(1);
+        for (int32_t k = 0; k < cw->n_awake; k++) {
+#ifdef __GNUC__
+            /* the contacts ahead, then the bodies of those a little less far ahead */
+            if (k + 8 < cw->n_awake) __builtin_prefetch(&cw->c[cw->awake[k + 8]]);
+            if (k + 4 < cw->n_awake) {
+                const contact *f = &cw->c[cw->awake[k + 4]];
+                int32_t fa = dense_of(w, f->sa), fb = dense_of(w, f->sb);
+                if (fa < n) __builtin_prefetch(&cb[fa]);
+                if (fb < n) __builtin_prefetch(&cb[fb]);
+            }
+#endif
+            narrow_one(w, cw->awake[k], &nx);
+        }
+        PROF(2);
+        solve(w, &nx);
+        PROF(3);
         if (n_fast > 0 && cw->continuous) clamp_fast(w, n_fast);
-        update_grounded(w);
         /* fat boxes must hold the final boxes, for queries and the next step */
         n = b->n_active;
         for (int32_t i = 0; i < n; i++) {
@@ -906,7 +1052,10 @@ void contact_step(rg_world *w, rg_real dt)
             rg_real x1 = b->x[i], y1 = b->y[i], hx = b->hx[i], hy = b->hy[i];
             refresh_fat(w, i, x1 - hx, y1 - hy, x1 + hx, y1 + hy, b->vx[i] * dt, b->vy[i] * dt);
         }
-        if (cw->sleeping) sleep_islands(w, dt);
+        PROF(4);
+        if (cw->sleeping) sleep_islands(w, dt, nx.unite && !nx.woke);
+        PROF(5);
+        PROF_REPORT(w);
     }
     sort_events(cw->ev, cw->n_ev);
     cw->in_step = 0;

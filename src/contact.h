@@ -50,6 +50,19 @@ typedef struct contact {
     rg_real pn, pt;           /* accumulated impulses, N*s (warm start) */
 } contact;
 
+/* The step's view of a body, cached once per step for the awake ones (one cache line's worth
+ * for the narrowphase instead of a dozen arrays). */
+typedef struct cbody {
+    rg_real sx, sy;   /* position at the start of the step, m */
+    rg_real dx, dy;   /* displacement of the integration, m */
+    rg_real vx, vy;   /* velocity after integration, m/s */
+    rg_real hx, hy;   /* half extents, m */
+    rg_real gs;       /* gravity scale (0 unless dynamic) */
+    rg_real im;       /* inverse mass (0 unless dynamic) */
+    int32_t kind;     /* RG_SHAPE_* */
+    int32_t pad;
+} cbody;
+
 typedef struct contact_world {
     broadphase bp;
 
@@ -59,7 +72,9 @@ typedef struct contact_world {
     int32_t n_awake;
     int32_t n_touching;
     solver_constraint *con;   /* [0, cap) */
-    int32_t *ord, *tord;      /* [0, cap): contact ids in solving order, radix scratch */
+    solver_constraint *stage; /* [0, cap): rows in contact order, before sorting */
+    rg_real *hgt, *hgx;       /* [0, cap): their contact points, then heights along gravity */
+    int32_t *ord, *tord;      /* [0, cap): staged rows in solving order, radix scratch */
     uint16_t *key, *tkey;     /* [0, cap): their sort keys, radix scratch */
 
     rg_contact_event *ev;     /* events of the last step (3 * cap) */
@@ -76,6 +91,7 @@ typedef struct contact_world {
     rg_real *umin;            /* island minimum rest time */
     int32_t *ihead, *itail;   /* island member lists while falling asleep */
     int32_t *list;            /* slots */
+    cbody *cb;                /* the step's view of the awake bodies (dense) */
     rg_real *lx, *ly;         /* start positions of fast bodies */
     int32_t scap;
 
@@ -85,6 +101,7 @@ typedef struct contact_world {
     /* settings */
     int32_t iterations, position;
     int32_t sleeping;
+    int32_t near_sleep;       /* a body will reach sleep_time within two steps */
     rg_real sleep_speed, sleep_time;
     int32_t continuous;
     rg_real slop, bias_rate, max_push, restitution_threshold;

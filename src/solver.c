@@ -2,6 +2,22 @@
 #include "solver.h"
 #include "vec2.h"
 
+/* max and min without branches (x86 SSE: one instruction each; elsewhere plain C).  Both
+ * return b when a is NaN, like the C expression. */
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#ifdef RG_DOUBLE
+static inline rg_real smax(rg_real a, rg_real b) { return _mm_cvtsd_f64(_mm_max_sd(_mm_set_sd(a), _mm_set_sd(b))); }
+static inline rg_real smin(rg_real a, rg_real b) { return _mm_cvtsd_f64(_mm_min_sd(_mm_set_sd(a), _mm_set_sd(b))); }
+#else
+static inline rg_real smax(rg_real a, rg_real b) { return _mm_cvtss_f32(_mm_max_ss(_mm_set_ss(a), _mm_set_ss(b))); }
+static inline rg_real smin(rg_real a, rg_real b) { return _mm_cvtss_f32(_mm_min_ss(_mm_set_ss(a), _mm_set_ss(b))); }
+#endif
+#else
+static inline rg_real smax(rg_real a, rg_real b) { return a > b ? a : b; }
+static inline rg_real smin(rg_real a, rg_real b) { return a < b ? a : b; }
+#endif
+
 void solver_warm_start(const solver_constraint *c, int32_t n, rg_real *v)
 {
     for (int32_t k = 0; k < n; k++) {
@@ -22,24 +38,26 @@ void solver_iterate(solver_constraint *c, int32_t n, rg_real *v)
     for (int32_t k = 0; k < n; k++) {
         solver_constraint *q = &c[k];
         rg_real *va = v + 2 * q->a, *vb = v + 2 * q->b;
-        rg_real dvx = vb[0] - va[0], dvy = vb[1] - va[1];
-        rg_real vn = dvx * q->nx + dvy * q->ny;
-        rg_real vt = dvy * q->nx - dvx * q->ny;
+        rg_real vax = va[0], vay = va[1], vbx = vb[0], vby = vb[1];
+        rg_real nx = q->nx, ny = q->ny, m = q->m, ima = q->ima, imb = q->imb;
+        rg_real pn0 = q->pn, pt0 = q->pt;
+        rg_real dvx = vbx - vax, dvy = vby - vay;
+        rg_real vn = dvx * nx + dvy * ny;
+        rg_real vt = dvy * nx - dvx * ny;
         /* normal: reach vn = vmin, keep the total push >= 0 */
-        rg_real pn = rg_max(q->pn + q->m * (q->vmin - vn), 0);
-        rg_real ln = pn - q->pn;
-        q->pn = pn;
+        rg_real pn = smax(pn0 + m * (q->vmin - vn), 0);
         /* friction: stop the sliding, within the Coulomb cone of the new normal impulse */
         rg_real maxf = q->mu * pn;
-        rg_real pt = rg_clamp(q->pt - q->m * vt, -maxf, maxf);
-        rg_real lt = pt - q->pt;
+        rg_real pt = smin(smax(pt0 - m * vt, -maxf), maxf);
+        q->pn = pn;
         q->pt = pt;
-        rg_real px = ln * q->nx - lt * q->ny;
-        rg_real py = ln * q->ny + lt * q->nx;
-        va[0] -= px * q->ima;
-        va[1] -= py * q->ima;
-        vb[0] += px * q->imb;
-        vb[1] += py * q->imb;
+        rg_real ln = pn - pn0, lt = pt - pt0;
+        rg_real px = ln * nx - lt * ny;
+        rg_real py = ln * ny + lt * nx;
+        va[0] = vax - px * ima;
+        va[1] = vay - py * ima;
+        vb[0] = vbx + px * imb;
+        vb[1] = vby + py * imb;
     }
 }
 
