@@ -64,6 +64,29 @@ sig("rg_body_get_interpolated_position", C.c_int32, World, Body, C.POINTER(Vec2)
 sig("rg_spring_create", C.c_int32, World, Body, Body, Vec2, REAL, REAL, REAL, C.POINTER(C.c_uint64))
 sig("rg_spring_destroy", C.c_int32, World, C.c_uint64)
 
+sig("rg_body_set_circle", C.c_int32, World, Body, REAL)
+sig("rg_body_set_aabb", C.c_int32, World, Body, REAL, REAL)
+sig("rg_body_set_restitution", C.c_int32, World, Body, REAL)
+sig("rg_body_set_sensor", C.c_int32, World, Body, C.c_int32)
+sig("rg_body_is_grounded", C.c_int32, World, Body, C.POINTER(C.c_int32))
+
+
+class ContactEvent(C.Structure):
+    """rg_contact_event, field for field as ABI.md declares it."""
+    _fields_ = [("a", Body), ("b", Body), ("normal", Vec2), ("point", Vec2),
+                ("depth", REAL), ("speed", REAL), ("kind", C.c_int32), ("sensor", C.c_int32)]
+
+
+class RayHit(C.Structure):
+    _fields_ = [("body", Body), ("point", Vec2), ("normal", Vec2), ("fraction", REAL),
+                ("pad", C.c_int32)]
+
+
+sig("rg_world_get_contact_events", C.c_int32, World, C.POINTER(ContactEvent), C.c_int32)
+sig("rg_world_raycast", C.c_int32, World, Vec2, Vec2, C.c_uint32, C.POINTER(RayHit))
+sig("rg_world_query_aabb", C.c_int32, World, Vec2, Vec2, C.c_uint32, C.POINTER(Body), C.c_int32)
+BEGIN, END = 0, 1
+
 TESTS = []
 
 
@@ -224,6 +247,52 @@ def a_python_allocator_sees_every_block_freed():
     check(len(live) > 0, "allocations went through Python")
     lib.rg_world_destroy(w)
     check(len(live) == 0, "%d blocks leaked" % len(live))
+
+
+@test
+def contact_events_read_through_ctypes():
+    # A ball dropped on a static floor: one begin event when it lands, with a unit normal
+    # from a to b, the landing speed sqrt(2 g h) to the step's error, and the pair ordered
+    # a < b; a sensor above reports begin and end as the ball passes and never pushes it.
+    w = new_world()
+    lib.rg_world_set_gravity(w, Vec2(0, -10))
+    floor = body(w, STATIC, 0, 0, -0.5)
+    check(lib.rg_body_set_aabb(w, floor, 10, 0.5) == OK, "floor shape")
+    gate = body(w, STATIC, 0, 0, 3)
+    lib.rg_body_set_aabb(w, gate, 2, 0.25)
+    lib.rg_body_set_sensor(w, gate, 1)
+    ball = body(w, DYNAMIC, 1, 0, 5)
+    check(lib.rg_body_set_circle(w, ball, 0.5) == OK, "ball shape")
+    check(lib.rg_body_set_circle(w, ball, -1) == INVALID, "negative radius")
+    check(lib.rg_world_get_contact_events(w, None, 0) == 0, "no events before a step")
+    events, h = [], 1.0 / 120
+    for _ in range(240):
+        lib.rg_world_step(w, h)
+        n = lib.rg_world_get_contact_events(w, None, 0)
+        buf = (ContactEvent * max(n, 1))()
+        check(lib.rg_world_get_contact_events(w, buf, n) == n, "count is stable")
+        events.extend(buf[i] for i in range(n))
+    solid = [e for e in events if not e.sensor]
+    sensed = [e for e in events if e.sensor]
+    check(len(solid) >= 1 and solid[0].kind == BEGIN, "the ball lands: %d events" % len(solid))
+    e = solid[0]
+    check(e.a < e.b, "a < b")
+    check(abs(math.hypot(e.normal.x, e.normal.y) - 1) < 1e-5, "unit normal")
+    # The begin step is within one step of touching (speed off by at most g h), and
+    # semi-implicit Euler's speed after a drop d differs from sqrt(2 g d) by at most g h / 2
+    # (v_n = n g h while d_n = g h^2 n (n + 1) / 2), so |speed - sqrt(2 g 4.5)| <= 2 g h.
+    check(abs(e.speed - math.sqrt(2 * 10 * 4.5)) <= 2 * 10 * h, "landing speed %r" % e.speed)
+    check([x.kind for x in sensed] == [BEGIN, END], "sensor begin/end: %r" % [x.kind for x in sensed])
+    g = C.c_int32(0)
+    check(lib.rg_body_is_grounded(w, ball, C.byref(g)) == OK and g.value == 1, "grounded")
+    hit = RayHit()
+    check(lib.rg_world_raycast(w, Vec2(-5, 10), Vec2(0, -20), 0xFFFFFFFF, C.byref(hit)) == 1, "ray hits")
+    check(hit.body == floor.value and abs(hit.point.y) < 1e-4, "ray hits the floor top at y = 0")
+    check(abs(hit.fraction - 0.5) < 1e-5 and abs(hit.normal.y - 1) < 1e-6, "fraction and normal")
+    out = (Body * 4)()
+    n = lib.rg_world_query_aabb(w, Vec2(-1, -1), Vec2(1, 1), 0xFFFFFFFF, out, 4)
+    check(n == 2 and set(out[i] for i in range(n)) == {floor.value, ball.value}, "query %d" % n)
+    lib.rg_world_destroy(w)
 
 
 def main():
