@@ -36,8 +36,9 @@ static inline uint32_t bucket_of(const broadphase *bp, uint64_t key)
  * of the box's width), or BP_HUGE. */
 static int level_of(rg_real lx, rg_real ly, rg_real ux, rg_real uy)
 {
-    rg_real ext = rg_max(ux - lx, uy - ly);
-    if (!(ext <= level_cell(BP_LEVELS - 1) * RG_R(0.99609375))) return BP_HUGE;
+    rg_real w = ux - lx, h = uy - ly, top = level_cell(BP_LEVELS - 1) * RG_R(0.99609375);
+    if (!(w <= top && h <= top)) return BP_HUGE; /* also NaN */
+    rg_real ext = rg_max(w, h);
     if (!(ext > 0)) return 0;
     int e;
     frexp((double)ext, &e); /* ext < 2^e */

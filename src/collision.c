@@ -25,7 +25,7 @@ int coll_aabb_aabb(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 hb, coll_manifold
     /* overlap of the projections on each axis (negative: the gap) */
     rg_real ox = (ha.x + hb.x) - rg_fabs(d.x);
     rg_real oy = (ha.y + hb.y) - rg_fabs(d.y);
-    if (ox < oy) {
+    if (!(ox >= oy)) {
         rg_real s = sign_of(d.x);
         rg_real lo = rg_max(pa.y - ha.y, pb.y - hb.y), hi = rg_min(pa.y + ha.y, pb.y + hb.y);
         m->normal = rg_v2(s, 0);
@@ -38,6 +38,7 @@ int coll_aabb_aabb(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 hb, coll_manifold
         m->depth = oy;
         m->point = rg_v2((lo + hi) * RG_R(0.5), ((pa.y + s * ha.y) + (pb.y - s * hb.y)) * RG_R(0.5));
     }
+    if (oy != oy) m->depth = oy; /* NaN in, NaN out: never touching */
     return m->depth >= 0;
 }
 

@@ -53,7 +53,7 @@ void contact_init(rg_world *w)
 
 static size_t scratch_block_size(int32_t n)
 {
-    return (size_t)n * (9 * sizeof(rg_real) + 4 * sizeof(int32_t) + sizeof(cbody)) + 64;
+    return (size_t)n * (11 * sizeof(rg_real) + 4 * sizeof(int32_t) + sizeof(cbody)) + 64;
 }
 
 void contact_release(rg_world *w)
@@ -143,6 +143,8 @@ rg_status contact_prepare(rg_world *w)
     size_t r = (size_t)n * sizeof(rg_real), q = (size_t)n * sizeof(int32_t);
     cw->sx0 = (rg_real *)(void *)p; p += r;
     cw->sy0 = (rg_real *)(void *)p; p += r;
+    cw->svx0 = (rg_real *)(void *)p; p += r;
+    cw->svy0 = (rg_real *)(void *)p; p += r;
     cw->umin = (rg_real *)(void *)p; p += r;
     cw->lx = (rg_real *)(void *)p; p += r;
     cw->ly = (rg_real *)(void *)p; p += r;
@@ -634,7 +636,7 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
         s0 = -m.depth;
     }
     uint32_t was = c->flags & CT_TOUCHING, now = 0;
-    c->flags &= ~CT_SOLVE;
+    c->flags &= ~(CT_SOLVE | CT_CLOSING);
     if (active) {
         rg_real nx = m.normal.x, ny = m.normal.y;
         rg_real vn0 = (B.vx - A.vx) * nx + (B.vy - A.vy) * ny;
@@ -647,6 +649,7 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
         c->py = m.point.y;
         c->s0 = s0;
         c->vn0 = vn0;
+        if (d < 0) c->flags |= CT_CLOSING;
         if (!(c->flags & CT_SENSOR) && d < SPECULATIVE * cw->slop && rg_finite(s0) && rg_finite(vn0)) {
             int32_t n = x->n;
             rg_real ima = A.im, imb = B.im;
@@ -664,7 +667,7 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
                 q->m = 1 / (ima + imb);
                 q->mu = c->mu;
                 q->s0 = s0;
-                q->vmin = solver_vmin(s0, vn0, c->e, &x->p);
+                q->vmin = solver_vmin(s0, vn0, c->e, d < 0, &x->p);
                 q->pn = c->pn;
                 q->pt = c->pt;
                 q->cid = id;
@@ -716,6 +719,8 @@ void contact_begin(rg_world *w)
     int32_t n = w->b.n_active;
     memcpy(cw->sx0, w->b.x, (size_t)n * sizeof *cw->sx0);
     memcpy(cw->sy0, w->b.y, (size_t)n * sizeof *cw->sy0);
+    memcpy(cw->svx0, w->b.vx, (size_t)n * sizeof *cw->svx0);
+    memcpy(cw->svy0, w->b.vy, (size_t)n * sizeof *cw->svy0);
 }
 
 static int event_less(const rg_contact_event *p, const rg_contact_event *q)
@@ -851,7 +856,7 @@ static void restage(rg_world *w, narrow_ctx *x)
         q->m = 1 / (ima + imb);
         q->mu = c->mu;
         q->s0 = c->s0;
-        q->vmin = solver_vmin(c->s0, c->vn0, c->e, &x->p);
+        q->vmin = solver_vmin(c->s0, c->vn0, c->e, (c->flags & CT_CLOSING) != 0, &x->p);
         q->pn = c->pn;
         q->pt = c->pt;
         q->cid = id;
@@ -991,8 +996,8 @@ void contact_step(rg_world *w, rg_real dt)
             cb[i].sy = y1 - my;
             cb[i].dx = mx;
             cb[i].dy = my;
-            cb[i].vx = b->vx[i];
-            cb[i].vy = b->vy[i];
+            cb[i].vx = cw->svx0[i];
+            cb[i].vy = cw->svy0[i];
             cb[i].hx = b->hx[i];
             cb[i].hy = b->hy[i];
             cb[i].gs = b->type[i] == RG_BODY_DYNAMIC ? b->gscale[i] : 0;

@@ -35,6 +35,7 @@
 #define CT_TOUCHING 1u
 #define CT_SENSOR   2u
 #define CT_SOLVE    4u  /* solved in this step */
+#define CT_CLOSING  8u  /* the step's free motion would make the pair overlap */
 
 typedef struct contact {
     int32_t sa, sb;           /* body slots; a has the lower handle */
@@ -45,7 +46,7 @@ typedef struct contact {
     rg_real nx, ny;           /* last normal, from a to b */
     rg_real px, py;           /* last contact point, m */
     rg_real s0;               /* last start separation, m */
-    rg_real vn0;              /* last relative normal velocity before solving, m/s */
+    rg_real vn0;              /* last relative normal velocity at the start of the step, m/s */
     rg_real depth, speed;     /* at the begin, for the events */
     rg_real pn, pt;           /* accumulated impulses, N*s (warm start) */
 } contact;
@@ -55,7 +56,7 @@ typedef struct contact {
 typedef struct cbody {
     rg_real sx, sy;   /* position at the start of the step, m */
     rg_real dx, dy;   /* displacement of the integration, m */
-    rg_real vx, vy;   /* velocity after integration, m/s */
+    rg_real vx, vy;   /* velocity at the start of the step, m/s */
     rg_real hx, hy;   /* half extents, m */
     rg_real gs;       /* gravity scale (0 unless dynamic) */
     rg_real im;       /* inverse mass (0 unless dynamic) */
@@ -85,6 +86,7 @@ typedef struct contact_world {
 
     /* per-body scratch, body capacity + 1 */
     rg_real *sx0, *sy0;       /* positions before integration (dense) */
+    rg_real *svx0, *svy0;     /* velocities before integration (dense) */
     rg_real *sv;              /* solver velocities, pairs */
     rg_real *spv;             /* solver pseudo-velocities of the position pass, pairs */
     int32_t *uf;              /* union-find parents */

@@ -9,7 +9,7 @@
  *   1. velocity iterations: vn >= vmin, where vmin = -s0/dt lets a pair that starts a gap
  *      s0 apart close it within the step and no further (a speculative contact), vmin = 0
  *      holds a touching pair, and vmin = -e * vn0 bounces an impact faster than the
- *      restitution threshold.  No position error enters these rows, so the velocities
+ *      restitution threshold (vn0: the approach velocity at the start of the step).  No position error enters these rows, so the velocities
  *      that leave the step carry no push.
  *      Under gravity a final shock-propagation sweep (below) settles stacks at once.
  *   2. position iterations on pseudo-velocities that start at zero each step and only move
@@ -45,13 +45,16 @@ typedef struct solver_params {
     rg_real restitution_threshold; /* m/s */
 } solver_params;
 
-/* The velocity row of a contact that starts s0 apart (m) with relative normal velocity
- * vn0 (m/s, before solving) and restitution e. */
-static inline rg_real solver_vmin(rg_real s0, rg_real vn0, rg_real e, const solver_params *p)
+/* The velocity row of a contact that starts s0 apart (m) with relative normal velocity vn0
+ * (m/s, at the start of the step) and restitution e; `closing`: the step's free motion would
+ * make the pair overlap.  The bounce reverses the velocity the pair arrived with, vn0, not
+ * the one forces added during the step: with e = 1 an impact then neither gains nor loses
+ * energy, whatever the phase of the impact within the step. */
+static inline rg_real solver_vmin(rg_real s0, rg_real vn0, rg_real e, int closing,
+                                  const solver_params *p)
 {
     rg_real vmin = s0 > 0 ? -s0 * p->inv_dt : 0;
-    /* an impact this step closes bounces: vn >= -e vn0 */
-    if (e > 0 && vn0 < -p->restitution_threshold && vn0 < vmin) {
+    if (closing && e > 0 && vn0 < -p->restitution_threshold) {
         rg_real bounce = -e * vn0;
         if (bounce > vmin) vmin = bounce;
     }

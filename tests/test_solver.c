@@ -1,0 +1,501 @@
+/* test_solver.c: contact resolution against theory: 1D collisions, restitution, resting,
+ * friction, piles, mass ratios, kinematic and static bodies, no energy from correction. */
+#include "testutil.h"
+
+#define DT (1.0 / 60)
+
+static rg_world *new_world(double gy)
+{
+    rg_world *w;
+    assert_ok(rg_world_create(&w));
+    assert_ok(rg_world_set_gravity(w, v2(0, gy)));
+    return w;
+}
+
+static rg_body circle(rg_world *w, int32_t type, double m, double x, double y, double r)
+{
+    rg_body b;
+    assert_ok(rg_body_create(w, type, (rg_real)m, v2(x, y), &b));
+    assert_ok(rg_body_set_circle(w, b, (rg_real)r));
+    return b;
+}
+
+static rg_body box(rg_world *w, int32_t type, double m, double x, double y, double hw, double hh)
+{
+    rg_body b;
+    assert_ok(rg_body_create(w, type, (rg_real)m, v2(x, y), &b));
+    assert_ok(rg_body_set_aabb(w, b, (rg_real)hw, (rg_real)hh));
+    return b;
+}
+
+/* A static floor whose top is y = 0, 200 m wide. */
+static rg_body floor_of(rg_world *w)
+{
+    return box(w, RG_BODY_STATIC, 0, 0, -0.5, 100, 0.5);
+}
+
+/* Position and velocity components as doubles. */
+static double PX(rg_world *w, rg_body b) { return (double)pos_of(w, b).x; }
+static double PY(rg_world *w, rg_body b) { return (double)pos_of(w, b).y; }
+static double VX(rg_world *w, rg_body b) { return (double)vel_of(w, b).x; }
+static double VY(rg_world *w, rg_body b) { return (double)vel_of(w, b).y; }
+
+static void step_n(rg_world *w, int n, double dt)
+{
+    for (int i = 0; i < n; i++) assert_ok(rg_world_step(w, (rg_real)dt));
+}
+
+/* ---------------------------------------------------------------- 1D collisions */
+
+/* Two bodies on the x axis close at u1 - u2 = 6 m/s (above the 1 m/s restitution threshold),
+ * no gravity, no friction.  Theory (impulse along the line of centres, restitution e):
+ *   v1' = (m1 u1 + m2 u2 + m2 e (u2 - u1)) / (m1 + m2)
+ *   v2' = (m1 u1 + m2 u2 + m1 e (u1 - u2)) / (m1 + m2).
+ * One contact row converges in one Gauss-Seidel update, so the only error is rounding. */
+static void collide_1d(int32_t kind1, int32_t kind2, double m1, double m2, double e)
+{
+    rg_world *w = new_world(0);
+    double u1 = 4, u2 = -2;
+    rg_body a, b;
+    if (kind1 == RG_SHAPE_CIRCLE)
+        a = circle(w, RG_BODY_DYNAMIC, m1, -2, 0, 0.5);
+    else
+        a = box(w, RG_BODY_DYNAMIC, m1, -2, 0, 0.5, 0.5);
+    if (kind2 == RG_SHAPE_CIRCLE)
+        b = circle(w, RG_BODY_DYNAMIC, m2, 2, 0, 0.5);
+    else
+        b = box(w, RG_BODY_DYNAMIC, m2, 2, 0, 0.5, 0.5);
+    assert_ok(rg_body_set_restitution(w, a, (rg_real)e));
+    assert_ok(rg_body_set_friction(w, a, 0));
+    assert_ok(rg_body_set_velocity(w, a, v2(u1, 0)));
+    assert_ok(rg_body_set_velocity(w, b, v2(u2, 0)));
+    step_n(w, 60, DT);
+    double v1 = VX(w, a), v2_ = VX(w, b);
+    double e1 = (m1 * u1 + m2 * u2 + m2 * e * (u2 - u1)) / (m1 + m2);
+    double e2 = (m1 * u1 + m2 * u2 + m1 * e * (u1 - u2)) / (m1 + m2);
+    double tol = 32 * REAL_EPS * (fabs(u1) + fabs(u2)) * (1 + fmax(m1 / m2, m2 / m1));
+    assert_near(v1, e1, tol);
+    assert_near(v2_, e2, tol);
+    /* momentum, to rounding */
+    assert_near(m1 * v1 + m2 * v2_, m1 * u1 + m2 * u2, 32 * REAL_EPS * (m1 * fabs(u1) + m2 * fabs(u2)));
+    assert_near(VY(w, a), 0, 0);
+    assert_near(VY(w, b), 0, 0);
+    rg_world_destroy(w);
+}
+
+static void test_1d_collisions_match_theory_for_restitutions_and_mass_ratios(void **state)
+{
+    (void)state;
+    static const double es[] = {0, 0.5, 1};
+    static const double ratios[][2] = {{1, 1}, {1, 3}, {5, 1}, {1, 100}, {100, 1}};
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 5; j++) collide_1d(RG_SHAPE_CIRCLE, RG_SHAPE_CIRCLE, ratios[j][0], ratios[j][1], es[i]);
+}
+
+static void test_1d_collisions_of_boxes_and_mixed_pairs_match_theory(void **state)
+{
+    (void)state;
+    static const double es[] = {0, 0.5, 1};
+    for (int i = 0; i < 3; i++) {
+        collide_1d(RG_SHAPE_AABB, RG_SHAPE_AABB, 2, 1, es[i]);
+        collide_1d(RG_SHAPE_CIRCLE, RG_SHAPE_AABB, 1, 4, es[i]);
+        collide_1d(RG_SHAPE_AABB, RG_SHAPE_CIRCLE, 3, 1, es[i]);
+    }
+}
+
+static void test_impacts_slower_than_the_threshold_do_not_bounce(void **state)
+{
+    (void)state;
+    rg_world *w = new_world(0);
+    rg_body a = circle(w, RG_BODY_DYNAMIC, 1, -1, 0, 0.5), b = circle(w, RG_BODY_DYNAMIC, 1, 1, 0, 0.5);
+    assert_ok(rg_body_set_restitution(w, a, 1));
+    assert_ok(rg_body_set_velocity(w, a, v2(0.8, 0))); /* closing at 0.8 < 1 m/s */
+    step_n(w, 120, DT);
+    assert_near(VX(w, a), 0.4, 1e-5);
+    assert_near(VX(w, b), 0.4, 1e-5);
+    rg_world_destroy(w);
+}
+
+/* ---------------------------------------------------------------- restitution */
+
+/* First apex of a ball (r 0.5) dropped from a gap h above the floor, restitution e, at dt. */
+static double rebound(double h, double e, double dt)
+{
+    rg_world *w = new_world(-10);
+    floor_of(w);
+    rg_body ball = circle(w, RG_BODY_DYNAMIC, 1, 0, 0.5 + h, 0.5);
+    assert_ok(rg_body_set_restitution(w, ball, (rg_real)e));
+    int bounced = 0;
+    double apex = 0;
+    for (int i = 0; i < (int)(4 / dt); i++) {
+        assert_ok(rg_world_step(w, (rg_real)dt));
+        double vy = VY(w, ball), y = PY(w, ball) - 0.5;
+        if (vy > 0) bounced = 1;
+        if (bounced && y > apex) apex = y;
+        if (bounced && vy < 0) break;
+    }
+    rg_world_destroy(w);
+    return apex;
+}
+
+/* Theory: e^2 h.  The step resolves the impact at the end of the step in which the fall
+ * crosses the floor: the impact speed is within g dt of V = sqrt(2 g h) and the ball leaves
+ * from up to one step's travel above the floor, and semi-implicit Euler's apex of a launch
+ * at speed V' is within V' dt of V'^2 / 2g.  So |apex - e^2 h| <= (1 + e) (V + g dt) dt + g dt^2:
+ * first order in dt, as the two step sizes show. */
+static void test_a_dropped_ball_rebounds_to_e_squared_h(void **state)
+{
+    (void)state;
+    const double h = 2, g = 10, V = sqrt(2 * g * h);
+    static const double es[] = {0.5, 0.8, 1};
+    for (int i = 0; i < 3; i++) {
+        double e = es[i];
+        double err[2];
+        static const double dts[2] = {1.0 / 60, 1.0 / 600};
+        for (int k = 0; k < 2; k++) {
+            double dt = dts[k], bound = (1 + e) * (V + g * dt) * dt + g * dt * dt;
+            double apex = rebound(h, e, dt);
+            err[k] = fabs(apex - e * e * h);
+            if (!(err[k] <= bound)) fail_msg("e %.1f dt %g: apex %.5f, theory %.5f, bound %.5f", e, dt, apex, e * e * h, bound);
+        }
+        /* first order: ten times smaller steps, error at least five times smaller */
+        assert_true(err[1] <= err[0] / 5 + 1e-4);
+    }
+}
+
+/* e = 1 for ten bounces: the apex never exceeds the drop height by more than the bound:
+ * neither the contact nor its position correction adds energy. */
+static void test_elastic_bounces_never_gain_height(void **state)
+{
+    (void)state;
+    const double h = 2, g = 10, V = sqrt(2 * g * h), bound = 2 * (V + g * DT) * DT + g * DT * DT;
+    rg_world *w = new_world(-g);
+    floor_of(w);
+    rg_body ball = circle(w, RG_BODY_DYNAMIC, 1, 0, 0.5 + h, 0.5);
+    assert_ok(rg_body_set_restitution(w, ball, 1));
+    double maxy = 0;
+    for (int i = 0; i < 10 * 60; i++) {
+        assert_ok(rg_world_step(w, (rg_real)DT));
+        double y = PY(w, ball) - 0.5;
+        if (i > 60 && y > maxy) maxy = y;
+    }
+    assert_true(maxy <= h + bound);
+    assert_true(maxy >= h - bound); /* and no large loss either */
+    rg_world_destroy(w);
+}
+
+/* ---------------------------------------------------------------- resting */
+
+static void test_a_ball_and_a_box_rest_on_the_floor_for_ten_seconds(void **state)
+{
+    (void)state;
+    for (int sleeping = 0; sleeping < 2; sleeping++) {
+        rg_world *w = new_world(-9.81);
+        assert_ok(rg_world_set_sleeping(w, sleeping));
+        floor_of(w);
+        rg_body ball = circle(w, RG_BODY_DYNAMIC, 1, -2, 0.5, 0.5);
+        rg_body crate = box(w, RG_BODY_DYNAMIC, 5, 2, 0.25, 0.75, 0.25);
+        rg_real slop_r, rate, push, thr;
+        assert_ok(rg_world_get_contact_tuning(w, &slop_r, &rate, &push, &thr));
+        double slop = (double)slop_r;
+        for (int i = 0; i < 600; i++) {
+            assert_ok(rg_world_step(w, (rg_real)DT));
+            int32_t g1, g2;
+            assert_ok(rg_body_is_grounded(w, ball, &g1));
+            assert_ok(rg_body_is_grounded(w, crate, &g2));
+            assert_int_equal(g1, 1);
+            assert_int_equal(g2, 1);
+            /* penetration under the slop, never lifted off */
+            assert_true(PY(w, ball) >= 0.5 - slop && PY(w, ball) <= 0.5 + 1e-4);
+            assert_true(PY(w, crate) >= 0.25 - slop && PY(w, crate) <= 0.25 + 1e-4);
+            assert_near(PX(w, ball), -2, 0);
+            assert_near(PX(w, crate), 2, 0);
+        }
+        int32_t awake;
+        assert_ok(rg_body_is_awake(w, ball, &awake));
+        assert_int_equal(awake, !sleeping);
+        rg_world_destroy(w);
+    }
+}
+
+/* ---------------------------------------------------------------- friction */
+
+/* A box sliding on the floor at v0 with friction mu (pair: sqrt(mu * mu) = mu) decelerates
+ * at mu g and stops after v0^2 / (2 mu g).  The discrete stop is within one step's travel. */
+static void test_friction_stops_a_sliding_box_where_coulomb_says(void **state)
+{
+    (void)state;
+    const double mu = 0.5, g = 10, v0 = 6;
+    rg_world *w = new_world(-g);
+    rg_body fl = floor_of(w);
+    assert_ok(rg_body_set_friction(w, fl, (rg_real)mu));
+    rg_body b = box(w, RG_BODY_DYNAMIC, 2, 0, 0.5, 0.5, 0.5);
+    assert_ok(rg_body_set_friction(w, b, (rg_real)mu));
+    assert_ok(rg_body_set_velocity(w, b, v2(v0, 0)));
+    step_n(w, 180, DT);
+    double d = PX(w, b), expect = v0 * v0 / (2 * mu * g);
+    assert_near(d, expect, v0 * DT + 1e-3);
+    assert_near(VX(w, b), 0, 0);
+    rg_world_destroy(w);
+}
+
+static void test_without_friction_a_box_keeps_sliding(void **state)
+{
+    (void)state;
+    rg_world *w = new_world(-10);
+    rg_body fl = floor_of(w);
+    assert_ok(rg_body_set_friction(w, fl, 0));
+    rg_body b = box(w, RG_BODY_DYNAMIC, 2, 0, 0.5, 0.5, 0.5);
+    assert_ok(rg_body_set_velocity(w, b, v2(3, 0)));
+    step_n(w, 60, DT);
+    assert_near(VX(w, b), 3, 1e-5);
+    assert_near(PX(w, b), 3, 1e-3);
+    rg_world_destroy(w);
+}
+
+/* No rotation: a circle resting on a circle at angle theta from the vertical stays when
+ * tan(theta) <= mu and slides off when tan(theta) > mu. */
+static void test_friction_holds_a_circle_on_a_circle_within_the_cone(void **state)
+{
+    (void)state;
+    for (int k = 0; k < 2; k++) {
+        double theta = k == 0 ? 0.4 : 0.7; /* tan: 0.42 and 0.84 against mu 0.6 */
+        rg_world *w = new_world(-10);
+        assert_ok(rg_world_set_sleeping(w, 0));
+        rg_body base = circle(w, RG_BODY_STATIC, 0, 0, 0, 0.5);
+        rg_body top = circle(w, RG_BODY_DYNAMIC, 1, sin(theta), cos(theta), 0.5);
+        (void)base;
+        step_n(w, 60, DT);
+        double moved = fabs(PX(w, top) - sin(theta));
+        if (k == 0)
+            assert_true(moved < 1e-3);
+        else
+            assert_true(moved > 0.05);
+        rg_world_destroy(w);
+    }
+}
+
+/* ---------------------------------------------------------------- piles */
+
+typedef struct pile_stats {
+    double max_speed, max_overlap;
+    int escaped;
+    int32_t awake;
+} pile_stats;
+
+/* n bodies (circles r 0.5 or unit boxes) dropped on a 1.1 m grid with jitter into a
+ * container of inner width W (floor top y = 0, walls 1 m thick and 40 m tall), run for
+ * `seconds`. */
+static pile_stats pile(int boxes, int n, double W, double seconds, int sleeping)
+{
+    rg_world *w = new_world(-10);
+    assert_ok(rg_world_set_sleeping(w, sleeping));
+    box(w, RG_BODY_STATIC, 0, 0, -0.5, W / 2 + 1, 0.5);
+    box(w, RG_BODY_STATIC, 0, -W / 2 - 0.5, 20, 0.5, 20);
+    box(w, RG_BODY_STATIC, 0, W / 2 + 0.5, 20, 0.5, 20);
+    rg_body *b = malloc((size_t)n * sizeof *b);
+    int cols = (int)(W / 1.1);
+    uint32_t seed = 7;
+    for (int i = 0; i < n; i++) {
+        seed = seed * 1103515245u + 12345u;
+        double jit = ((seed >> 16) % 1000) / 1000.0 * 0.08 - 0.04;
+        double x = -W / 2 + 0.55 + (i % cols) * 1.1 + jit, y = 1.5 + (i / cols) * 1.1;
+        b[i] = boxes ? box(w, RG_BODY_DYNAMIC, 1, x, y, 0.5, 0.5)
+                     : circle(w, RG_BODY_DYNAMIC, 0.785, x, y, 0.5);
+    }
+    step_n(w, (int)(seconds / DT), DT);
+    pile_stats st = {0, 0, 0, rg_world_awake_body_count(w)};
+    rg_vec2 *p = malloc((size_t)n * sizeof *p);
+    for (int i = 0; i < n; i++) {
+        p[i] = pos_of(w, b[i]);
+        rg_vec2 v = vel_of(w, b[i]);
+        st.max_speed = fmax(st.max_speed, hypot(v.x, v.y));
+        double x = (double)p[i].x, y = (double)p[i].y;
+        if (fabs(x) > W / 2 - 0.5 + 0.01 || y < 0.49 || y > 40) st.escaped++;
+        st.max_overlap = fmax(st.max_overlap, 0.5 - y);
+    }
+    for (int i = 0; i < n; i++)
+        for (int j = i + 1; j < n; j++) {
+            double dx = fabs((double)p[j].x - (double)p[i].x), dy = fabs((double)p[j].y - (double)p[i].y);
+            double ov = boxes ? fmin(1 - dx, 1 - dy) : 1 - hypot(dx, dy);
+            if (boxes && (dx >= 1 || dy >= 1)) ov = 0;
+            st.max_overlap = fmax(st.max_overlap, ov);
+        }
+    free(p);
+    free(b);
+    rg_world_destroy(w);
+    return st;
+}
+
+static void test_a_pile_of_circles_comes_to_rest_in_its_container(void **state)
+{
+    (void)state;
+    pile_stats s = pile(0, 300, 15.5, 10, 0);
+    assert_true(s.max_speed < 0.05);
+    assert_int_equal(s.escaped, 0);
+    assert_true(s.max_overlap < 0.04);
+    /* with sleeping, it also falls asleep */
+    s = pile(0, 300, 15.5, 10, 1);
+    assert_int_equal(s.awake, 0);
+    assert_int_equal(s.escaped, 0);
+}
+
+static void test_a_pile_of_boxes_comes_to_rest_in_its_container(void **state)
+{
+    (void)state;
+    pile_stats s = pile(1, 300, 15.5, 10, 0);
+    assert_true(s.max_speed < 0.05);
+    assert_int_equal(s.escaped, 0);
+    assert_true(s.max_overlap < 0.04);
+    s = pile(1, 300, 15.5, 10, 1);
+    assert_int_equal(s.awake, 0);
+}
+
+/* A 1 kg box under a 100 kg box: the light one must not be crushed.  Each step the solver
+ * carries the heavy box's weight through the light one. */
+static void test_a_light_box_holds_a_box_a_hundred_times_heavier(void **state)
+{
+    (void)state;
+    rg_world *w = new_world(-10);
+    assert_ok(rg_world_set_sleeping(w, 0));
+    floor_of(w);
+    rg_body light = box(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
+    rg_body heavy = box(w, RG_BODY_DYNAMIC, 100, 0, 1.5, 0.5, 0.5);
+    rg_real slop_r, rate, push, thr;
+    assert_ok(rg_world_get_contact_tuning(w, &slop_r, &rate, &push, &thr));
+        double slop = (double)slop_r;
+    for (int i = 0; i < 600; i++) {
+        assert_ok(rg_world_step(w, (rg_real)DT));
+        assert_true(fabs(PY(w, light) - 0.5) <= slop);
+        assert_true(fabs(PY(w, heavy) - 1.5) <= 2 * slop);
+    }
+    /* a tower of ten, masses 1 .. 100 kg bottom up */
+    rg_world *t = new_world(-10);
+    assert_ok(rg_world_set_sleeping(t, 0));
+    floor_of(t);
+    rg_body tower[10];
+    for (int i = 0; i < 10; i++) tower[i] = box(t, RG_BODY_DYNAMIC, pow(100.0, i / 9.0), 0, 0.5 + i, 0.5, 0.5);
+    for (int s = 0; s < 600; s++) {
+        assert_ok(rg_world_step(t, (rg_real)DT));
+        for (int i = 0; i < 10; i++) assert_true(fabs(PY(t, tower[i]) - (0.5 + i)) <= (i + 1) * slop);
+    }
+    rg_world_destroy(t);
+    rg_world_destroy(w);
+}
+
+/* ---------------------------------------------------------------- body types */
+
+static void test_kinematic_bodies_push_and_are_not_pushed(void **state)
+{
+    (void)state;
+    rg_world *w = new_world(0);
+    rg_body k = box(w, RG_BODY_KINEMATIC, 0, -2, 0, 0.5, 0.5);
+    rg_body d = circle(w, RG_BODY_DYNAMIC, 1, 0, 0, 0.5);
+    assert_ok(rg_body_set_velocity(w, k, v2(2, 0)));
+    step_n(w, 60, DT);
+    /* the kinematic body keeps its velocity and path exactly */
+    assert_near(VX(w, k), 2, 0);
+    assert_near(PX(w, k), -2 + 2 * 60 * DT, 1e-4);
+    /* the dynamic body is carried ahead of it, not through it */
+    assert_true(PX(w, d) >= PX(w, k) + 1 - 0.01);
+    assert_true(VX(w, d) >= 2 - 1e-4);
+    rg_world_destroy(w);
+}
+
+static void test_static_bodies_never_move(void **state)
+{
+    (void)state;
+    rg_world *w = new_world(-10);
+    rg_body s = box(w, RG_BODY_STATIC, 0, 0, 0, 1, 1);
+    rg_body d = circle(w, RG_BODY_DYNAMIC, 1000, 0.3, 3, 0.5);
+    assert_ok(rg_body_set_velocity(w, d, v2(0, -50)));
+    step_n(w, 120, DT);
+    assert_near(PX(w, s), 0, 0);
+    assert_near(PY(w, s), 0, 0);
+    assert_near(VY(w, s), 0, 0);
+    assert_true(PY(w, d) > 1);
+    rg_world_destroy(w);
+}
+
+/* Position correction moves bodies apart without giving them velocity: two circles created
+ * 30 cm deep into each other, at rest, no gravity, separate and stay at rest. */
+static void test_position_correction_adds_no_energy(void **state)
+{
+    (void)state;
+    rg_world *w = new_world(0);
+    assert_ok(rg_world_set_sleeping(w, 0)); /* at rest, they would sleep before the end */
+    rg_body a = circle(w, RG_BODY_DYNAMIC, 1, 0, 0, 0.5), b = circle(w, RG_BODY_DYNAMIC, 2, 0.7, 0, 0.5);
+    rg_real slop_r, rate, push, thr;
+    assert_ok(rg_world_get_contact_tuning(w, &slop_r, &rate, &push, &thr));
+        double slop = (double)slop_r;
+    for (int i = 0; i < 240; i++) {
+        assert_ok(rg_world_step(w, (rg_real)DT));
+        assert_near(VX(w, a), 0, 0);
+        assert_near(VX(w, b), 0, 0);
+    }
+    double gap = PX(w, b) - PX(w, a) - 1;
+    assert_true(gap >= -slop - 1e-4 && gap <= 0);
+    /* the centre of mass did not move: the pseudo-impulses are equal and opposite */
+    assert_near((1 * PX(w, a) + 2 * PX(w, b)) / 3, 1.4 / 3, 1e-5);
+    rg_world_destroy(w);
+}
+
+/* ---------------------------------------------------------------- determinism */
+
+static uint64_t hash_positions(rg_world *w, const rg_body *b, int n)
+{
+    uint64_t h = 1469598103934665603ull;
+    for (int i = 0; i < n; i++) {
+        rg_vec2 p = pos_of(w, b[i]), v = vel_of(w, b[i]);
+        unsigned char bytes[4 * sizeof(rg_real)];
+        memcpy(bytes, &p, sizeof p);
+        memcpy(bytes + sizeof p, &v, sizeof v);
+        for (size_t k = 0; k < sizeof bytes; k++) h = (h ^ bytes[k]) * 1099511628211ull;
+    }
+    return h;
+}
+
+static uint64_t run_pile_hash(void)
+{
+    rg_world *w = new_world(-10);
+    floor_of(w);
+    rg_body b[100];
+    for (int i = 0; i < 100; i++) {
+        double x = (i % 10) * 1.05 + 0.01 * (i % 7), y = 1 + (i / 10) * 1.05;
+        b[i] = i % 2 ? circle(w, RG_BODY_DYNAMIC, 1, x, y, 0.5) : box(w, RG_BODY_DYNAMIC, 2, x, y, 0.5, 0.5);
+    }
+    step_n(w, 200, DT);
+    uint64_t h = hash_positions(w, b, 100);
+    rg_world_destroy(w);
+    return h;
+}
+
+static void test_identical_runs_are_bit_identical(void **state)
+{
+    (void)state;
+    uint64_t h1 = run_pile_hash(), h2 = run_pile_hash();
+    assert_true(h1 == h2);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_1d_collisions_match_theory_for_restitutions_and_mass_ratios),
+        cmocka_unit_test(test_1d_collisions_of_boxes_and_mixed_pairs_match_theory),
+        cmocka_unit_test(test_impacts_slower_than_the_threshold_do_not_bounce),
+        cmocka_unit_test(test_a_dropped_ball_rebounds_to_e_squared_h),
+        cmocka_unit_test(test_elastic_bounces_never_gain_height),
+        cmocka_unit_test(test_a_ball_and_a_box_rest_on_the_floor_for_ten_seconds),
+        cmocka_unit_test(test_friction_stops_a_sliding_box_where_coulomb_says),
+        cmocka_unit_test(test_without_friction_a_box_keeps_sliding),
+        cmocka_unit_test(test_friction_holds_a_circle_on_a_circle_within_the_cone),
+        cmocka_unit_test(test_a_pile_of_circles_comes_to_rest_in_its_container),
+        cmocka_unit_test(test_a_pile_of_boxes_comes_to_rest_in_its_container),
+        cmocka_unit_test(test_a_light_box_holds_a_box_a_hundred_times_heavier),
+        cmocka_unit_test(test_kinematic_bodies_push_and_are_not_pushed),
+        cmocka_unit_test(test_static_bodies_never_move),
+        cmocka_unit_test(test_position_correction_adds_no_energy),
+        cmocka_unit_test(test_identical_runs_are_bit_identical),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
