@@ -116,7 +116,7 @@ static rg_real optreal(lua_State *L, int i, rg_real def)
     return lua_isnoneornil(L, i) ? def : checkreal(L, i);
 }
 
-#ifdef RG_CONTACT_BEGIN
+#ifdef LRIGID_COLLISION
 static uint32_t checkmask(lua_State *L, int i)
 {
     int ok = 0;
@@ -151,8 +151,10 @@ static int status_error(lua_State *L, rg_status s, const char *what, const char 
 
 static int checkoption(lua_State *L, int i, const char *const names[], const char *what)
 {
-    const char *s = luaL_checkstring(L, i);
+    const char *s;
     int k;
+    if (lua_type(L, i) != LUA_TSTRING) luaL_typeerror(L, i, "string");
+    s = lua_tostring(L, i);
     for (k = 0; names[k] != NULL; k++)
         if (strcmp(names[k], s) == 0) return k;
     return luaL_argerror(L, i, lua_pushfstring(L, "invalid %s '%s'", what, s));
@@ -271,7 +273,7 @@ static int option_pair(lua_State *L, int t, const char *key, const char *what, r
     return 1;
 }
 
-#ifdef RG_CONTACT_BEGIN
+#ifdef LRIGID_COLLISION
 static int option_boolean(lua_State *L, int t, const char *key, const char *what, int *out)
 {
     if (!getoption(L, t, key)) return 0;
@@ -601,6 +603,20 @@ int lrigid_tobody(lua_State *L, int idx, lrigid_body_info *out)
     out->size[0] = b->size[0];
     out->size[1] = b->size[1];
     out->sensor = b->sensor;
+#ifdef LRIGID_COLLISION
+    {
+        int32_t kind, sensor;
+        rg_vec2 half;
+        if (b->world->w != NULL && rg_body_get_shape(b->world->w, b->h, &kind, &half) == RG_OK &&
+            rg_body_is_sensor(b->world->w, b->h, &sensor) == RG_OK) {
+            out->shape = kind == RG_SHAPE_CIRCLE ? LRIGID_SHAPE_CIRCLE
+                         : kind == RG_SHAPE_AABB ? LRIGID_SHAPE_AABB : LRIGID_SHAPE_NONE;
+            out->size[0] = (double)half.x;
+            out->size[1] = (double)half.y;
+            out->sensor = sensor;
+        }
+    }
+#endif
     lua_getiuservalue(L, idx, UV_NAME);
     out->name = lua_tostring(L, -1);   /* the body value holds the string */
     lua_pop(L, 1);
@@ -661,7 +677,7 @@ static int rawset3(lua_State *L)
 static const char *const body_options[] = {
     "type", "mass", "x", "y", "vx", "vy", "gravity_scale", "drag", "surface_friction",
     "min_speed", "max_speed", "user_data", "name",
-#ifdef RG_CONTACT_BEGIN
+#ifdef LRIGID_COLLISION
     "circle", "aabb", "restitution", "friction", "sensor", "category", "mask",
 #endif
     NULL
@@ -677,7 +693,7 @@ static int world_body(lua_State *L)
     rg_real drag[2], sfric[2];
     int has_v, has_gscale, has_drag, has_sfric, has_limits, has_ud;
     lua_Integer user_data = 0;
-#ifdef RG_CONTACT_BEGIN
+#ifdef LRIGID_COLLISION
     rg_real circle = 0, aabb[2], restitution = 0, friction = 0;
     int has_circle, has_aabb, has_rest, has_fric, has_sensor, has_filter, sensor = 0;
     lua_Integer category = 1, mask = 0xFFFFFFFF;
@@ -711,7 +727,7 @@ static int world_body(lua_State *L)
     } else {
         lua_pushnil(L);
     }
-#ifdef RG_CONTACT_BEGIN
+#ifdef LRIGID_COLLISION
     has_circle = option_real(L, 2, "circle", what, &circle);
     has_aabb = option_pair(L, 2, "aabb", what, aabb);
     has_rest = option_real(L, 2, "restitution", what, &restitution);
@@ -747,7 +763,7 @@ static int world_body(lua_State *L)
     TRY(has_limits, rg_body_set_speed_limits(w, h, min_speed, max_speed), "min_speed/max_speed",
         "both >= 0, and max_speed >= min_speed unless max_speed is 0")
     TRY(has_ud, rg_body_set_user_data(w, h, (uint64_t)user_data), "user_data", NULL)
-#ifdef RG_CONTACT_BEGIN
+#ifdef LRIGID_COLLISION
     TRY(has_circle, rg_body_set_circle(w, h, circle), "circle", "radius must be > 0")
     TRY(has_aabb, rg_body_set_aabb(w, h, aabb[0], aabb[1]), "aabb",
         "half sizes must be > 0")
@@ -764,7 +780,7 @@ static int world_body(lua_State *L)
         lua_pushfstring(L, "%s: option '%s'", what, failed);
         return status_error(L, st, lua_tostring(L, -1), hint);
     }
-#ifdef RG_CONTACT_BEGIN
+#ifdef LRIGID_COLLISION
     if (has_circle) {
         b->shape = LRIGID_SHAPE_CIRCLE;
         b->size[0] = (double)circle;
@@ -994,7 +1010,7 @@ static int body_id(lua_State *L)
     return 1;
 }
 
-#ifdef RG_CONTACT_BEGIN
+#ifdef LRIGID_COLLISION
 static int body_grounded(lua_State *L)
 {
     lbody *b = checkbody(L, 1);
@@ -1061,6 +1077,160 @@ static int body_set_filter(lua_State *L)
     uint32_t category = checkmask(L, 2), mask = checkmask(L, 3);
     CHECK(L, rg_body_set_filter(bodyworld(L, b), b->h, category, mask), "set_filter", NULL);
     return 0;
+}
+
+static int body_filter(lua_State *L)
+{
+    lbody *b = checkbody(L, 1);
+    uint32_t category = 0, mask = 0;
+    CHECK(L, rg_body_get_filter(bodyworld(L, b), b->h, &category, &mask), "filter", NULL);
+    lua_pushinteger(L, (lua_Integer)category);
+    lua_pushinteger(L, (lua_Integer)mask);
+    return 2;
+}
+
+static int body_clear_shape(lua_State *L)
+{
+    lbody *b = checkbody(L, 1);
+    CHECK(L, rg_body_clear_shape(bodyworld(L, b), b->h), "clear_shape", NULL);
+    b->shape = LRIGID_SHAPE_NONE;
+    return 0;
+}
+
+/* "circle", r | "aabb", half_width, half_height | "none" */
+static int body_shape(lua_State *L)
+{
+    lbody *b = checkbody(L, 1);
+    int32_t kind = 0;
+    rg_vec2 half;
+    CHECK(L, rg_body_get_shape(bodyworld(L, b), b->h, &kind, &half), "shape", NULL);
+    if (kind == RG_SHAPE_CIRCLE) {
+        lua_pushliteral(L, "circle");
+        pushreal(L, half.x);
+        return 2;
+    }
+    if (kind == RG_SHAPE_AABB) {
+        lua_pushliteral(L, "aabb");
+        pushreal(L, half.x);
+        pushreal(L, half.y);
+        return 3;
+    }
+    lua_pushliteral(L, "none");
+    return 1;
+}
+
+static int body_restitution(lua_State *L)
+{
+    lbody *b = checkbody(L, 1);
+    rg_real e = 0;
+    CHECK(L, rg_body_get_restitution(bodyworld(L, b), b->h, &e), "restitution", NULL);
+    pushreal(L, e);
+    return 1;
+}
+
+static int body_friction(lua_State *L)
+{
+    lbody *b = checkbody(L, 1);
+    rg_real mu = 0;
+    CHECK(L, rg_body_get_friction(bodyworld(L, b), b->h, &mu), "friction", NULL);
+    pushreal(L, mu);
+    return 1;
+}
+
+static int body_is_sensor(lua_State *L)
+{
+    lbody *b = checkbody(L, 1);
+    int32_t s = 0;
+    CHECK(L, rg_body_is_sensor(bodyworld(L, b), b->h, &s), "is_sensor", NULL);
+    lua_pushboolean(L, s != 0);
+    return 1;
+}
+
+static int body_is_awake(lua_State *L)
+{
+    lbody *b = checkbody(L, 1);
+    int32_t a = 0;
+    CHECK(L, rg_body_is_awake(bodyworld(L, b), b->h, &a), "is_awake", NULL);
+    lua_pushboolean(L, a != 0);
+    return 1;
+}
+
+static int body_wake(lua_State *L)
+{
+    lbody *b = checkbody(L, 1);
+    CHECK(L, rg_body_wake(bodyworld(L, b), b->h), "wake", NULL);
+    return 0;
+}
+
+static int checkboolean(lua_State *L, int i)
+{
+    luaL_checktype(L, i, LUA_TBOOLEAN);
+    return lua_toboolean(L, i);
+}
+
+static int world_set_sleeping(lua_State *L)
+{
+    rg_world *w = checkopenworld(L, 1);
+    CHECK(L, rg_world_set_sleeping(w, checkboolean(L, 2)), "set_sleeping", NULL);
+    return 0;
+}
+
+static int world_sleeping(lua_State *L)
+{
+    rg_world *w = checkopenworld(L, 1);
+    int32_t on = 0;
+    CHECK(L, rg_world_get_sleeping(w, &on), "sleeping", NULL);
+    lua_pushboolean(L, on != 0);
+    return 1;
+}
+
+static int world_set_sleep_thresholds(lua_State *L)
+{
+    rg_world *w = checkopenworld(L, 1);
+    rg_real speed = checkreal(L, 2), time = checkreal(L, 3);
+    CHECK(L, rg_world_set_sleep_thresholds(w, speed, time), "set_sleep_thresholds",
+          "speed >= 0 and time > 0");
+    return 0;
+}
+
+static int world_set_solver_iterations(lua_State *L)
+{
+    rg_world *w = checkopenworld(L, 1);
+    lua_Integer v = luaL_checkinteger(L, 2), r = luaL_optinteger(L, 3, 2);
+    luaL_argcheck(L, v >= -0x7FFFFFFF && v <= 0x7FFFFFFF, 2, "out of range");
+    luaL_argcheck(L, r >= -0x7FFFFFFF && r <= 0x7FFFFFFF, 3, "out of range");
+    CHECK(L, rg_world_set_solver_iterations(w, (int32_t)v, (int32_t)r), "set_solver_iterations",
+          "velocity in 1..64, relax in 0..64");
+    return 0;
+}
+
+static int world_set_contact_tuning(lua_State *L)
+{
+    rg_world *w = checkopenworld(L, 1);
+    rg_real slop = checkreal(L, 2), bias = checkreal(L, 3), push = checkreal(L, 4);
+    rg_real threshold = checkreal(L, 5);
+    CHECK(L, rg_world_set_contact_tuning(w, slop, bias, push, threshold), "set_contact_tuning",
+          "slop >= 0, bias_rate in (0, 1], max_push > 0, restitution_threshold >= 0");
+    return 0;
+}
+
+static int world_set_continuous(lua_State *L)
+{
+    rg_world *w = checkopenworld(L, 1);
+    CHECK(L, rg_world_set_continuous(w, checkboolean(L, 2)), "set_continuous", NULL);
+    return 0;
+}
+
+static int world_awake_body_count(lua_State *L)
+{
+    lua_pushinteger(L, rg_world_awake_body_count(checkopenworld(L, 1)));
+    return 1;
+}
+
+static int world_touching_count(lua_State *L)
+{
+    lua_pushinteger(L, rg_world_touching_count(checkopenworld(L, 1)));
+    return 1;
 }
 #endif
 
@@ -1215,14 +1385,14 @@ static int spring_tostring(lua_State *L)
 
 /* ---------------------------------------------------------------- collision */
 
-#ifdef RG_CONTACT_BEGIN
-static int world_events(lua_State *L)
+#ifdef LRIGID_COLLISION
+/* Pushes the events of the last step of the open world at idx as an array of tables. */
+static void push_events(lua_State *L, int idx, rg_world *w)
 {
-    rg_world *w = checkopenworld(L, 1);
     int32_t n = rg_world_get_contact_events(w, NULL, 0), i;
     rg_contact_event *ev;
-    lua_settop(L, 1);
-    if (n < 0) return status_error(L, n, "events", NULL);
+    idx = lua_absindex(L, idx);
+    if (n < 0) status_error(L, n, "events", NULL);
     ev = (rg_contact_event *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *ev, 0);
     if (n > 0) n = rg_world_get_contact_events(w, ev, n);
     charge(L, n);
@@ -1232,9 +1402,9 @@ static int world_events(lua_State *L)
         lua_createtable(L, 0, 10);
         lua_pushstring(L, e->kind == RG_CONTACT_BEGIN ? "begin" : "end");
         lua_setfield(L, -2, "kind");
-        lrigid_pushbody(L, 1, e->a);
+        lrigid_pushbody(L, idx, e->a);
         lua_setfield(L, -2, "a");
-        lrigid_pushbody(L, 1, e->b);
+        lrigid_pushbody(L, idx, e->b);
         lua_setfield(L, -2, "b");
         pushreal(L, e->normal.x);
         lua_setfield(L, -2, "nx");
@@ -1252,6 +1422,21 @@ static int world_events(lua_State *L)
         lua_setfield(L, -2, "sensor");
         lua_rawseti(L, -2, i + 1);
     }
+    lua_remove(L, -2);   /* the scratch buffer */
+}
+
+void lrigid_pushevents(lua_State *L, int world_idx)
+{
+    rg_world *w = lrigid_toworld(L, world_idx);
+    if (w == NULL) luaL_error(L, "attempt to use a closed world");
+    push_events(L, world_idx, w);
+}
+
+static int world_events(lua_State *L)
+{
+    rg_world *w = checkopenworld(L, 1);
+    lua_settop(L, 1);
+    push_events(L, 1, w);
     return 1;
 }
 
@@ -1319,10 +1504,18 @@ static const luaL_Reg world_methods[] = {
     { "spring_count", world_spring_count },
     { "is_open", world_is_open },
     { "close", world_close },
-#ifdef RG_CONTACT_BEGIN
+#ifdef LRIGID_COLLISION
     { "events", world_events },
     { "raycast", world_raycast },
     { "query_aabb", world_query_aabb },
+    { "set_sleeping", world_set_sleeping },
+    { "sleeping", world_sleeping },
+    { "set_sleep_thresholds", world_set_sleep_thresholds },
+    { "set_solver_iterations", world_set_solver_iterations },
+    { "set_contact_tuning", world_set_contact_tuning },
+    { "set_continuous", world_set_continuous },
+    { "awake_body_count", world_awake_body_count },
+    { "touching_count", world_touching_count },
 #endif
     { NULL, NULL }
 };
@@ -1356,7 +1549,7 @@ static const luaL_Reg body_methods[] = {
     { "id", body_id },
     { "is_valid", body_is_valid },
     { "destroy", body_destroy },
-#ifdef RG_CONTACT_BEGIN
+#ifdef LRIGID_COLLISION
     { "grounded", body_grounded },
     { "set_circle", body_set_circle },
     { "set_aabb", body_set_aabb },
@@ -1364,6 +1557,14 @@ static const luaL_Reg body_methods[] = {
     { "set_friction", body_set_friction },
     { "set_sensor", body_set_sensor },
     { "set_filter", body_set_filter },
+    { "filter", body_filter },
+    { "clear_shape", body_clear_shape },
+    { "shape", body_shape },
+    { "restitution", body_restitution },
+    { "friction", body_friction },
+    { "is_sensor", body_is_sensor },
+    { "is_awake", body_is_awake },
+    { "wake", body_wake },
 #endif
     { NULL, NULL }
 };
@@ -1423,7 +1624,7 @@ LRIGID_API int luaopen_rigid(lua_State *L)
     lua_setfield(L, -2, "version");
     lua_pushinteger(L, rg_real_size());
     lua_setfield(L, -2, "real_size");
-#ifdef RG_CONTACT_BEGIN
+#ifdef LRIGID_COLLISION
     lua_pushboolean(L, 1);
 #else
     lua_pushboolean(L, 0);

@@ -1,0 +1,431 @@
+/* host.c: build/rigid, which runs a gameplay script in a sandbox and can draw its world. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <lauxlib.h>
+#include <lua.h>
+
+#include "lrigid.h"
+#include "lsandbox.h"
+#include "lsvg.h"
+
+#define DEFAULT_MEMORY_MIB 64
+#define DEFAULT_BUDGET     100000000LL
+#define DEFAULT_SECONDS    10.0
+
+static const char usage[] =
+    "usage: rigid SCRIPT.lua [options] [-- script arguments]\n"
+    "  --steps N      fixed steps a scene runs (default: its `duration` global, else 10 s)\n"
+    "  --seconds S    simulated seconds a scene runs\n"
+    "  --svg FILE     draw the world (bodies, trails, contact points) into FILE\n"
+    "  --memory MiB   memory cap of the script, physics included (default 64)\n"
+    "  --budget N     instructions per call into the script: the main chunk, setup, each\n"
+    "                 update and each contact (default 100000000; 0: no limit)\n"
+    "A scene script defines setup(world), update(world, dt) (before each fixed step),\n"
+    "contact(world, event) (for each contact event after a step) and/or finish(world);\n"
+    "the host makes the world and steps it.  Other scripts run as they are.\n";
+
+typedef struct host {
+    const char *script;
+    long long steps;         /* -1: not given */
+    double seconds;          /* < 0: not given */
+    const char *svg;
+    long long memory_mib;
+    long long budget;
+    int nargs;
+    char **args;
+
+    lua_State *L;
+    lsandbox *sb;
+    lsvg *rec;               /* NULL unless --svg */
+    int world_ref;           /* the world drawn and stepped */
+    int ctor_ref;            /* rigid.world as it was before the script ran */
+    long long steps_taken;
+    double sim_time;
+    lrigid_hooks hooks;
+} host;
+
+static int parse_int(const char *s, long long lo, long long hi, long long *out)
+{
+    char *end;
+    long long v;
+    errno = 0;
+    v = strtoll(s, &end, 10);
+    if (errno != 0 || end == s || *end != '\0' || v < lo || v > hi) return 0;
+    *out = v;
+    return 1;
+}
+
+static int parse_args(host *h, int argc, char **argv)
+{
+    int i;
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "--") == 0) {
+            h->nargs = argc - i - 1;
+            h->args = argv + i + 1;
+            break;
+        } else if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            fputs(usage, stdout);
+            exit(0);
+        } else if (strcmp(a, "--steps") == 0 || strcmp(a, "--memory") == 0 ||
+                   strcmp(a, "--budget") == 0 || strcmp(a, "--seconds") == 0 ||
+                   strcmp(a, "--svg") == 0) {
+            if (val == NULL) {
+                fprintf(stderr, "rigid: %s needs a value\n%s", a, usage);
+                return 0;
+            }
+            i++;
+            if (strcmp(a, "--svg") == 0) {
+                h->svg = val;
+            } else if (strcmp(a, "--seconds") == 0) {
+                char *end;
+                h->seconds = strtod(val, &end);
+                if (end == val || *end != '\0' || !(h->seconds > 0) || !isfinite(h->seconds)) {
+                    fprintf(stderr, "rigid: --seconds wants a positive number, not '%s'\n", val);
+                    return 0;
+                }
+            } else if (!parse_int(val, strcmp(a, "--budget") == 0 ? 0 : 1,
+                                  strcmp(a, "--memory") == 0 ? 1 << 20 : 1LL << 53,
+                                  strcmp(a, "--steps") == 0 ? &h->steps
+                                  : strcmp(a, "--memory") == 0 ? &h->memory_mib
+                                                                : &h->budget)) {
+                fprintf(stderr, "rigid: %s wants a whole number in range, not '%s'\n", a, val);
+                return 0;
+            }
+        } else if (a[0] == '-' && a[1] != '\0') {
+            fprintf(stderr, "rigid: unknown option '%s'\n%s", a, usage);
+            return 0;
+        } else if (h->script == NULL) {
+            h->script = a;
+        } else {
+            fprintf(stderr, "rigid: one script at a time ('%s' and '%s')\n%s", h->script, a, usage);
+            return 0;
+        }
+    }
+    if (h->script == NULL) {
+        fputs(usage, stderr);
+        return 0;
+    }
+    return 1;
+}
+
+/* ---------------------------------------------------------------- hooks from the binding */
+
+static void host_charge(lua_State *L, void *ud, double units)
+{
+    host *h = (host *)ud;
+    lsandbox_charge(L, h->sb, units);
+}
+
+static void record_contacts(host *h, lua_State *L, int world_idx)
+{
+#ifdef LRIGID_COLLISION
+    rg_world *w = lrigid_toworld(L, world_idx);
+    rg_contact_event *ev;
+    int32_t n, i;
+    if (h->rec == NULL || w == NULL) return;
+    n = rg_world_get_contact_events(w, NULL, 0);
+    if (n <= 0 || (ev = (rg_contact_event *)malloc((size_t)n * sizeof *ev)) == NULL) return;
+    n = rg_world_get_contact_events(w, ev, n);
+    for (i = 0; i < n; i++)
+        if (ev[i].kind == RG_CONTACT_BEGIN && !ev[i].sensor)
+            lsvg_contact(h->rec, (double)ev[i].point.x, (double)ev[i].point.y);
+    free(ev);
+#else
+    (void)h;
+    (void)L;
+    (void)world_idx;
+#endif
+}
+
+static double fixed_dt(lua_State *L, int world_idx)
+{
+    rg_world *w = lrigid_toworld(L, world_idx);
+    rg_real dt = 0;
+    int32_t max = 0;
+    if (w == NULL || rg_world_get_fixed_step(w, &dt, &max) != RG_OK) return 0;
+    return (double)dt;
+}
+
+/* A step the script took itself (world:step or world:advance).  A plain script's first
+ * stepped world becomes the one the host draws. */
+static void host_after_step(lua_State *L, void *ud, int world_idx, int steps)
+{
+    host *h = (host *)ud;
+    int same;
+    world_idx = lua_absindex(L, world_idx);
+    if (h->world_ref == LUA_NOREF) {
+        lua_pushvalue(L, world_idx);
+        h->world_ref = luaL_ref(L, LUA_REGISTRYINDEX);
+    }
+    lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
+    same = lua_rawequal(L, -1, world_idx);
+    lua_pop(L, 1);
+    if (!same) return;
+    h->steps_taken += steps;
+    h->sim_time += steps * fixed_dt(L, world_idx);
+    if (h->rec != NULL) {
+        lsvg_record(h->rec, L, world_idx, h->sim_time);
+        record_contacts(h, L, world_idx);
+    }
+}
+
+/* ---------------------------------------------------------------- running */
+
+static int report(host *h, const char *what, int status)
+{
+    const char *msg = lua_tostring(h->L, -1);
+    fprintf(stderr, "rigid: %s failed: %s\n", what, msg != NULL ? msg : "(no message)");
+    if (status == LUA_ERRMEM) {
+        /* Lua raises memory errors without a message handler: no position, no traceback. */
+        const char *where = lsandbox_where(h->sb);
+        fprintf(stderr, "  (the script reached its memory cap of %lld MiB in %s; %s%s)\n",
+                h->memory_mib, h->script, where[0] != '\0' ? "last seen at " : "no position known",
+                where);
+    }
+    lua_pop(h->L, 1);
+    return 0;
+}
+
+/* Looks a global function up without metamethods; pushes it or nothing. */
+static int global_function(lua_State *L, const char *name)
+{
+    lua_pushglobaltable(L);
+    lua_pushstring(L, name);
+    lua_rawget(L, -2);
+    lua_remove(L, -2);
+    if (lua_type(L, -1) == LUA_TFUNCTION) return 1;
+    lua_pop(L, 1);
+    return 0;
+}
+
+static double global_number(lua_State *L, const char *name)
+{
+    double v = -1;
+    lua_pushglobaltable(L);
+    lua_pushstring(L, name);
+    lua_rawget(L, -2);
+    if (lua_type(L, -1) == LUA_TNUMBER) v = lua_tonumber(L, -1);
+    lua_pop(L, 2);
+    return isfinite(v) ? v : -1;
+}
+
+/* The host's own step: update -> one fixed step through the accumulator -> contacts. */
+static int scene_step(host *h, double dt)
+{
+    lua_State *L = h->L;
+    rg_world *w;
+    int32_t taken = 0;
+    int has_contact;
+    if (global_function(L, "update")) {
+        lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
+        lua_pushnumber(L, dt);
+        int st = lsandbox_call(L, h->sb, 2, 0);
+        if (st != LUA_OK) return report(h, "update", st);
+    }
+    lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
+    w = lrigid_toworld(L, -1);
+    if (w == NULL) {
+        lua_pop(L, 1);
+        fprintf(stderr, "rigid: the scene closed its world\n");
+        return 0;
+    }
+    /* frame_time equals the fixed step exactly (both rg_real), so each advance takes one. */
+    if (rg_world_advance(w, (rg_real)dt, &taken) != RG_OK) {
+        lua_pop(L, 1);
+        fprintf(stderr, "rigid: advance failed\n");
+        return 0;
+    }
+    h->steps_taken += taken;
+    h->sim_time += taken * dt;
+    if (h->rec != NULL) {
+        lsvg_record(h->rec, L, -1, h->sim_time);
+        record_contacts(h, L, lua_gettop(L));
+    }
+    has_contact = global_function(L, "contact");
+    if (has_contact) lua_pop(L, 1);
+#ifdef LRIGID_COLLISION
+    if (has_contact) {
+        int events, i, n;
+        lrigid_pushevents(L, -1);
+        events = lua_gettop(L);
+        n = (int)lua_rawlen(L, events);
+        for (i = 1; i <= n; i++) {
+            if (!global_function(L, "contact")) break;
+            lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
+            lua_rawgeti(L, events, i);
+            int st = lsandbox_call(L, h->sb, 2, 0);
+            if (st != LUA_OK) {
+                report(h, "contact", st);
+                lua_pop(L, 2);
+                return 0;
+            }
+        }
+        lua_pop(L, 1);
+    }
+#endif
+    lua_pop(L, 1);
+    return 1;
+}
+
+static int run_scene(host *h)
+{
+    lua_State *L = h->L;
+    double dt, duration;
+    long long n, k;
+    int st;
+    /* A world the main chunk stepped is not the scene's. */
+    if (h->world_ref != LUA_NOREF) {
+        luaL_unref(L, LUA_REGISTRYINDEX, h->world_ref);
+        h->world_ref = LUA_NOREF;
+        h->steps_taken = 0;
+        h->sim_time = 0;
+        if (h->rec != NULL) {
+            lsvg_free(h->rec);
+            h->rec = lsvg_new();
+        }
+    }
+    /* The world comes from the constructor the module had before the script ran. */
+    lua_rawgeti(L, LUA_REGISTRYINDEX, h->ctor_ref);
+    st = lsandbox_call(L, h->sb, 0, 1);
+    if (st != LUA_OK) return report(h, "creating the world", st);
+    h->world_ref = luaL_ref(L, LUA_REGISTRYINDEX);
+    lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
+    {
+        /* Store the default step as an rg_real, so the host's frame time matches it. */
+        rg_world *w = lrigid_toworld(L, -1);
+        rg_real d;
+        int32_t m;
+        if (rg_world_get_fixed_step(w, &d, &m) == RG_OK) rg_world_set_fixed_step(w, d, m);
+    }
+    if (global_function(L, "setup")) {
+        lua_pushvalue(L, -2);
+        st = lsandbox_call(L, h->sb, 1, 0);
+        if (st != LUA_OK) {
+            report(h, "setup", st);
+            lua_pop(L, 1);
+            return 0;
+        }
+    }
+    dt = fixed_dt(L, -1);
+    lua_pop(L, 1);
+    if (!(dt > 0)) {
+        fprintf(stderr, "rigid: the scene closed its world\n");
+        return 0;
+    }
+    duration = global_number(L, "duration");
+    if (h->steps >= 0) n = h->steps;
+    else if (h->seconds > 0) n = (long long)ceil(h->seconds / dt - 1e-9);
+    else n = (long long)ceil((duration > 0 ? duration : DEFAULT_SECONDS) / dt - 1e-9);
+    if (h->rec != NULL) {
+        lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
+        lsvg_record(h->rec, L, -1, 0);
+        lua_pop(L, 1);
+    }
+    for (k = 0; k < n; k++) {
+        double d;
+        lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
+        d = fixed_dt(L, -1);
+        lua_pop(L, 1);
+        if (!(d > 0)) {
+            fprintf(stderr, "rigid: the scene closed its world\n");
+            return 0;
+        }
+        if (!scene_step(h, d)) return 0;
+    }
+    if (global_function(L, "finish")) {
+        lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
+        st = lsandbox_call(L, h->sb, 1, 0);
+        if (st != LUA_OK) return report(h, "finish", st);
+    }
+    return 1;
+}
+
+static void write_picture(host *h, int ok)
+{
+    char title[512], sub[512];
+    const char *base = strrchr(h->script, '/');
+    int bodies = 0;
+    if (h->rec == NULL) return;
+    if (h->world_ref != LUA_NOREF) {
+        rg_world *w;
+        lua_rawgeti(h->L, LUA_REGISTRYINDEX, h->world_ref);
+        w = lrigid_toworld(h->L, -1);
+        bodies = w != NULL ? rg_world_body_count(w) : 0;
+        lua_pop(h->L, 1);
+    }
+    snprintf(title, sizeof title, "rigid: %s", base != NULL ? base + 1 : h->script);
+    snprintf(sub, sizeof sub, "%lld steps, %.2f s simulated, %d bodies at the end, %d contacts%s",
+             h->steps_taken, h->sim_time, bodies, lsvg_contact_count(h->rec),
+             ok ? "" : " (the script failed: this is the world it left)");
+    if (lsvg_write(h->rec, h->svg, title, sub) != 0)
+        fprintf(stderr, "rigid: cannot write %s: %s\n", h->svg, strerror(errno));
+    else
+        printf("rigid: picture written to %s\n", h->svg);
+}
+
+int main(int argc, char **argv)
+{
+    host h;
+    lua_State *L;
+    int ok = 0, i, st;
+    clock_t t0 = clock();
+
+    memset(&h, 0, sizeof h);
+    h.steps = -1;
+    h.seconds = -1;
+    h.memory_mib = DEFAULT_MEMORY_MIB;
+    h.budget = DEFAULT_BUDGET;
+    h.world_ref = LUA_NOREF;
+    if (!parse_args(&h, argc, argv)) return 2;
+
+    L = lsandbox_new((size_t)h.memory_mib << 20, h.budget, &h.sb);
+    if (L == NULL) {
+        fprintf(stderr, "rigid: cannot create a Lua state\n");
+        return 1;
+    }
+    h.L = L;
+    lsandbox_provide(L, "rigid", luaopen_rigid);
+    lua_getglobal(L, "rigid");
+    lua_getfield(L, -1, "world");
+    h.ctor_ref = luaL_ref(L, LUA_REGISTRYINDEX);
+    lua_pop(L, 1);
+    if (h.svg != NULL) h.rec = lsvg_new();
+    h.hooks.charge = host_charge;
+    h.hooks.after_step = host_after_step;
+    h.hooks.ud = &h;
+    lrigid_sethooks(L, &h.hooks);
+
+    st = lsandbox_loadfile(L, h.script);
+    if (st != LUA_OK) {
+        report(&h, "loading", st);
+    } else {
+        for (i = 0; i < h.nargs; i++) lua_pushstring(L, h.args[i]);
+        st = lsandbox_call(L, h.sb, h.nargs, 0);
+        if (st != LUA_OK) {
+            report(&h, h.script, st);
+        } else if (global_function(L, "setup") + global_function(L, "update") +
+                   global_function(L, "contact") + global_function(L, "finish") > 0) {
+            lua_settop(L, 0);
+            ok = run_scene(&h);
+        } else {
+            ok = 1;
+        }
+    }
+    lua_settop(L, 0);
+    write_picture(&h, ok);
+    if (ok)
+        fprintf(stderr, "rigid: %s: %lld steps (%.2f s simulated) in %.3f s CPU, peak memory %.2f MiB\n",
+                h.script, h.steps_taken, h.sim_time, (double)(clock() - t0) / CLOCKS_PER_SEC,
+                (double)lsandbox_peak_memory(h.sb) / (1 << 20));
+    lrigid_sethooks(L, NULL);
+    lsandbox_close(L, h.sb);
+    lsvg_free(h.rec);
+    return ok ? 0 : 1;
+}

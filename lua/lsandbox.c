@@ -1,0 +1,607 @@
+/* lsandbox.c: memory cap, uncatchable instruction budget and safe libraries for scripts. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <lauxlib.h>
+#include <lua.h>
+#include <lualib.h>
+
+#include "lpattern.h"
+#include "lsandbox.h"
+
+#define HOOK_EVERY      1000            /* instructions between count hooks */
+#define BYTES_PER_UNIT  64              /* allocation charged to the budget */
+#define REPORT_HEADROOM (1u << 20)      /* memory the error report may use past the cap */
+#define LOOP_BATCH      1024            /* C loop iterations between budget checks */
+#define NORMAL_MASK     (LUA_MASKCOUNT | LUA_MASKCALL)
+
+struct lsandbox {
+    size_t used, peak, limit;
+    int reporting;           /* a traceback is being built: allow the headroom */
+    double budget;           /* units per entry; 0: none */
+    double spent;
+    int exhausted;           /* once set, every hook raises until the entry ends */
+    int count;               /* instructions per count hook */
+    lpattern_meter meter;
+    char where[200];         /* "file:line" of the script at the last count hook */
+};
+
+static const char modules_key = 'm';
+
+static lsandbox *getsb(lua_State *L)
+{
+    void *ud;
+    lua_getallocf(L, &ud);
+    return (lsandbox *)ud;
+}
+
+/* ---------------------------------------------------------------- memory */
+
+static void *sb_alloc(void *ud, void *ptr, size_t osize, size_t nsize)
+{
+    lsandbox *sb = (lsandbox *)ud;
+    size_t old = ptr != NULL ? osize : 0;   /* for a new block, osize is a type tag */
+    void *p;
+    if (nsize == 0) {
+        free(ptr);
+        sb->used -= old;
+        return NULL;
+    }
+    if (nsize > old) {
+        size_t grow = nsize - old;
+        size_t limit = sb->limit + (sb->reporting ? REPORT_HEADROOM : 0);
+        if (sb->limit != 0 && (grow > limit || sb->used > limit - grow)) return NULL;
+        if (sb->budget > 0) sb->spent += (double)(grow / BYTES_PER_UNIT);
+    }
+    p = realloc(ptr, nsize);
+    if (p == NULL) return nsize <= old ? ptr : NULL;   /* a shrink may keep the block */
+    sb->used = sb->used - old + nsize;
+    if (sb->used > sb->peak) sb->peak = sb->used;
+    return p;
+}
+
+/* ---------------------------------------------------------------- budget */
+
+static int msgh(lua_State *L);
+
+/* Raises "file:line: instruction budget exhausted", at the innermost Lua function. */
+static int raise_budget(lua_State *L, const lsandbox *sb)
+{
+    lua_Debug d;
+    int level;
+    lua_pushliteral(L, "");
+    for (level = 0; lua_getstack(L, level, &d); level++) {
+        lua_getinfo(L, "Sl", &d);
+        if (d.currentline > 0) {
+            lua_pop(L, 1);
+            lua_pushfstring(L, "%s:%d: ", d.short_src, d.currentline);
+            break;
+        }
+    }
+    lua_pushfstring(L, "instruction budget exhausted (%I units per call into the script)",
+                    (lua_Integer)sb->budget);
+    lua_concat(L, 2);
+    return lua_error(L);
+}
+
+static void hook(lua_State *L, lua_Debug *ar);
+static int guarded_handler(lua_State *L);
+
+static void arm(lua_State *L, const lsandbox *sb)
+{
+    if (sb->budget <= 0) return;
+    if (sb->exhausted) lua_sethook(L, hook, LUA_MASKCOUNT, 1);
+    else lua_sethook(L, hook, NORMAL_MASK, sb->count);
+}
+
+/* Every hook event charges: a count event the instructions since the last, a call one unit.
+ * Once the budget is gone the thread raises on every instruction, so a pcall that catches
+ * the error gets to run exactly nothing, in this thread or any other, until the host's own
+ * pcall returns. */
+static void hook(lua_State *L, lua_Debug *ar)
+{
+    lsandbox *sb = getsb(L);
+    if (ar->event == LUA_HOOKCOUNT) {
+        sb->spent += (double)lua_gethookcount(L);
+        /* Where the script is, for a memory error (Lua reports those without a handler,
+         * so without a position); once per count hook, which is cheap. */
+        if (lua_getinfo(L, "Sl", ar) && ar->currentline > 0)
+            snprintf(sb->where, sizeof sb->where, "%s:%d", ar->short_src, ar->currentline);
+    } else {
+        sb->spent += 1.0;
+    }
+    if (!sb->exhausted && sb->spent <= sb->budget) {
+        if (lua_gethookmask(L) != NORMAL_MASK) arm(L, sb);   /* from an earlier entry */
+        return;
+    }
+    if (ar->event != LUA_HOOKCOUNT && lua_getinfo(L, "f", ar)) {
+        /* The handlers run C only (no script code once exhausted): let them run. */
+        lua_CFunction f = lua_tocfunction(L, -1);
+        int ours = f == msgh || f == guarded_handler;
+        lua_pop(L, 1);
+        if (ours) return;
+    }
+    sb->exhausted = 1;
+    lua_sethook(L, hook, LUA_MASKCOUNT, 1);
+    raise_budget(L, sb);
+}
+
+void lsandbox_charge(lua_State *L, lsandbox *sb, double units)
+{
+    if (sb->budget <= 0) return;
+    sb->spent += units;
+    if (sb->spent > sb->budget && !sb->exhausted) {
+        sb->exhausted = 1;
+        lua_sethook(L, hook, LUA_MASKCOUNT, 1);   /* stops at the next instruction */
+    }
+}
+
+/* For C loops of the sandbox's own functions: charges and raises when over budget. */
+static void charge_now(lua_State *L, lsandbox *sb, double units)
+{
+    if (sb->budget <= 0) return;
+    sb->spent += units;
+    if (sb->exhausted || sb->spent > sb->budget) {
+        sb->exhausted = 1;
+        lua_sethook(L, hook, LUA_MASKCOUNT, 1);
+        raise_budget(L, sb);
+    }
+}
+
+static void meter_charge(lua_State *L, void *ud, size_t units)
+{
+    charge_now(L, (lsandbox *)ud, (double)units);
+}
+
+/* ---------------------------------------------------------------- safe library functions */
+
+/* load(chunk [, chunkname [, mode [, env]]]) with mode forced to "t": no bytecode. */
+static int safe_load(lua_State *L)
+{
+    int top = lua_gettop(L), n;
+    int t = lua_type(L, 1);
+    luaL_argexpected(L, t == LUA_TSTRING || t == LUA_TFUNCTION, 1, "string or function");
+    if (!lua_isnoneornil(L, 2)) luaL_checkstring(L, 2);
+    if (!lua_isnoneornil(L, 3)) luaL_checkstring(L, 3);
+    lua_settop(L, 4);
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_pushvalue(L, 1);
+    lua_pushvalue(L, 2);
+    lua_pushliteral(L, "t");
+    n = 3;
+    if (top >= 4) {        /* an explicit nil env is not the same as none */
+        lua_pushvalue(L, 4);
+        n = 4;
+    }
+    lua_call(L, n, LUA_MULTRET);
+    return lua_gettop(L) - 4;
+}
+
+static int safe_require(lua_State *L)
+{
+    const char *name = luaL_checkstring(L, 1);
+    lua_rawgetp(L, LUA_REGISTRYINDEX, &modules_key);
+    if (lua_getfield(L, -1, name) == LUA_TNIL)
+        return luaL_error(L, "module '%s' is not available in the sandbox", name);
+    return 1;
+}
+
+/* string.rep, with the empty case answered at once: the stock one loops n times copying
+ * nothing, and n may be 2^62. */
+static int safe_rep(lua_State *L)
+{
+    size_t l, lsep, total;
+    const char *s = luaL_checklstring(L, 1, &l);
+    lua_Integer n = luaL_checkinteger(L, 2);
+    const char *sep = luaL_optlstring(L, 3, "", &lsep);
+    luaL_Buffer b;
+    char *p;
+    if (n <= 0 || l + lsep == 0) {
+        lua_pushliteral(L, "");
+        return 1;
+    }
+    if (l + lsep < l || (lua_Unsigned)n > (lua_Unsigned)(((size_t)-1 / 2) / (l + lsep)))
+        return luaL_error(L, "resulting string too large");
+    total = (size_t)n * l + (size_t)(n - 1) * lsep;
+    {
+        /* Said with a position, where running out of memory would say nothing of where. */
+        const lsandbox *sb = getsb(L);
+        if (sb->limit != 0 && (total > sb->limit || sb->used > sb->limit - total))
+            return luaL_error(L, "resulting string (%I bytes) would not fit in the memory cap "
+                                 "(%I MiB)", (lua_Integer)total, (lua_Integer)(sb->limit >> 20));
+    }
+    p = luaL_buffinitsize(L, &b, total);
+    for (; n > 1; n--) {
+        memcpy(p, s, l);
+        p += l;
+        memcpy(p, sep, lsep);
+        p += lsep;
+    }
+    memcpy(p, s, l);
+    luaL_pushresultsize(&b, total);
+    return 1;
+}
+
+/* table.insert, table.remove and table.move shift elements in C, as many as #t (which a
+ * __len metamethod may make 2^62) or the arguments say, with no instruction to count.
+ * These versions follow the manual and charge their loops; they take plain tables. */
+static int safe_insert(lua_State *L)
+{
+    lsandbox *sb = getsb(L);
+    lua_Integer e, pos, i;
+    luaL_checktype(L, 1, LUA_TTABLE);
+    e = (lua_Integer)((lua_Unsigned)luaL_len(L, 1) + 1u);   /* first empty slot */
+    switch (lua_gettop(L)) {
+    case 2:
+        pos = e;
+        break;
+    case 3:
+        pos = luaL_checkinteger(L, 2);
+        luaL_argcheck(L, (lua_Unsigned)pos - 1u < (lua_Unsigned)e, 2, "position out of bounds");
+        for (i = e; i > pos; i--) {
+            lua_geti(L, 1, i - 1);
+            lua_seti(L, 1, i);
+            if ((i & (LOOP_BATCH - 1)) == 0) charge_now(L, sb, LOOP_BATCH);
+        }
+        break;
+    default:
+        return luaL_error(L, "wrong number of arguments to 'insert'");
+    }
+    lua_seti(L, 1, pos);
+    return 0;
+}
+
+static int safe_remove(lua_State *L)
+{
+    lsandbox *sb = getsb(L);
+    lua_Integer size, pos;
+    luaL_checktype(L, 1, LUA_TTABLE);
+    size = luaL_len(L, 1);
+    pos = luaL_optinteger(L, 2, size);
+    if (pos != size)
+        luaL_argcheck(L, (lua_Unsigned)pos - 1u <= (lua_Unsigned)size, 2, "position out of bounds");
+    lua_geti(L, 1, pos);
+    for (; pos < size; pos++) {
+        lua_geti(L, 1, pos + 1);
+        lua_seti(L, 1, pos);
+        if ((pos & (LOOP_BATCH - 1)) == 0) charge_now(L, sb, LOOP_BATCH);
+    }
+    lua_pushnil(L);
+    lua_seti(L, 1, pos);
+    return 1;
+}
+
+static int safe_move(lua_State *L)
+{
+    lsandbox *sb = getsb(L);
+    lua_Integer f = luaL_checkinteger(L, 2), e = luaL_checkinteger(L, 3);
+    lua_Integer t = luaL_checkinteger(L, 4), n, i;
+    int tt = !lua_isnoneornil(L, 5) ? 5 : 1;
+    luaL_checktype(L, 1, LUA_TTABLE);
+    luaL_checktype(L, tt, LUA_TTABLE);
+    if (e >= f) {
+        luaL_argcheck(L, f > 0 || e < LUA_MAXINTEGER + f, 3, "too many elements to move");
+        n = e - f + 1;
+        luaL_argcheck(L, t <= LUA_MAXINTEGER - n + 1, 4, "destination wrap around");
+        if (t > e || t <= f || (tt != 1 && !lua_compare(L, 1, tt, LUA_OPEQ))) {
+            for (i = 0; i < n; i++) {
+                lua_geti(L, 1, f + i);
+                lua_seti(L, tt, t + i);
+                if ((i & (LOOP_BATCH - 1)) == LOOP_BATCH - 1) charge_now(L, sb, LOOP_BATCH);
+            }
+        } else {
+            for (i = n - 1; i >= 0; i--) {
+                lua_geti(L, 1, f + i);
+                lua_seti(L, tt, t + i);
+                if ((i & (LOOP_BATCH - 1)) == 0) charge_now(L, sb, LOOP_BATCH);
+            }
+        }
+    }
+    lua_pushvalue(L, tt);
+    return 1;
+}
+
+/* setmetatable without finalizers: Lua runs __gc with every hook switched off, so a
+ * finalizer that loops could never be stopped.  (A __gc field added to a metatable after
+ * setmetatable does not make its objects finalizable, so checking here is enough.) */
+static int safe_setmetatable(lua_State *L)
+{
+    if (lua_type(L, 2) == LUA_TTABLE) {
+        lua_pushliteral(L, "__gc");
+        if (lua_rawget(L, 2) != LUA_TNIL)
+            return luaL_error(L, "__gc metamethods are not available in the sandbox");
+        lua_pop(L, 1);
+    }
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, lua_gettop(L) - 1, 1);
+    return 1;
+}
+
+/* A budget error is raised from inside the hook, where Lua has switched hooks off for the
+ * thread; they come back only when the error reaches a pcall.  Two things run script code
+ * before that: the message handler of an xpcall, and the __close handlers of a coroutine
+ * that coroutine.wrap closes after it died.  Both would run with no budget at all, so once
+ * the budget is gone neither runs: the handler passes the error through, and the dead
+ * coroutine is not closed (the whole entry is being unwound anyway). */
+static int guarded_handler(lua_State *L)
+{
+    if (getsb(L)->exhausted) return 1;
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, lua_gettop(L) - 1, 1);
+    return 1;
+}
+
+static int finish_pcall(lua_State *L, int status, lua_KContext extra)
+{
+    if (status != LUA_OK && status != LUA_YIELD) {
+        lua_pushboolean(L, 0);
+        lua_pushvalue(L, -2);
+        return 2;
+    }
+    return lua_gettop(L) - (int)extra;
+}
+
+/* xpcall(f, msgh, ...) with msgh guarded; yieldable like the stock one. */
+static int safe_xpcall(lua_State *L)
+{
+    int n = lua_gettop(L), status;
+    luaL_checktype(L, 2, LUA_TFUNCTION);
+    lua_pushvalue(L, 2);
+    lua_pushcclosure(L, guarded_handler, 1);
+    lua_replace(L, 2);
+    lua_pushboolean(L, 1);                 /* first result when all goes well */
+    lua_pushvalue(L, 1);
+    lua_rotate(L, 3, 2);                   /* f, handler, true, f, args... */
+    status = lua_pcallk(L, n - 2, LUA_MULTRET, 2, 2, finish_pcall);
+    return finish_pcall(L, status, 2);
+}
+
+/* coroutine.create: a new thread armed with the budget hook (Lua 5.4 also copies the
+ * creator's hook into a new thread; this does not rely on it). */
+static lua_State *new_coroutine(lua_State *L)
+{
+    lua_State *co;
+    luaL_checktype(L, 1, LUA_TFUNCTION);
+    co = lua_newthread(L);
+    lua_pushvalue(L, 1);
+    lua_xmove(L, co, 1);
+    arm(co, getsb(L));
+    return co;
+}
+
+static int safe_cocreate(lua_State *L)
+{
+    new_coroutine(L);
+    return 1;
+}
+
+static int wrap_call(lua_State *L)
+{
+    lua_State *co = lua_tothread(L, lua_upvalueindex(1));
+    int narg = lua_gettop(L), nres = 0, status;
+    if (!lua_checkstack(co, narg)) return luaL_error(L, "too many arguments to resume");
+    lua_xmove(L, co, narg);
+    status = lua_resume(co, L, narg, &nres);
+    if (status == LUA_OK || status == LUA_YIELD) {
+        if (!lua_checkstack(L, nres + 1)) {
+            lua_pop(co, nres);
+            return luaL_error(L, "too many results to resume");
+        }
+        lua_xmove(co, L, nres);
+        return nres;
+    }
+    status = lua_status(co);
+    if (status != LUA_OK && status != LUA_YIELD && !getsb(L)->exhausted) {
+#if LUA_VERSION_RELEASE_NUM >= 50406
+        status = lua_closethread(co, L);   /* close its to-be-closed variables */
+#else
+        status = lua_resetthread(co);
+#endif
+    }
+    lua_xmove(co, L, 1);                   /* the error */
+    if (status != LUA_ERRMEM && lua_type(L, -1) == LUA_TSTRING) {
+        luaL_where(L, 1);
+        lua_insert(L, -2);
+        lua_concat(L, 2);
+    }
+    return lua_error(L);
+}
+
+static int safe_cowrap(lua_State *L)
+{
+    new_coroutine(L);
+    lua_pushcclosure(L, wrap_call, 1);
+    return 1;
+}
+
+/* ---------------------------------------------------------------- setup */
+
+static void replace(lua_State *L, const char *table, const char *name, lua_CFunction f,
+                    int keep_original)
+{
+    lua_getglobal(L, table);
+    if (keep_original) {
+        lua_getfield(L, -1, name);
+        lua_pushcclosure(L, f, 1);
+    } else if (f != NULL) {
+        lua_pushcfunction(L, f);
+    } else {
+        lua_pushnil(L);
+    }
+    lua_setfield(L, -2, name);
+    lua_pop(L, 1);
+}
+
+static int open_libraries(lua_State *L)
+{
+    static const luaL_Reg libs[] = {
+        { LUA_GNAME, luaopen_base },
+        { LUA_STRLIBNAME, luaopen_string },
+        { LUA_TABLIBNAME, luaopen_table },
+        { LUA_MATHLIBNAME, luaopen_math },
+        { LUA_UTF8LIBNAME, luaopen_utf8 },
+        { LUA_COLIBNAME, luaopen_coroutine },
+        { NULL, NULL },
+    };
+    lsandbox *sb = getsb(L);
+    const luaL_Reg *lib;
+    for (lib = libs; lib->func != NULL; lib++) {
+        luaL_requiref(L, lib->name, lib->func, 1);
+        lua_pop(L, 1);
+    }
+    /* base: no files, no bytecode; require only what the host provides. */
+    lua_pushnil(L);
+    lua_setglobal(L, "dofile");
+    lua_pushnil(L);
+    lua_setglobal(L, "loadfile");
+    lua_getglobal(L, "load");
+    lua_pushcclosure(L, safe_load, 1);
+    lua_setglobal(L, "load");
+    lua_getglobal(L, "setmetatable");
+    lua_pushcclosure(L, safe_setmetatable, 1);
+    lua_setglobal(L, "setmetatable");
+    lua_newtable(L);
+    lua_rawsetp(L, LUA_REGISTRYINDEX, &modules_key);
+    lua_pushcfunction(L, safe_require);
+    lua_setglobal(L, "require");
+
+    replace(L, LUA_STRLIBNAME, "dump", NULL, 0);
+    replace(L, LUA_STRLIBNAME, "rep", safe_rep, 0);
+    lua_getglobal(L, LUA_STRLIBNAME);
+    lpattern_open(L, -1, &sb->meter);
+    lua_pop(L, 1);
+    replace(L, LUA_TABLIBNAME, "insert", safe_insert, 0);
+    replace(L, LUA_TABLIBNAME, "remove", safe_remove, 0);
+    replace(L, LUA_TABLIBNAME, "move", safe_move, 0);
+    replace(L, LUA_COLIBNAME, "create", safe_cocreate, 0);
+    replace(L, LUA_COLIBNAME, "wrap", safe_cowrap, 0);
+    lua_pushcfunction(L, safe_xpcall);
+    lua_setglobal(L, "xpcall");
+
+    /* os: the clock and the time, nothing that touches the system. */
+    lua_pushcfunction(L, luaopen_os);
+    lua_call(L, 0, 1);
+    lua_createtable(L, 0, 2);
+    lua_getfield(L, -2, "clock");
+    lua_setfield(L, -2, "clock");
+    lua_getfield(L, -2, "time");
+    lua_setfield(L, -2, "time");
+    lua_setglobal(L, "os");
+    lua_pop(L, 1);
+
+    /* Runs repeat: the same script draws the same random numbers. */
+    lua_getglobal(L, LUA_MATHLIBNAME);
+    lua_getfield(L, -1, "randomseed");
+    lua_pushinteger(L, 0);
+    lua_call(L, 1, 0);
+    lua_pop(L, 1);
+    return 0;
+}
+
+lua_State *lsandbox_new(size_t memory_limit, long long budget, lsandbox **out)
+{
+    lsandbox *sb = (lsandbox *)calloc(1, sizeof *sb);
+    lua_State *L;
+    if (sb == NULL) return NULL;
+    sb->limit = memory_limit;
+    sb->budget = budget > 0 ? (double)budget : 0;
+    sb->count = budget > 0 && budget < HOOK_EVERY ? (int)budget : HOOK_EVERY;
+    sb->meter.charge = meter_charge;
+    sb->meter.ud = sb;
+    L = lua_newstate(sb_alloc, sb);
+    if (L == NULL) {
+        free(sb);
+        return NULL;
+    }
+    lua_pushcfunction(L, open_libraries);
+    if (lua_pcall(L, 0, 0, 0) != LUA_OK) {
+        lua_close(L);
+        free(sb);
+        return NULL;
+    }
+    *out = sb;
+    return L;
+}
+
+void lsandbox_close(lua_State *L, lsandbox *sb)
+{
+    if (L != NULL) {
+        /* Finalizers are script code too: they get a budget of their own. */
+        sb->spent = 0;
+        sb->exhausted = 0;
+        arm(L, sb);
+        lua_close(L);
+    }
+    free(sb);
+}
+
+void lsandbox_provide(lua_State *L, const char *name, lua_CFunction openf)
+{
+    luaL_requiref(L, name, openf, 1);
+    lua_rawgetp(L, LUA_REGISTRYINDEX, &modules_key);
+    lua_pushvalue(L, -2);
+    lua_setfield(L, -2, name);
+    lua_pop(L, 2);
+}
+
+int lsandbox_loadfile(lua_State *L, const char *path)
+{
+    return luaL_loadfilex(L, path, "t");
+}
+
+/* Message handler: the message, then the traceback.  It runs no Lua code (a __tostring
+ * metamethod could loop), and may use the memory headroom. */
+static int msgh(lua_State *L)
+{
+    lsandbox *sb = getsb(L);
+    const char *msg = lua_tostring(L, 1);
+    sb->reporting = 1;
+    if (msg == NULL)
+        msg = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+    luaL_traceback(L, L, msg, 1);
+    return 1;
+}
+
+int lsandbox_call(lua_State *L, lsandbox *sb, int nargs, int nresults)
+{
+    int base = lua_gettop(L) - nargs, status;
+    sb->spent = 0;
+    sb->exhausted = 0;
+    sb->reporting = 0;
+    sb->where[0] = '\0';
+    arm(L, sb);
+    lua_pushcfunction(L, msgh);
+    lua_insert(L, base);
+    status = lua_pcall(L, nargs, nresults, base);
+    lua_remove(L, base);
+    sb->reporting = 0;
+    return status;
+}
+
+const char *lsandbox_where(const lsandbox *sb)
+{
+    return sb->where;
+}
+
+size_t lsandbox_limit(const lsandbox *sb)
+{
+    return sb->limit;
+}
+
+size_t lsandbox_memory(const lsandbox *sb)
+{
+    return sb->used;
+}
+
+size_t lsandbox_peak_memory(const lsandbox *sb)
+{
+    return sb->peak;
+}
+
+double lsandbox_spent(const lsandbox *sb)
+{
+    return sb->spent;
+}

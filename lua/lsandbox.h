@@ -1,0 +1,48 @@
+/* lsandbox.h: a Lua state for untrusted gameplay scripts: a memory cap, an instruction
+ * budget nothing in the script can swallow, and only the safe parts of the libraries. */
+#ifndef LSANDBOX_H
+#define LSANDBOX_H
+
+#include <stddef.h>
+
+#include <lua.h>
+
+typedef struct lsandbox lsandbox;
+
+/* A new state whose allocations stop at memory_limit bytes (0: no cap) and whose every entry
+ * (lsandbox_call) may spend `budget` units (0: no budget).  A unit is one VM instruction;
+ * a function call, 64 bytes allocated, and C work reported through lsandbox_charge cost
+ * units too.  Libraries: base (load only for text, no dofile/loadfile), string (no dump;
+ * metered patterns), table, math (seeded with 0, so runs repeat), utf8, coroutine, and os
+ * with only clock and time.  Returns NULL when out of memory. */
+lua_State *lsandbox_new(size_t memory_limit, long long budget, lsandbox **out);
+/* Closes the state (finalizers run under a fresh budget) and frees the sandbox. */
+void lsandbox_close(lua_State *L, lsandbox *sb);
+
+/* Opens a module with openf, sets it as global `name` and makes require(name) return it.
+ * require of any other name is an error. */
+void lsandbox_provide(lua_State *L, const char *name, lua_CFunction openf);
+
+/* Loads a script file as text only (never bytecode), under chunk name "@path". */
+int lsandbox_loadfile(lua_State *L, const char *path);
+
+/* lua_pcall with a fresh budget and a traceback handler.  On error the message at the top
+ * of the stack reads "file:line: message" followed by the traceback. */
+int lsandbox_call(lua_State *L, lsandbox *sb, int nargs, int nresults);
+
+/* Adds units of work done in C on the script's behalf.  Never raises: when the budget runs
+ * out the script stops at its next instruction. */
+void lsandbox_charge(lua_State *L, lsandbox *sb, double units);
+
+/* "file:line" where the count hook last saw the script in the current (or last) entry, or
+ * "": the best position there is for a memory error, which Lua raises without a handler. */
+const char *lsandbox_where(const lsandbox *sb);
+/* The memory cap in bytes (0: none). */
+size_t lsandbox_limit(const lsandbox *sb);
+
+/* Bytes in use now, at most so far, and the units the current (or last) entry spent. */
+size_t lsandbox_memory(const lsandbox *sb);
+size_t lsandbox_peak_memory(const lsandbox *sb);
+double lsandbox_spent(const lsandbox *sb);
+
+#endif

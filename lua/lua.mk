@@ -1,0 +1,72 @@
+# The Lua binding (build/rigid.so), the sandboxed host (build/rigid), their tests, the
+# call-cost bench and the main job (make run: the platformer example).
+LUA_PKG_CFLAGS := $(shell pkg-config --cflags lua5.4 2>/dev/null || echo -I/usr/include/lua5.4)
+LUA_PKG_LIBS := $(shell pkg-config --libs lua5.4 2>/dev/null || echo -llua5.4)
+LUA_BIN ?= lua5.4
+
+LUA_MOD := $(B)/rigid.so
+LUA_HOST := $(B)/rigid
+LUA_HOST_SRC := lua/host.c lua/lsandbox.c lua/lpattern.c lua/lsvg.c
+LUA_HOST_OBJ := $(patsubst lua/%.c,$(B)/lua/%.o,$(LUA_HOST_SRC))
+LUA_BIND_OBJ := $(B)/lua/lrigid.o
+LUA_PATFUZZ := $(B)/lua/pattern_fuzz
+
+# The collision parts of the binding (shapes, materials, sensors, filters, grounded, events,
+# raycast, AABB query) compile in once src/ defines every collision call they make, so a
+# half-landed collision API never breaks `make`.  A stamp named after the state rebuilds
+# the binding when it flips.
+LUA_COLLISION_FNS := rg_body_set_circle rg_body_set_aabb rg_body_clear_shape \
+  rg_body_set_restitution rg_body_set_friction rg_body_set_sensor rg_body_set_filter \
+  rg_body_is_grounded rg_world_get_contact_events rg_world_raycast rg_world_query_aabb \
+  rg_body_get_shape rg_body_get_restitution rg_body_get_friction rg_body_is_sensor \
+  rg_body_get_filter rg_world_set_sleeping rg_world_get_sleeping rg_world_set_sleep_thresholds \
+  rg_body_is_awake rg_body_wake rg_world_set_continuous rg_world_set_solver_iterations \
+  rg_world_set_contact_tuning rg_world_awake_body_count rg_world_touching_count
+LUA_OPEN := (
+LUA_COLLISION_MISSING := $(foreach f,$(LUA_COLLISION_FNS),\
+  $(if $(shell grep -l '^RG_API[^;]*[ *]$(f)[$(LUA_OPEN)]' src/*.c 2>/dev/null),,$(f)))
+LUA_COLLISION := $(if $(strip $(LUA_COLLISION_MISSING)),,-DLRIGID_COLLISION)
+LUA_STAMP := $(B)/lua/collision-$(if $(LUA_COLLISION),on,off)
+
+ALL_TARGETS += $(LUA_MOD) $(LUA_HOST)
+TEST_RUNS += check-lua
+
+$(LUA_STAMP):
+	@mkdir -p $(@D)
+	@rm -f $(B)/lua/collision-*
+	@touch $@
+
+$(B)/lua/%.o: lua/%.c $(LUA_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) $(LUA_COLLISION) $(LUA_PKG_CFLAGS) -Ilua -c $< -o $@
+
+# The module exports luaopen_rigid and nothing else: the version script hides the rg_*
+# symbols of the static library linked in.  Lua's own symbols come from the interpreter.
+$(LUA_MOD): $(LUA_BIND_OBJ) $(LIB_A) lua/rigid.map
+	$(CC) -shared -Wl,--version-script=lua/rigid.map $(LDFLAGS) -o $@ $(LUA_BIND_OBJ) $(LIB_A) $(LDLIBS)
+
+$(LUA_HOST): $(LUA_HOST_OBJ) $(LUA_BIND_OBJ) $(LIB_A)
+	$(CC) $(LDFLAGS) -o $@ $(LUA_HOST_OBJ) $(LUA_BIND_OBJ) $(LIB_A) $(LUA_PKG_LIBS) $(LDLIBS)
+
+# The bounded pattern matcher checked against stock Lua's on random cases.
+$(LUA_PATFUZZ): tests/lua/pattern_fuzz.c $(B)/lua/lpattern.o
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) $(LUA_PKG_CFLAGS) -Ilua $(LDFLAGS) -o $@ $< $(B)/lua/lpattern.o $(LUA_PKG_LIBS) $(LDLIBS)
+
+# Every Lua test: the API tests through the host and through stock lua5.4, the hostile
+# scripts, every example (with its picture) and the pattern matcher against stock Lua.
+check-lua: $(LUA_MOD) $(LUA_HOST) $(LUA_PATFUZZ)
+	@echo "== tests/lua"
+	$(LUA_BIN) tests/lua/run.lua --host $(LUA_HOST) --module-dir $(B) --lua $(LUA_BIN) \
+	  --out $(B)/lua-tests --fuzz $(LUA_PATFUZZ) --lua-env "$(FFI_ENV)"
+
+# Cost of one Lua call into the binding, in stock lua5.4 and in the host.
+bench: bench-lua
+.PHONY: bench-lua
+bench-lua: $(LUA_MOD) $(LUA_HOST)
+	@echo "== Lua call cost (stock $(LUA_BIN) + $(LUA_MOD))"
+	@LUA_CPATH="$(B)/?.so" $(FFI_ENV) $(LUA_BIN) lua/bench_calls.lua
+	@echo "== Lua call cost (host $(LUA_HOST), sandboxed, --budget 0)"
+	@$(LUA_HOST) lua/bench_calls.lua --budget 0
+
+-include $(LUA_HOST_OBJ:.o=.d) $(LUA_BIND_OBJ:.o=.d)

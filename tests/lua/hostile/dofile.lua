@@ -1,0 +1,4 @@
+-- dofile and loadfile are gone.
+-- expect: attempt to call a nil value (global 'dofile')
+local canary = ...
+dofile(canary)

@@ -1,0 +1,7 @@
+-- Physics memory counts against the cap too: bodies without end.
+-- expect: not enough memory
+-- args: --memory 16
+local rigid = require "rigid"
+local w = rigid.world()
+local i = 0
+while true do i = i + 1; w:body{ x = i } end

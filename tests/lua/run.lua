@@ -1,0 +1,159 @@
+-- run.lua: every Lua test of rigid, run by `make test` with stock lua5.4.
+--   1. tests/lua/test_rigid.lua in the sandboxed host and in stock lua5.4 (build/rigid.so);
+--   2. tests/lua/pattern_fuzz.lua: the host's metered matcher against stock Lua's;
+--   3. tests/lua/hostile/*.lua: each must fail in the host with a clear error (its
+--      "-- expect:" lines), file:line and a traceback, exit status 1 (not a crash), and
+--      leave the canary file it attacks untouched;
+--   4. lua/examples/*.lua: each runs in the host and draws its picture.
+-- Closes with "N passed, N failed".
+local opts = { lua = "lua5.4", out = "build/lua-tests", ["lua-env"] = "" }
+do
+  local i = 1
+  while i <= #arg do
+    local k = arg[i]:match("^%-%-(.+)$")
+    if not k or arg[i + 1] == nil then error("usage: run.lua --host H --module-dir D --fuzz F [--lua L] [--out O] [--lua-env E]") end
+    opts[k] = arg[i + 1]
+    i = i + 2
+  end
+end
+assert(opts.host and opts["module-dir"] and opts.fuzz, "run.lua: --host, --module-dir and --fuzz are required")
+
+local passed, failed = 0, 0
+
+local function q(s) return "'" .. tostring(s):gsub("'", "'\\''") .. "'" end
+
+local function run(cmd)
+  local p = io.popen(cmd .. " 2>&1")
+  local out = p:read("a")
+  local _, how, code = p:close()
+  return out, how, code
+end
+
+local function result(ok, name, detail)
+  if ok then
+    passed = passed + 1
+    print("ok    " .. name)
+  else
+    failed = failed + 1
+    print("FAIL  " .. name .. (detail and ("\n" .. detail:gsub("\n*$", ""):gsub("\n", "\n      ")) or ""))
+  end
+end
+
+local function read(path)
+  local f = io.open(path, "rb")
+  if not f then return nil end
+  local s = f:read("a")
+  f:close()
+  return s
+end
+
+local function write(path, s)
+  local f = assert(io.open(path, "wb"))
+  f:write(s)
+  f:close()
+end
+
+local function list(pattern)
+  local out = run("ls " .. pattern .. " 2>/dev/null")
+  local t = {}
+  for line in out:gmatch("[^\n]+") do t[#t + 1] = line end
+  table.sort(t)
+  return t
+end
+
+os.execute("mkdir -p " .. q(opts.out) .. " " .. q(opts.out .. "/examples"))
+local stock = opts["lua-env"] .. " LUA_CPATH=" .. q(opts["module-dir"] .. "/?.so") .. " " .. opts.lua
+
+-- Suites that count their own tests and close with "N passed, N failed".
+local function suite(name, cmd, as_one)
+  local out, how, code = run(cmd)
+  local p, f = out:match("(%d+) passed, (%d+) failed%s*$")
+  if not p then
+    p, f = out:match("(%d+) passed, (%d+) failed")
+  end
+  p, f = tonumber(p), tonumber(f)
+  io.write((out:gsub("rigid: [^\n]*steps %([^\n]*\n", "")))
+  if p and how == "exit" and (code == 0) == (f == 0) then
+    if as_one then          -- many comparisons, one test
+      passed = passed + (f == 0 and 1 or 0)
+      failed = failed + (f == 0 and 0 or 1)
+    else
+      passed = passed + p
+      failed = failed + f
+    end
+    print(string.format("%-5s %s: %d passed, %d failed", f == 0 and "ok" or "FAIL", name, p, f))
+  else
+    result(false, name, "no closing count, or exit " .. tostring(how) .. " " .. tostring(code))
+  end
+end
+
+print("-- API tests in the sandboxed host")
+suite("host " .. "tests/lua/test_rigid.lua", q(opts.host) .. " tests/lua/test_rigid.lua")
+print("-- API tests in stock " .. opts.lua)
+suite("stock tests/lua/test_rigid.lua", stock .. " tests/lua/test_rigid.lua")
+print("-- metered pattern matcher against stock Lua")
+suite("pattern fuzz (one test)", q(opts.fuzz) .. " tests/lua/pattern_fuzz.lua", true)
+
+-- Does this build have collision?  The hostile scripts and examples that need it say so.
+local collision = run(stock .. " -e " .. q('io.write(tostring(require("rigid").collision))')) == "true"
+
+print("-- hostile scripts in the host")
+local canary = opts.out .. "/canary.txt"
+-- A hang must fail the test, not stall `make test`.
+local limit = run("command -v timeout") ~= "" and "timeout 300 " or ""
+for _, path in ipairs(list("tests/lua/hostile/*.lua")) do
+  local src = read(path)
+  local name = path:match("([^/]+)%.lua$")
+  local expects, args = {}, ""
+  for e in src:gmatch("%-%- expect: ([^\n]+)") do expects[#expects + 1] = e end
+  args = (src:match("%-%- args: ([^\n]+)") or ""):gsub("%$OUT", opts.out)
+  local want_traceback = not src:find("-- traceback: no", 1, true)
+  if src:find("-- needs: collision", 1, true) and not collision then
+    print("skip  " .. name .. " (needs collision)")
+  else
+    write(canary, "canary " .. name)
+    local out, how, code = run(limit .. q(opts.host) .. " " .. q(path) .. " " .. args .. " -- " .. q(canary))
+    local problems = {}
+    if how ~= "exit" or code ~= 1 then
+      problems[#problems + 1] = "exit: " .. tostring(how) .. " " .. tostring(code) .. " (want exit 1)"
+    end
+    for _, e in ipairs(expects) do
+      if not out:find(e, 1, true) then problems[#problems + 1] = "missing: " .. e end
+    end
+    if not out:find(name .. ".lua:%d+") then problems[#problems + 1] = "no file:line of the script" end
+    if want_traceback and not out:find("stack traceback:", 1, true) then
+      problems[#problems + 1] = "no traceback"
+    end
+    if read(canary) ~= "canary " .. name then problems[#problems + 1] = "the canary file was changed" end
+    if out:find("AddressSanitizer", 1, true) or out:find("runtime error:", 1, true) then
+      problems[#problems + 1] = "sanitizer report"
+    end
+    result(#problems == 0, "hostile " .. name,
+           #problems > 0 and (table.concat(problems, "\n") .. "\n--- output:\n" .. out:sub(1, 1500)) or nil)
+  end
+end
+
+print("-- examples in the host, each drawing its picture")
+for _, path in ipairs(list("lua/examples/*.lua")) do
+  local name = path:match("([^/]+)%.lua$")
+  local src = read(path)
+  if src:find("-- needs: collision", 1, true) and not collision then
+    print("skip  " .. name .. " (needs collision)")
+  else
+    local svg = opts.out .. "/examples/" .. name .. ".svg"
+    os.remove(svg)
+    local out, how, code = run(q(opts.host) .. " " .. q(path) .. " --svg " .. q(svg))
+    local pic = read(svg) or ""
+    local problems = {}
+    if how ~= "exit" or code ~= 0 then problems[#problems + 1] = "exit " .. tostring(code) end
+    if not (pic:find("^<%?xml") and pic:find("</svg>%s*$")) then problems[#problems + 1] = "no complete SVG" end
+    if not (pic:find("<polyline", 1, true) and (pic:find("<circle", 1, true) or pic:find("<rect x", 1, true))) then
+      problems[#problems + 1] = "the SVG draws no trail or body"
+    end
+    result(#problems == 0, "example " .. name .. " -> " .. svg,
+           #problems > 0 and (table.concat(problems, "\n") .. "\n--- output:\n" .. out:sub(1, 1500)) or nil)
+  end
+end
+
+print(passed .. " passed, " .. failed .. " failed")
+os.exit(failed == 0 and 0 or 1)
