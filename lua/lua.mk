@@ -30,6 +30,9 @@ LUA_STAMP := $(B)/lua/collision-$(if $(LUA_COLLISION),on,off)
 
 ALL_TARGETS += $(LUA_MOD) $(LUA_HOST)
 TEST_RUNS += check-lua
+# The Makefile expands `all:` and .PHONY before it includes the fragments.
+all: $(LUA_MOD) $(LUA_HOST)
+.PHONY: check-lua bench-lua
 
 $(LUA_STAMP):
 	@mkdir -p $(@D)
@@ -60,13 +63,18 @@ check-lua: $(LUA_MOD) $(LUA_HOST) $(LUA_PATFUZZ)
 	$(LUA_BIN) tests/lua/run.lua --host $(LUA_HOST) --module-dir $(B) --lua $(LUA_BIN) \
 	  --out $(B)/lua-tests --fuzz $(LUA_PATFUZZ) --lua-env "$(FFI_ENV)"
 
+# The main job (make run): the platformer, a line per second, its picture in $(B)/run.svg.
+run-main: $(LUA_HOST)
+	@$(LUA_HOST) lua/examples/platformer.lua --svg $(B)/run.svg
+
 # Cost of one Lua call into the binding, in stock lua5.4 and in the host.
 bench: bench-lua
-.PHONY: bench-lua
 bench-lua: $(LUA_MOD) $(LUA_HOST)
 	@echo "== Lua call cost (stock $(LUA_BIN) + $(LUA_MOD))"
 	@LUA_CPATH="$(B)/?.so" $(FFI_ENV) $(LUA_BIN) lua/bench_calls.lua
 	@echo "== Lua call cost (host $(LUA_HOST), sandboxed, --budget 0)"
 	@$(LUA_HOST) lua/bench_calls.lua --budget 0
+	@echo "== Lua call cost (host $(LUA_HOST), sandboxed, budget hooks on)"
+	@$(LUA_HOST) lua/bench_calls.lua --budget 100000000000
 
 -include $(LUA_HOST_OBJ:.o=.d) $(LUA_BIND_OBJ:.o=.d)

@@ -4,6 +4,3 @@ ALL_TARGETS += $(B)/seed
 $(B)/seed: tools/seed.c $(LIB_A)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $< $(LIB_A) $(LDLIBS)
-
-run-main: $(B)/seed
-	$(B)/seed
