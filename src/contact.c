@@ -336,9 +336,14 @@ static void sleep_islands(rg_world *w, rg_real dt, int united)
     int32_t *uf = cw->uf;
     rg_real thr2 = cw->sleep_speed * cw->sleep_speed;
     int any = 0, near = 0;
+    const rg_real *pv = cw->spv;
+    int32_t npv = cw->pv_n;
+    cw->pv_n = 0;
     for (int32_t i = 0; i < n; i++) {
         if (b->type[i] == RG_BODY_DYNAMIC && b->shape[i] != RG_SHAPE_NONE) {
             rg_real v2 = b->vx[i] * b->vx[i] + b->vy[i] * b->vy[i];
+            /* a body still being pushed out of a penetration is not at rest either */
+            if (i < npv) v2 = rg_max(v2, pv[2 * i] * pv[2 * i] + pv[2 * i + 1] * pv[2 * i + 1]);
             rg_real t = v2 < thr2 ? b->sleep_t[i] + dt : 0;
             b->sleep_t[i] = t;
             any |= t >= cw->sleep_time;
@@ -641,8 +646,9 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
         rg_real nx = m.normal.x, ny = m.normal.y;
         rg_real vn0 = (B.vx - A.vx) * nx + (B.vy - A.vy) * ny;
         rg_real d = s0 + r.x * nx + r.y * ny; /* predicted separation */
-        rg_real gap = rg_min(s0, d);
-        if (gap <= 0 || (was && gap < cw->slop)) now = CT_TOUCHING;
+        /* touching: the step ends with the pair in contact (the free motion closes the gap,
+         * which the solver then holds); a slop of hysteresis keeps resting pairs steady */
+        if (d <= 0 || (was && d < cw->slop)) now = CT_TOUCHING;
         c->nx = nx;
         c->ny = ny;
         c->px = m.point.x;
@@ -921,6 +927,8 @@ static void solve(rg_world *w, narrow_ctx *x)
         rg_real *pv = cw->spv;
         memset(pv, 0, (size_t)(2 * n + 2) * sizeof *pv);
         for (int32_t it = 0; it < cw->position; it++) solver_iterate_position(con, nc, pv);
+        if (shock) solver_shock_position(con, nc, pv, gx, gy);
+        cw->pv_n = n;
         for (int32_t i = 0; i < n; i++) {
             b->x[i] += pv[2 * i] * dt;
             b->y[i] += pv[2 * i + 1] * dt;
@@ -974,6 +982,7 @@ void contact_step(rg_world *w, rg_real dt)
         PROF(-1);
         int32_t n = b->n_active, n_fast = 0;
         narrow_ctx nx;
+        cw->pv_n = 0;
         nx.n = n;
         nx.nc = 0;
         nx.woke = 0;

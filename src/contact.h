@@ -89,6 +89,7 @@ typedef struct contact_world {
     rg_real *svx0, *svy0;     /* velocities before integration (dense) */
     rg_real *sv;              /* solver velocities, pairs */
     rg_real *spv;             /* solver pseudo-velocities of the position pass, pairs */
+    int32_t pv_n;             /* bodies spv covers after this step's position pass, else 0 */
     int32_t *uf;              /* union-find parents */
     rg_real *umin;            /* island minimum rest time */
     int32_t *ihead, *itail;   /* island member lists while falling asleep */

@@ -93,6 +93,29 @@ void solver_shock(solver_constraint *c, int32_t n, rg_real *v, rg_real gx, rg_re
     }
 }
 
+void solver_shock_position(solver_constraint *c, int32_t n, rg_real *pv, rg_real gx, rg_real gy)
+{
+    for (int32_t k = 0; k < n; k++) {
+        solver_constraint *q = &c[k];
+        rg_real ng = q->nx * gx + q->ny * gy;
+        if (rg_fabs(ng) < RG_R(0.5)) continue;
+        rg_real im = ng > 0 ? q->ima : q->imb;
+        if (!(im > 0)) continue;
+        rg_real *va = pv + 2 * q->a, *vb = pv + 2 * q->b;
+        rg_real vn = (vb[0] - va[0]) * q->nx + (vb[1] - va[1]) * q->ny;
+        rg_real pp = smax(q->pp + (q->pmin - vn) / im, 0);
+        rg_real l = (pp - q->pp) * im;
+        q->pp = pp;
+        if (ng > 0) {
+            va[0] -= l * q->nx;
+            va[1] -= l * q->ny;
+        } else {
+            vb[0] += l * q->nx;
+            vb[1] += l * q->ny;
+        }
+    }
+}
+
 int32_t solver_prepare_position(solver_constraint *c, int32_t n, const rg_real *v,
                                 const solver_params *p)
 {

@@ -71,6 +71,9 @@ void solver_iterate(solver_constraint *c, int32_t n, rg_real *v);
  * of a stack's compression is removed in one pass from the ground up; a light body under a
  * heavy one holds.  Dissipative: it only takes approach velocity out of upper bodies. */
 void solver_shock(solver_constraint *c, int32_t n, rg_real *v, rg_real gx, rg_real gy);
+/* The same sweep over the position rows on pseudo-velocities pv: a stack pushed out of the
+ * ground is pushed out as a whole, however heavy its top. */
+void solver_shock_position(solver_constraint *c, int32_t n, rg_real *pv, rg_real gx, rg_real gy);
 /* Position rows from the penetration the velocities v leave; returns how many rows need a
  * push (0: the position pass can be skipped). */
 int32_t solver_prepare_position(solver_constraint *c, int32_t n, const rg_real *v,
