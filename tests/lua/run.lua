@@ -4,7 +4,8 @@
 --   3. tests/lua/hostile/*.lua: each must fail in the host with a clear error (its
 --      "-- expect:" lines), file:line and a traceback, exit status 1 (not a crash), and
 --      leave the canary file it attacks untouched;
---   4. lua/examples/*.lua: each runs in the host and draws its picture.
+--   4. tests/lua/ok/*.lua: scripts that must run in the host and exit 0;
+--   5. lua/examples/*.lua: each runs in the host and draws its picture.
 -- Closes with "N passed, N failed".
 local opts = { lua = "lua5.4", out = "build/lua-tests", ["lua-env"] = "" }
 do
@@ -94,6 +95,18 @@ suite("stock tests/lua/test_rigid.lua", stock .. " tests/lua/test_rigid.lua")
 print("-- metered pattern matcher against stock Lua")
 suite("pattern fuzz (one test)", q(opts.fuzz) .. " tests/lua/pattern_fuzz.lua", true)
 
+print("-- the module exports luaopen_rigid and nothing else")
+do
+  local out, how, code = run("nm -D --defined-only " .. q(opts["module-dir"] .. "/rigid.so"))
+  if how == "exit" and code == 0 then
+    local names = {}
+    for name in out:gmatch("%S+%s+%a%s+(%S+)") do names[#names + 1] = name end
+    result(#names == 1 and names[1] == "luaopen_rigid", "rigid.so exports: " .. table.concat(names, " "))
+  else
+    print("skip  exports (no nm)")
+  end
+end
+
 -- Does this build have collision?  The hostile scripts and examples that need it say so.
 local collision = run(stock .. " -e " .. q('io.write(tostring(require("rigid").collision))')) == "true"
 
@@ -131,6 +144,12 @@ for _, path in ipairs(list("tests/lua/hostile/*.lua")) do
     result(#problems == 0, "hostile " .. name,
            #problems > 0 and (table.concat(problems, "\n") .. "\n--- output:\n" .. out:sub(1, 1500)) or nil)
   end
+end
+
+print("-- scripts that must run cleanly in the host")
+for _, path in ipairs(list("tests/lua/ok/*.lua")) do
+  local out, how, code = run(limit .. q(opts.host) .. " " .. q(path) .. " --steps 30")
+  result(how == "exit" and code == 0, "runs " .. path, out:sub(1, 1500))
 end
 
 print("-- examples in the host, each drawing its picture")
