@@ -16,6 +16,7 @@
 #define DEFAULT_MEMORY_MIB 64
 #define DEFAULT_BUDGET     100000000LL
 #define DEFAULT_SECONDS    10.0
+#define MAX_STEPS          1e12    /* a scene's steps, however long its duration */
 
 static const char usage[] =
     "usage: rigid SCRIPT.lua [options] [-- script arguments]\n"
@@ -320,9 +321,14 @@ static int run_scene(host *h)
         return 0;
     }
     duration = global_number(L, "duration");
-    if (h->steps >= 0) n = h->steps;
-    else if (h->seconds > 0) n = (long long)ceil(h->seconds / dt - 1e-9);
-    else n = (long long)ceil((duration > 0 ? duration : DEFAULT_SECONDS) / dt - 1e-9);
+    if (h->steps >= 0) {
+        n = h->steps;
+    } else {
+        /* Clamped before the conversion: a script's duration may be anything. */
+        double want = ceil((h->seconds > 0 ? h->seconds : duration > 0 ? duration
+                                                                        : DEFAULT_SECONDS) / dt - 1e-9);
+        n = want < MAX_STEPS ? (long long)want : (long long)MAX_STEPS;
+    }
     if (h->rec != NULL) {
         lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
         lsvg_record(h->rec, L, -1, 0);

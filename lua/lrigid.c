@@ -1,4 +1,42 @@
-/* lrigid.c: the Lua 5.4 binding of rigid: worlds, bodies and springs as userdata. */
+/* lrigid.c: the Lua 5.4 binding of rigid: worlds, bodies and springs as userdata.
+ *
+ * The contract is shared/ABI.md (section Lua); this is all of it, extensions included.
+ * Units are SI.  Numbers must be numbers (not numeric strings) and finite; option tables
+ * accept only the names listed; a destroyed body raises "attempt to use a destroyed body".
+ *
+ *   rigid.version, rigid.real_size (4 or 8), rigid.collision (boolean)
+ *   rigid.world{ gravity = {x, y}, wind = {x, y}, integrator = "explicit" | "semi_implicit"
+ *                | "verlet" | "rk4", dt = 1/60, max_steps = 8 }          -- all optional
+ *   world:body{ type = "static" | "kinematic" | "dynamic", mass, x, y, vx, vy, gravity_scale,
+ *               drag = {linear, quadratic}, surface_friction = {mu, normal_force},
+ *               min_speed, max_speed, user_data (integer), name (string, for pictures),
+ *               circle = r | aabb = {hw, hh}, restitution, friction, sensor (boolean),
+ *               category, mask }                                        --> body
+ *   world:spring{ a = body, b = body | anchor = {x, y}, rest_length, stiffness, damping }
+ *   world:step(dt)  world:advance(frame_time) --> steps  world:alpha()
+ *   world:gravity() / set_gravity(x, y)   world:wind() / set_wind(x, y)
+ *   world:integrator() / set_integrator(name)   world:fixed_step() / set_fixed_step(dt [, max])
+ *   world:bodies() --> live bodies in creation order   world:body_count()  world:spring_count()
+ *   world:events() --> { kind = "begin" | "end", a, b, nx, ny, x, y, depth, speed, sensor }...
+ *   world:raycast(x, y, dx, dy [, mask]) --> body, hit_x, hit_y, nx, ny, fraction | nil
+ *   world:query_aabb(x0, y0, x1, y1 [, mask]) --> { body... }
+ *   world:set_sleeping(on) / sleeping()  set_sleep_thresholds(speed, time)
+ *   world:set_solver_iterations(velocity [, relax])  set_contact_tuning(slop, bias_rate,
+ *   max_push, restitution_threshold)  set_continuous(on)  awake_body_count()  touching_count()
+ *   world:close() (also <close> and garbage collection)  world:is_open()
+ *   body:position() / set_position(x, y)   body:velocity() / set_velocity(vx, vy)
+ *   body:apply_force(fx, fy)  body:apply_impulse(ix, iy)  body:acceleration()
+ *   body:interpolated_position()  body:type()  body:mass() / set_mass(m)
+ *   body:set_gravity_scale(s)  set_drag(linear [, quadratic])  set_surface_friction(mu, n)
+ *   body:set_speed_limits(min [, max])  user_data() / set_user_data(i)  name()  world()  id()
+ *   body:set_circle(r)  set_aabb(hw, hh)  clear_shape()  shape() --> "circle", r | "aabb",
+ *   hw, hh | "none"   restitution() / set_restitution(e)  friction() / set_friction(mu)
+ *   is_sensor() / set_sensor(on)  filter() / set_filter(category, mask)  grounded()
+ *   is_awake()  wake()  is_valid()  destroy() (also <close>)
+ *   spring:destroy()  spring:is_valid()
+ * Collision methods exist when rigid.collision is true.  A body is one Lua value wherever it
+ * appears (world:body, world:bodies, events, queries), also after it is destroyed, for as
+ * long as anyone holds it; a world stays alive while any of its bodies is held. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
