@@ -8,8 +8,10 @@ void force_springs(const rg_world *w, rg_real *sax, rg_real *say)
 {
     const body_store *b = &w->b;
     int32_t n = b->n_active;
-    memset(sax, 0, (size_t)n * sizeof *sax);
-    memset(say, 0, (size_t)n * sizeof *say);
+    if (n > 0) {
+        memset(sax, 0, (size_t)n * sizeof *sax);
+        memset(say, 0, (size_t)n * sizeof *say);
+    }
     for (int32_t s = 0; s < w->springs.count; s++) {
         const spring *sp = &w->springs.items[s];
         int32_t ia = pool_dense(&w->body_pool, sp->slot_a);

@@ -285,6 +285,7 @@ static void save_start(rg_world *w, int32_t n)
 {
     scratch_store *s = &w->scratch;
     const body_store *b = &w->b;
+    if (n == 0) return; /* no arrays yet: memcpy(NULL, NULL, 0) is undefined */
     memcpy(s->x0, b->x, (size_t)n * sizeof *b->x);
     memcpy(s->y0, b->y, (size_t)n * sizeof *b->y);
     memcpy(s->vx0, b->vx, (size_t)n * sizeof *b->vx);

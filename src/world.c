@@ -130,9 +130,12 @@ static void world_step_prepared(rg_world *w, rg_real dt)
     if (collide) contact_begin(w);
     integrator_step(w, dt);
     if (collide) contact_step(w, dt);
-    /* Applied forces last one step. */
-    memset(b->fx, 0, (size_t)b->n_moving * sizeof *b->fx);
-    memset(b->fy, 0, (size_t)b->n_moving * sizeof *b->fy);
+    /* Applied forces last one step.  (An empty world has no arrays: memset(NULL, 0, 0) is
+     * undefined.) */
+    if (b->n_moving > 0) {
+        memset(b->fx, 0, (size_t)b->n_moving * sizeof *b->fx);
+        memset(b->fy, 0, (size_t)b->n_moving * sizeof *b->fy);
+    }
     w->step_count++;
 }
 
@@ -175,8 +178,10 @@ RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *
     int32_t steps = 0;
     world->accumulator += (double)frame_time;
     while (world->accumulator >= world->fixed_dt && steps < world->max_steps) {
-        memcpy(b->px, b->x, (size_t)b->n_moving * sizeof *b->x);
-        memcpy(b->py, b->y, (size_t)b->n_moving * sizeof *b->y);
+        if (b->n_moving > 0) {
+            memcpy(b->px, b->x, (size_t)b->n_moving * sizeof *b->x);
+            memcpy(b->py, b->y, (size_t)b->n_moving * sizeof *b->y);
+        }
         world_step_prepared(world, dt);
         world->accumulator -= world->fixed_dt;
         steps++;

@@ -116,6 +116,32 @@ static void test_step_rejects_bad_dt_and_changes_nothing(void **state)
     rg_world_destroy(w);
 }
 
+/* An empty world, and one with only static bodies, step and advance with every integrator
+ * (the body arrays do not exist yet: nothing may touch them). */
+static void test_empty_and_static_only_worlds_step(void **state)
+{
+    (void)state;
+    for (int statics = 0; statics <= 1; statics++) {
+        for (int integ = 0; integ <= 3; integ++) {
+            rg_world *w;
+            rg_body s = 0;
+            int32_t steps;
+            assert_ok(rg_world_create(&w));
+            assert_ok(rg_world_set_integrator(w, integ));
+            assert_ok(rg_world_set_gravity(w, v2(0, -10)));
+            if (statics) assert_ok(rg_body_create(w, RG_BODY_STATIC, 0, v2(1, 1), &s));
+            assert_ok(rg_world_step(w, (rg_real)0.01));
+            assert_ok(rg_world_advance(w, (rg_real)0.05, &steps));
+            assert_int_equal(steps, 3);
+            if (statics) {
+                rg_vec2 p = pos_of(w, s);
+                assert_true(p.x == 1 && p.y == 1);
+            }
+            rg_world_destroy(w);
+        }
+    }
+}
+
 /* A jumping body with drag and a spring, so that every stage of the step matters. */
 static rg_world *jump_scene(int integrator, rg_body *out)
 {
@@ -295,6 +321,7 @@ int main(void)
         cmocka_unit_test(test_version_status_strings_and_real_size),
         cmocka_unit_test(test_world_setters_reject_bad_input_and_change_nothing),
         cmocka_unit_test(test_step_rejects_bad_dt_and_changes_nothing),
+        cmocka_unit_test(test_empty_and_static_only_worlds_step),
         cmocka_unit_test(test_accumulator_gives_the_same_trajectory_at_any_frame_rate),
         cmocka_unit_test(test_cap_on_steps_stops_a_spiral_of_death),
         cmocka_unit_test(test_alpha_and_interpolated_position),
