@@ -313,7 +313,8 @@ int lsvg_write(const lsvg *r, const char *path, const char *title, const char *s
     for (i = 0; i < r->ntracks; i++) T[i] = &r->tracks[i];
     qsort(T, r->ntracks, sizeof *T, by_serial);
     memset(&pal, 0, sizeof pal);
-    for (i = 0; i < r->ntracks; i++) T[i]->color = colour_for(&pal, T[i]->name);
+    for (i = 0; i < r->ntracks; i++)   /* static bodies are grey: they take no colour */
+        T[i]->color = T[i]->type == RG_BODY_STATIC ? NPALETTE - 1 : colour_for(&pal, T[i]->name);
 
     for (i = 0; i < r->ntracks; i++) {
         const track *t = T[i];
@@ -437,13 +438,15 @@ int lsvg_write(const lsvg *r, const char *path, const char *title, const char *s
     /* Bodies where they ended: static grey, sensors and destroyed ones dashed. */
     for (i = 0; i < r->ntracks; i++) {
         const track *t = T[i];
-        const char *col = palette[t->color];
+        const char *col = t->sensor ? "#c99700" : palette[t->color];   /* sensors: gold */
         if (!t->alive)
             draw_shape(f, &v, t, t->x, t->y, "none", col,
                        "stroke-dasharray=\"3 2\" stroke-opacity=\"0.5\"");
+        else if (t->type == RG_BODY_STATIC && t->sensor)
+            draw_shape(f, &v, t, t->x, t->y, "#ffe08a", col,
+                       "fill-opacity=\"0.6\" stroke-width=\"1.2\" stroke-dasharray=\"4 3\"");
         else if (t->type == RG_BODY_STATIC)
-            draw_shape(f, &v, t, t->x, t->y, t->sensor ? "none" : "#a7aab0", "#5f6368",
-                       t->sensor ? "stroke-dasharray=\"4 3\"" : "");
+            draw_shape(f, &v, t, t->x, t->y, "#a7aab0", "#5f6368", "");
         else if (t->sensor)
             draw_shape(f, &v, t, t->x, t->y, "none", col, "stroke-width=\"1.5\" stroke-dasharray=\"4 3\"");
         else
@@ -485,7 +488,7 @@ int lsvg_write(const lsvg *r, const char *path, const char *title, const char *s
         if (seen) continue;
         if (nlegend < MAX_NAMES) {
             legend_name[nlegend] = t->name;
-            legend_color[nlegend] = t->type == RG_BODY_STATIC ? -1 : t->color;
+            legend_color[nlegend] = t->sensor ? -2 : t->type == RG_BODY_STATIC ? -1 : t->color;
             nlegend++;
         }
         extent(t, &hx, &hy);
@@ -506,15 +509,16 @@ int lsvg_write(const lsvg *r, const char *path, const char *title, const char *s
         fprintf(f, "<g font-size=\"12\" fill=\"#444\">\n");
         for (k = 0; k < nlegend && x < width - 160; k++) {
             fprintf(f, "<rect x=\"%.1f\" y=\"%.1f\" width=\"10\" height=\"10\" fill=\"%s\"/>", x,
-                    y - 9, legend_color[k] < 0 ? "#a7aab0" : palette[legend_color[k]]);
+                    y - 9, legend_color[k] == -2 ? "#e0b000" : legend_color[k] < 0 ? "#a7aab0"
+                                                                 : palette[legend_color[k]]);
             fprintf(f, "<text x=\"%.1f\" y=\"%.1f\">", x + 14, y);
             put_text(f, legend_name[k]);
             fputs("</text>\n", f);
             x += 24 + 7.0 * (double)strlen(legend_name[k]);
         }
         fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" fill=\"#777\">paths start at a ring, a dot every "
-                   "second; arrows: velocity at the end; red: contact points; dashed: sensor "
-                   "or destroyed</text>\n</g>\n", LEFT, y + 18);
+                   "second; arrows: velocity at the end; red: contact points; gold: sensors; "
+                   "dashed: sensor or destroyed</text>\n</g>\n", LEFT, y + 18);
     }
     fputs("</svg>\n", f);
     free(T);
