@@ -108,21 +108,23 @@ rg_status broadphase_reserve(broadphase *bp, const rg_mem *m, int32_t slots, int
     if (cap == bp->cap && bits == bp->bucket_bits) return RG_OK;
 
     bp_entry *e = NULL;
-    int32_t *mem_ = NULL, *huge = NULL, *moved = NULL, *head = NULL;
+    int32_t *mem_ = NULL, *huge = NULL, *moved = NULL, *act = NULL, *head = NULL;
     size_t nb = (size_t)1 << bits;
     if (cap != bp->cap) {
         e = mem_alloc(m, mem_array_size((size_t)cap, sizeof *e));
         mem_ = mem_alloc(m, mem_array_size((size_t)cap, sizeof *mem_));
         huge = mem_alloc(m, mem_array_size((size_t)cap, sizeof *huge));
         moved = mem_alloc(m, mem_array_size((size_t)cap, sizeof *moved));
+        act = mem_alloc(m, mem_array_size((size_t)cap, sizeof *act));
     }
     if (bits != bp->bucket_bits) head = mem_alloc(m, nb * sizeof *head);
-    if ((cap != bp->cap && (e == NULL || mem_ == NULL || huge == NULL || moved == NULL)) ||
+    if ((cap != bp->cap && (e == NULL || mem_ == NULL || huge == NULL || moved == NULL || act == NULL)) ||
         (bits != bp->bucket_bits && head == NULL)) {
         mem_free(m, e, (size_t)cap * sizeof *e);
         mem_free(m, mem_, (size_t)cap * sizeof *mem_);
         mem_free(m, huge, (size_t)cap * sizeof *huge);
         mem_free(m, moved, (size_t)cap * sizeof *moved);
+        mem_free(m, act, (size_t)cap * sizeof *act);
         mem_free(m, head, nb * sizeof *head);
         return RG_ERR_OUT_OF_MEMORY;
     }
@@ -132,20 +134,24 @@ rg_status broadphase_reserve(broadphase *bp, const rg_mem *m, int32_t slots, int
             memcpy(mem_, bp->members, (size_t)bp->count * sizeof *mem_);
             memcpy(huge, bp->huge, (size_t)bp->n_huge * sizeof *huge);
             memcpy(moved, bp->moved, (size_t)bp->n_moved * sizeof *moved);
+            memcpy(act, bp->active, (size_t)bp->n_active * sizeof *act);
         }
         for (int32_t s = bp->cap; s < cap; s++) {
             memset(&e[s], 0, sizeof e[s]);
             e[s].member = -1;
             e[s].next = e[s].prev = -1;
+            e[s].apos = -1;
         }
         mem_free(m, bp->e, (size_t)bp->cap * sizeof *bp->e);
         mem_free(m, bp->members, (size_t)bp->cap * sizeof *bp->members);
         mem_free(m, bp->huge, (size_t)bp->cap * sizeof *bp->huge);
         mem_free(m, bp->moved, (size_t)bp->cap * sizeof *bp->moved);
+        mem_free(m, bp->active, (size_t)bp->cap * sizeof *bp->active);
         bp->e = e;
         bp->members = mem_;
         bp->huge = huge;
         bp->moved = moved;
+        bp->active = act;
         bp->cap = cap;
     }
     if (head != NULL) {
@@ -168,6 +174,7 @@ void broadphase_release(broadphase *bp, const rg_mem *m)
     mem_free(m, bp->members, (size_t)bp->cap * sizeof *bp->members);
     mem_free(m, bp->huge, (size_t)bp->cap * sizeof *bp->huge);
     mem_free(m, bp->moved, (size_t)bp->cap * sizeof *bp->moved);
+    mem_free(m, bp->active, (size_t)bp->cap * sizeof *bp->active);
     if (bp->head != NULL) mem_free(m, bp->head, ((size_t)1 << bp->bucket_bits) * sizeof *bp->head);
     memset(bp, 0, sizeof *bp);
 }
@@ -178,6 +185,7 @@ void broadphase_insert(broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_
     bp_entry *e = &bp->e[slot];
     e->member = bp->count;
     e->moved = 0;
+    e->apos = -1;
     bp->members[bp->count++] = slot;
     bp->level_count[e->level]++;
     chain_link(bp, slot);
@@ -210,9 +218,28 @@ void broadphase_move(broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_re
     chain_link(bp, slot);
 }
 
+void broadphase_activate(broadphase *bp, int32_t slot)
+{
+    bp_entry *e = &bp->e[slot];
+    if (e->apos >= 0) return;
+    e->apos = bp->n_active;
+    bp->active[bp->n_active++] = slot;
+}
+
+void broadphase_deactivate(broadphase *bp, int32_t slot)
+{
+    bp_entry *e = &bp->e[slot];
+    if (e->apos < 0) return;
+    int32_t last = bp->active[--bp->n_active];
+    bp->active[e->apos] = last;
+    bp->e[last].apos = e->apos;
+    e->apos = -1;
+}
+
 void broadphase_remove(broadphase *bp, int32_t slot)
 {
     bp_entry *e = &bp->e[slot];
+    broadphase_deactivate(bp, slot);
     chain_unlink(bp, slot);
     bp->level_count[e->level]--;
     int32_t i = e->member, last = bp->members[--bp->count];

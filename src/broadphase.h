@@ -30,6 +30,7 @@ typedef struct bp_entry {
     int32_t member;         /* index in members[], -1 when not in the grid */
     int16_t level;          /* 0..BP_LEVELS-1, or BP_HUGE */
     int16_t moved;          /* 1 while in the move buffer */
+    int32_t apos;           /* index in active[], -1 when not awake */
 } bp_entry;
 
 typedef struct broadphase {
@@ -37,10 +38,12 @@ typedef struct broadphase {
     int32_t *members;       /* slots in the grid, [0, count) */
     int32_t *huge;          /* slots in the huge list, [0, n_huge) */
     int32_t *moved;         /* move buffer: slots whose new pairs are still to be found */
+    int32_t *active;        /* members that move (awake dynamic and kinematic), [0, n_active) */
     int32_t cap;
     int32_t count;
     int32_t n_huge;
     int32_t n_moved;
+    int32_t n_active;
     int32_t *head;          /* bucket heads, 2^bucket_bits of them */
     int32_t bucket_bits;
     int32_t level_count[BP_LEVELS + 1];
@@ -57,6 +60,10 @@ void broadphase_move(broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_re
 void broadphase_remove(broadphase *bp, int32_t slot);
 /* Adds a member to the move buffer (once). */
 void broadphase_mark_moved(broadphase *bp, int32_t slot);
+/* The members that move, kept apart so that per-step work follows them alone (a world of
+ * static tiles, sleeping piles or bodies without shapes pays nothing for the rest). */
+void broadphase_activate(broadphase *bp, int32_t slot);
+void broadphase_deactivate(broadphase *bp, int32_t slot);
 
 static inline int broadphase_contains(const broadphase *bp, int32_t slot)
 {

@@ -11,8 +11,9 @@
 #define LOOKAHEAD        RG_R(2)    /* fat boxes reach this many steps of motion ahead */
 #define SPECULATIVE      RG_R(4)    /* solve pairs predicted within SPECULATIVE * slop */
 #define COS45            RG_R(0.70710678)
-/* per contact: ord, tord, key, tkey, hgt, hgx, stage */
-#define SORT_BYTES (2 * sizeof(int32_t) + 2 * sizeof(uint16_t) + 2 * sizeof(rg_real) + sizeof(solver_constraint))
+/* per contact: stage, hgt, hgx, ord, tord, map, over, color, key, tkey; then the wide rows */
+#define SORT_BYTES (sizeof(solver_constraint) + 2 * sizeof(rg_real) + 5 * sizeof(int32_t) + 2 * sizeof(uint16_t))
+#define SORT_SIZE(cap) ((size_t)(cap) * SORT_BYTES + 64 + (size_t)SOLVER_WIDE_ROWS(cap) * sizeof(solver_wide))
 
 static inline int32_t dense_of(const rg_world *w, int32_t slot)
 {
@@ -51,9 +52,10 @@ void contact_init(rg_world *w)
     cw->restitution_threshold = RG_R(1);
 }
 
+/* Per-body scratch: 11 reals and 9 int32 per body, and the body views. */
 static size_t scratch_block_size(int32_t n)
 {
-    return (size_t)n * (11 * sizeof(rg_real) + 4 * sizeof(int32_t) + sizeof(cbody)) + 64;
+    return (size_t)n * (11 * sizeof(rg_real) + 9 * sizeof(int32_t) + sizeof(cbody)) + 64;
 }
 
 void contact_release(rg_world *w)
@@ -66,8 +68,8 @@ void contact_release(rg_world *w)
     mem_free(m, cw->con, (size_t)cw->cap * sizeof *cw->con);
     mem_free(m, cw->ev, (size_t)cw->cap * 3 * sizeof *cw->ev);
     mem_free(m, cw->pend, (size_t)cw->cap * sizeof *cw->pend);
-    mem_free(m, cw->stage, (size_t)cw->cap * SORT_BYTES);
-    mem_free(m, cw->sx0, scratch_block_size(cw->scap));
+    if (cw->cap > 0) mem_free(m, cw->batch.rows, SORT_SIZE(cw->cap));
+    mem_free(m, cw->cb, scratch_block_size(cw->scap));
     cw->c = NULL;
     cw->cap = 0;
 }
@@ -85,9 +87,9 @@ static rg_status contact_grow(rg_world *w)
     solver_constraint *con = mem_alloc(m, (size_t)cap * sizeof *con);
     rg_contact_event *ev = mem_alloc(m, (size_t)cap * 3 * sizeof *ev);
     rg_contact_event *pend = mem_alloc(m, (size_t)cap * sizeof *pend);
-    char *sortbuf = mem_alloc(m, (size_t)cap * SORT_BYTES);
+    char *sortbuf = mem_alloc(m, SORT_SIZE(cap));
     if (c == NULL || awake == NULL || con == NULL || ev == NULL || pend == NULL || sortbuf == NULL) {
-        mem_free(m, sortbuf, (size_t)cap * SORT_BYTES);
+        mem_free(m, sortbuf, SORT_SIZE(cap));
         mem_free(m, c, (size_t)cap * sizeof *c);
         mem_free(m, awake, (size_t)cap * sizeof *awake);
         mem_free(m, con, (size_t)cap * sizeof *con);
@@ -106,13 +108,18 @@ static rg_status contact_grow(rg_world *w)
     mem_free(m, cw->con, (size_t)old * sizeof *cw->con);
     mem_free(m, cw->ev, (size_t)old * 3 * sizeof *cw->ev);
     mem_free(m, cw->pend, (size_t)old * sizeof *cw->pend);
-    mem_free(m, cw->stage, (size_t)old * SORT_BYTES);
-    cw->stage = (solver_constraint *)(void *)sortbuf;
+    if (old > 0) mem_free(m, cw->batch.rows, SORT_SIZE(old));
+    /* the wide rows first, for their alignment */
+    cw->batch.rows = (solver_wide *)(void *)sortbuf;
+    cw->stage = (solver_constraint *)(void *)(cw->batch.rows + SOLVER_WIDE_ROWS(cap));
     cw->hgt = (rg_real *)(void *)(cw->stage + cap);
     cw->hgx = cw->hgt + cap;
     cw->ord = (int32_t *)(void *)(cw->hgx + cap);
     cw->tord = cw->ord + cap;
-    cw->key = (uint16_t *)(void *)(cw->tord + cap);
+    cw->batch.map = cw->tord + cap;
+    cw->batch.over = cw->batch.map + cap;
+    cw->color = cw->batch.over + cap;
+    cw->key = (uint16_t *)(void *)(cw->color + cap);
     cw->tkey = cw->key + cap;
     cw->c = c;
     cw->awake = awake;
@@ -139,8 +146,9 @@ rg_status contact_prepare(rg_world *w)
     size_t size = scratch_block_size(n);
     char *p = mem_alloc(&w->mem, size);
     if (p == NULL) return RG_ERR_OUT_OF_MEMORY;
-    mem_free(&w->mem, cw->sx0, scratch_block_size(cw->scap));
+    mem_free(&w->mem, cw->cb, scratch_block_size(cw->scap));
     size_t r = (size_t)n * sizeof(rg_real), q = (size_t)n * sizeof(int32_t);
+    cw->cb = (cbody *)(void *)p; p += (size_t)n * sizeof(cbody);
     cw->sx0 = (rg_real *)(void *)p; p += r;
     cw->sy0 = (rg_real *)(void *)p; p += r;
     cw->svx0 = (rg_real *)(void *)p; p += r;
@@ -150,11 +158,17 @@ rg_status contact_prepare(rg_world *w)
     cw->ly = (rg_real *)(void *)p; p += r;
     cw->sv = (rg_real *)(void *)p; p += 2 * r;
     cw->spv = (rg_real *)(void *)p; p += 2 * r;
+    cw->adense = (int32_t *)(void *)p; p += q;
+    cw->sidx = (int32_t *)(void *)p; p += q;
+    cw->sstamp = (uint32_t *)(void *)p; p += q;
+    cw->sbody = (int32_t *)(void *)p; p += q;
     cw->uf = (int32_t *)(void *)p; p += q;
     cw->ihead = (int32_t *)(void *)p; p += q;
     cw->itail = (int32_t *)(void *)p; p += q;
     cw->list = (int32_t *)(void *)p; p += q;
-    cw->cb = (cbody *)(void *)p;
+    cw->cmask = (uint32_t *)(void *)p;
+    memset(cw->sstamp, 0, q);
+    cw->gen = 0;
     cw->scap = n;
     return RG_OK;
 }
@@ -284,6 +298,7 @@ static void wake_island(rg_world *w, int32_t i)
         b->dy[j] = 0;
         b->cflags[j] &= ~CF_GROUNDED;
         if (body_partition(w, j) == BODY_PART_ASLEEP) j = body_move_to_partition(w, j, BODY_PART_ACTIVE);
+        if (b->shape[j] != RG_SHAPE_NONE) broadphase_activate(&cw->bp, s);
         for (int32_t id = b->chead[j] - 1; id >= 0; id = next_of(&cw->c[id], s))
             if (cw->c[id].awake < 0) awake_add(cw, id);
         s = next;
@@ -327,75 +342,89 @@ static void unite(int32_t *uf, int32_t a, int32_t b)
 }
 
 /* Islands: dynamic bodies joined by touching solid contacts and springs.  An island whose
- * every body rested (speed below sleep_speed) for sleep_time falls asleep as a whole. */
+ * every body rested (speed below sleep_speed) for sleep_time falls asleep as a whole.  The
+ * union-find runs over the awake shaped bodies (their places in the broadphase's active
+ * list), so bodies without shapes, static and sleeping ones cost nothing here. */
 static void sleep_islands(rg_world *w, rg_real dt, int united)
 {
     contact_world *cw = &w->coll;
     body_store *b = &w->b;
-    int32_t n = b->n_active;
+    broadphase *bp = &cw->bp;
+    int32_t na = bp->n_active;
     int32_t *uf = cw->uf;
     rg_real thr2 = cw->sleep_speed * cw->sleep_speed;
     int any = 0, near = 0;
     const rg_real *pv = cw->spv;
-    int32_t npv = cw->pv_n;
-    cw->pv_n = 0;
-    for (int32_t i = 0; i < n; i++) {
-        if (b->type[i] == RG_BODY_DYNAMIC && b->shape[i] != RG_SHAPE_NONE) {
-            rg_real v2 = b->vx[i] * b->vx[i] + b->vy[i] * b->vy[i];
-            /* a body still being pushed out of a penetration is not at rest either */
-            if (i < npv) v2 = rg_max(v2, pv[2 * i] * pv[2 * i] + pv[2 * i + 1] * pv[2 * i + 1]);
-            rg_real t = v2 < thr2 ? b->sleep_t[i] + dt : 0;
-            b->sleep_t[i] = t;
-            any |= t >= cw->sleep_time;
-            near |= t + 2 * dt >= cw->sleep_time;
+    int pv_valid = cw->pv_valid;
+    cw->pv_valid = 0;
+    for (int32_t k = 0; k < na; k++) {
+        int32_t i = dense_of(w, bp->active[k]);
+        if (b->type[i] != RG_BODY_DYNAMIC) continue;
+        rg_real v2 = b->vx[i] * b->vx[i] + b->vy[i] * b->vy[i];
+        /* a body still being pushed out of a penetration is not at rest either */
+        if (pv_valid && cw->sstamp[i] == cw->gen) {
+            int32_t q = cw->sidx[i];
+            v2 = rg_max(v2, pv[2 * q] * pv[2 * q] + pv[2 * q + 1] * pv[2 * q + 1]);
         }
+        rg_real t = v2 < thr2 ? b->sleep_t[i] + dt : 0;
+        b->sleep_t[i] = t;
+        any |= t >= cw->sleep_time;
+        near |= t + 2 * dt >= cw->sleep_time;
     }
     /* the narrowphase joins islands only when some body is about to fall asleep */
     cw->near_sleep = near;
     if (!any) return;
     if (!united) {
-        for (int32_t i = 0; i < n; i++) uf[i] = i;
+        for (int32_t k = 0; k < na; k++) uf[k] = k;
         for (int32_t k = 0; k < cw->n_awake; k++) {
             const contact *c = &cw->c[cw->awake[k]];
             if ((c->flags & (CT_TOUCHING | CT_SENSOR)) != CT_TOUCHING) continue;
-            int32_t ia = dense_of(w, c->sa), ib = dense_of(w, c->sb);
-            if (ia < n && ib < n && b->type[ia] == RG_BODY_DYNAMIC && b->type[ib] == RG_BODY_DYNAMIC)
-                unite(uf, ia, ib);
+            int32_t pa = bp->e[c->sa].apos, pb = bp->e[c->sb].apos;
+            if (pa < 0 || pb < 0) continue;
+            if (b->type[dense_of(w, c->sa)] == RG_BODY_DYNAMIC && b->type[dense_of(w, c->sb)] == RG_BODY_DYNAMIC)
+                unite(uf, pa, pb);
         }
     }
-    for (int32_t k = 0; k < w->springs.count; k++) {
-        const spring *sp = &w->springs.items[k];
-        if (sp->slot_b < 0) continue;
-        int32_t ia = dense_of(w, sp->slot_a), ib = dense_of(w, sp->slot_b);
-        if (ia < n && ib < n && b->type[ia] == RG_BODY_DYNAMIC && b->type[ib] == RG_BODY_DYNAMIC)
-            unite(uf, ia, ib);
-    }
-    /* island minimum of the rest time; a body without a shape never rests */
+    /* island minimum of the rest time; kinematic bodies do not take part */
     rg_real *umin = cw->umin;
-    for (int32_t i = 0; i < n; i++) umin[i] = RG_HUGE;
-    for (int32_t i = 0; i < n; i++) {
-        if (b->type[i] != RG_BODY_DYNAMIC) continue;
-        int32_t r = find_root(uf, i);
-        rg_real t = b->shape[i] != RG_SHAPE_NONE ? b->sleep_t[i] : 0;
-        if (t < umin[r]) umin[r] = t;
-    }
-    /* a spring to a sleeping body keeps the island awake: wake the sleeper instead */
+    for (int32_t k = 0; k < na; k++) umin[k] = RG_HUGE;
     for (int32_t k = 0; k < w->springs.count; k++) {
         const spring *sp = &w->springs.items[k];
         if (sp->slot_b < 0) continue;
         int32_t ia = dense_of(w, sp->slot_a), ib = dense_of(w, sp->slot_b);
-        if (ia < n && body_partition(w, ib) == BODY_PART_ASLEEP) umin[find_root(uf, ia)] = 0;
-        if (ib < n && body_partition(w, ia) == BODY_PART_ASLEEP) umin[find_root(uf, ib)] = 0;
+        if (b->type[ia] != RG_BODY_DYNAMIC || b->type[ib] != RG_BODY_DYNAMIC) continue;
+        int32_t pa = sp->slot_a < bp->cap ? bp->e[sp->slot_a].apos : -1;
+        int32_t pb = sp->slot_b < bp->cap ? bp->e[sp->slot_b].apos : -1;
+        if (pa >= 0 && pb >= 0) {
+            unite(uf, pa, pb);
+        } else {
+            /* tied to a body that moves without a shape, or to a sleeping one: awake */
+            int a_moving = pa < 0 && ia < b->n_active, b_moving = pb < 0 && ib < b->n_active;
+            int a_asleep = body_partition(w, ia) == BODY_PART_ASLEEP;
+            int b_asleep = body_partition(w, ib) == BODY_PART_ASLEEP;
+            if (pa >= 0 && (b_moving || b_asleep)) umin[pa] = -1;
+            if (pb >= 0 && (a_moving || a_asleep)) umin[pb] = -1;
+        }
     }
-    /* link each sleeping island's members, in dense order */
+    for (int32_t k = 0; k < na; k++) {
+        if (umin[k] < 0) umin[find_root(uf, k)] = 0;
+    }
+    for (int32_t k = 0; k < na; k++) {
+        int32_t i = dense_of(w, bp->active[k]);
+        if (b->type[i] != RG_BODY_DYNAMIC) continue;
+        int32_t r = find_root(uf, k);
+        if (b->sleep_t[i] < umin[r]) umin[r] = b->sleep_t[i];
+    }
+    /* link each sleeping island's members, in active-list order */
     int32_t *head = cw->ihead, *tail = cw->itail, *list = cw->list;
     int32_t count = 0;
-    for (int32_t i = 0; i < n; i++) head[i] = -1;
-    for (int32_t i = 0; i < n; i++) {
+    for (int32_t k = 0; k < na; k++) head[k] = -1;
+    for (int32_t k = 0; k < na; k++) {
+        int32_t s = bp->active[k];
+        int32_t i = dense_of(w, s);
         if (b->type[i] != RG_BODY_DYNAMIC) continue;
-        int32_t r = find_root(uf, i);
+        int32_t r = find_root(uf, k);
         if (!(umin[r] >= cw->sleep_time)) continue;
-        int32_t s = b->slot[i];
         if (head[r] < 0) {
             head[r] = s;
         } else {
@@ -413,6 +442,7 @@ static void sleep_islands(rg_world *w, rg_real dt, int united)
         b->dx[i] = b->dy[i] = 0;
         b->cflags[i] &= ~CF_FAST;
         body_move_to_partition(w, i, BODY_PART_ASLEEP);
+        broadphase_deactivate(bp, list[k]);
     }
     /* contacts with no awake body leave the awake list */
     for (int32_t k = 0; k < count; k++) {
@@ -567,12 +597,28 @@ static inline int is_ground(rg_real gx, rg_real gy, rg_real gs, rg_real nx, rg_r
 /* What the narrowphase hands on: solver rows staged in contact order with their sort keys,
  * and whether it woke anything (then the rows are rebuilt). */
 typedef struct narrow_ctx {
-    int32_t n;          /* active bodies when the stage started; index n is the ground */
+    int32_t n;          /* active bodies when the stage started (those with a body view) */
+    int32_t na;         /* awake shaped bodies then (the island list's range) */
     int32_t nc;         /* staged rows */
+    int32_t ns;         /* solver bodies, 0 being the ground */
     int woke;
     int unite;          /* join islands (sleeping is near) */
     solver_params p;
 } narrow_ctx;
+
+/* Solver index of dense body i: the ground (0) unless it is awake; awake bodies get
+ * consecutive indices in the order rows meet them, so the solver's arrays cover the bodies
+ * in contact and nothing else. */
+static inline int32_t solver_index(contact_world *cw, int32_t i, int32_t n, narrow_ctx *x)
+{
+    if (i >= n) return 0;
+    if (cw->sstamp[i] != cw->gen) {
+        cw->sstamp[i] = cw->gen;
+        cw->sidx[i] = ++x->ns;
+        cw->sbody[x->ns] = i;
+    }
+    return cw->sidx[i];
+}
 
 /* The step's view of body i: start position, displacement, velocity, half extents.  Awake
  * bodies come from the per-step cache, the others rest: no displacement, no velocity. */
@@ -664,8 +710,8 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
                 solver_constraint *q = &cw->stage[x->nc];
                 cw->hgt[x->nc] = m.point.y; /* replaced by the height along gravity */
                 cw->hgx[x->nc] = m.point.x;
-                q->a = ia < n ? ia : n;
-                q->b = ib < n ? ib : n;
+                q->a = solver_index(cw, ia, n, x);
+                q->b = solver_index(cw, ib, n, x);
                 q->ima = ima;
                 q->imb = imb;
                 q->nx = nx;
@@ -700,9 +746,12 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
             b->cflags[ia] |= CF_GROUNDED;
         if (B.gs != 0 && is_ground(w->gravity.x, w->gravity.y, B.gs, c->nx, c->ny))
             b->cflags[ib] |= CF_GROUNDED;
-        if (x->unite && ia < b->n_active && ib < b->n_active && b->type[ia] == RG_BODY_DYNAMIC &&
-            b->type[ib] == RG_BODY_DYNAMIC)
-            unite(cw->uf, ia, ib);
+        if (x->unite) {
+            int32_t pa = cw->bp.e[c->sa].apos, pb = cw->bp.e[c->sb].apos;
+            if (pa >= 0 && pb >= 0 && pa < x->na && pb < x->na && b->type[ia] == RG_BODY_DYNAMIC &&
+                b->type[ib] == RG_BODY_DYNAMIC)
+                unite(cw->uf, pa, pb);
+        }
     }
     if (now | was) {
         int pa_ = body_partition(w, ia), pb_ = body_partition(w, ib);
@@ -722,11 +771,16 @@ void contact_begin(rg_world *w)
 {
     contact_world *cw = &w->coll;
     if (cw->shape_count == 0) return;
-    int32_t n = w->b.n_active;
-    memcpy(cw->sx0, w->b.x, (size_t)n * sizeof *cw->sx0);
-    memcpy(cw->sy0, w->b.y, (size_t)n * sizeof *cw->sy0);
-    memcpy(cw->svx0, w->b.vx, (size_t)n * sizeof *cw->svx0);
-    memcpy(cw->svy0, w->b.vy, (size_t)n * sizeof *cw->svy0);
+    const broadphase *bp = &cw->bp;
+    const body_store *b = &w->b;
+    for (int32_t k = 0; k < bp->n_active; k++) {
+        int32_t i = dense_of(w, bp->active[k]);
+        cw->adense[k] = i;
+        cw->sx0[k] = b->x[i];
+        cw->sy0[k] = b->y[i];
+        cw->svx0[k] = b->vx[i];
+        cw->svy0[k] = b->vy[i];
+    }
 }
 
 static int event_less(const rg_contact_event *p, const rg_contact_event *q)
@@ -834,11 +888,22 @@ static void radix_sort16(uint16_t *key, int32_t *val, uint16_t *tkey, int32_t *t
 
 /* Rows staged again from the contacts flagged CT_SOLVE, after the narrowphase woke bodies
  * (their indices and the ground index changed). */
+/* A new generation of solver indices (stamps of the old one no longer match). */
+static void next_gen(contact_world *cw)
+{
+    if (++cw->gen == 0) {
+        memset(cw->sstamp, 0, (size_t)cw->scap * sizeof *cw->sstamp);
+        cw->gen = 1;
+    }
+}
+
 static void restage(rg_world *w, narrow_ctx *x)
 {
     contact_world *cw = &w->coll;
     const body_store *b = &w->b;
     int32_t n = b->n_active, nc = 0;
+    next_gen(cw);
+    x->ns = 0;
     for (int32_t k = 0; k < cw->n_awake; k++) {
         int32_t id = cw->awake[k];
         contact *c = &cw->c[id];
@@ -853,8 +918,8 @@ static void restage(rg_world *w, narrow_ctx *x)
         solver_constraint *q = &cw->stage[nc];
         cw->hgt[nc] = c->py;
         cw->hgx[nc] = c->px;
-        q->a = ia < n ? ia : n;
-        q->b = ib < n ? ib : n;
+        q->a = solver_index(cw, ia, n, x);
+        q->b = solver_index(cw, ib, n, x);
         q->ima = ima;
         q->imb = imb;
         q->nx = c->nx;
@@ -877,7 +942,7 @@ static void solve(rg_world *w, narrow_ctx *x)
     contact_world *cw = &w->coll;
     body_store *b = &w->b;
     if (x->woke) restage(w, x);
-    int32_t n = x->n, nc = x->nc;
+    int32_t nc = x->nc;
     if (nc == 0) return;
     rg_real dt = x->p.dt;
     solver_constraint *con = cw->stage;
@@ -906,32 +971,48 @@ static void solve(rg_world *w, narrow_ctx *x)
         con = cw->con;
         for (int32_t k = 0; k < nc; k++) con[k] = cw->stage[cw->ord[k]];
     }
+    /* the solver's bodies: 0 is the ground, 1..ns the awake bodies the rows meet */
+    int32_t ns = x->ns;
+    const int32_t *sbody = cw->sbody;
     rg_real *v = cw->sv;
-    for (int32_t i = 0; i < n; i++) {
-        v[2 * i] = b->vx[i];
-        v[2 * i + 1] = b->vy[i];
+    v[0] = v[1] = 0;
+    for (int32_t q = 1; q <= ns; q++) {
+        v[2 * q] = b->vx[sbody[q]];
+        v[2 * q + 1] = b->vy[sbody[q]];
     }
-    v[2 * n] = v[2 * n + 1] = 0;
-    solver_warm_start(con, nc, v);
-    for (int32_t it = 0; it < cw->iterations; it++) solver_iterate(con, nc, v);
+    solver_batch *sb = &cw->batch;
+    solver_pack(con, nc, ns + 1, cw->cmask, cw->color, sb);
+    solver_wide_warm_start(sb, v);
+    solver_warm_start(con, sb->over, sb->nover, v);
+    for (int32_t it = 0; it < cw->iterations; it++) {
+        solver_wide_iterate(sb, v);
+        solver_iterate(con, sb->over, sb->nover, v);
+    }
+    solver_unpack(sb, con, nc, 0);
     if (shock) solver_shock(con, nc, v, gx, gy);
     /* positions move with the solved velocities, then by the pseudo-velocities of the
      * position pass, which leave the velocities alone */
-    for (int32_t i = 0; i < n; i++) {
-        b->x[i] += (v[2 * i] - b->vx[i]) * dt;
-        b->y[i] += (v[2 * i + 1] - b->vy[i]) * dt;
-        b->vx[i] = v[2 * i];
-        b->vy[i] = v[2 * i + 1];
+    for (int32_t q = 1; q <= ns; q++) {
+        int32_t i = sbody[q];
+        b->x[i] += (v[2 * q] - b->vx[i]) * dt;
+        b->y[i] += (v[2 * q + 1] - b->vy[i]) * dt;
+        b->vx[i] = v[2 * q];
+        b->vy[i] = v[2 * q + 1];
     }
     if (cw->position > 0 && solver_prepare_position(con, nc, v, &x->p) > 0) {
         rg_real *pv = cw->spv;
-        memset(pv, 0, (size_t)(2 * n + 2) * sizeof *pv);
-        for (int32_t it = 0; it < cw->position; it++) solver_iterate_position(con, nc, pv);
+        memset(pv, 0, (size_t)(2 * ns + 2) * sizeof *pv);
+        solver_pack_position(sb, con, nc);
+        for (int32_t it = 0; it < cw->position; it++) {
+            solver_wide_iterate_position(sb, pv);
+            solver_iterate_position(con, sb->over, sb->nover, pv);
+        }
+        solver_unpack(sb, con, nc, 1);
         if (shock) solver_shock_position(con, nc, pv, gx, gy);
-        cw->pv_n = n;
-        for (int32_t i = 0; i < n; i++) {
-            b->x[i] += pv[2 * i] * dt;
-            b->y[i] += pv[2 * i + 1] * dt;
+        cw->pv_valid = 1;
+        for (int32_t q = 1; q <= ns; q++) {
+            b->x[sbody[q]] += pv[2 * q] * dt;
+            b->y[sbody[q]] += pv[2 * q + 1] * dt;
         }
     }
     for (int32_t k = 0; k < nc; k++) {
@@ -957,7 +1038,7 @@ static double prof_now(void)
     do {                                                                                       \
         if ((w)->step_count % 60 == 59) {                                                      \
             fprintf(stderr, "contacts %d rows %d active %d | ms/step:", (w)->coll.n_awake,     \
-                    nx.nc, (w)->b.n_active);                                                   \
+                    nx.nc, (w)->coll.bp.n_active);                                             \
             const char *names[] = {"bodies", "pairs", "narrow", "solve", "fast+fat", "sleep"}; \
             for (int q_ = 0; q_ < 6; q_++) fprintf(stderr, " %s %.3f", names[q_], prof_acc[q_] * 1e3 / 60); \
             fprintf(stderr, "\n");                                                             \
@@ -981,10 +1062,15 @@ void contact_step(rg_world *w, rg_real dt)
     if (cw->shape_count > 0) {
         PROF(-1);
         int32_t n = b->n_active, n_fast = 0;
+        broadphase *bp = &cw->bp;
+        int32_t na = bp->n_active;
         narrow_ctx nx;
-        cw->pv_n = 0;
+        cw->pv_valid = 0;
+        next_gen(cw);
         nx.n = n;
+        nx.na = na;
         nx.nc = 0;
+        nx.ns = 0;
         nx.woke = 0;
         nx.unite = cw->sleeping && cw->near_sleep;
         nx.p.dt = dt;
@@ -993,33 +1079,28 @@ void contact_step(rg_world *w, rg_real dt)
         nx.p.bias_rate = cw->bias_rate;
         nx.p.max_push = cw->max_push;
         nx.p.restitution_threshold = cw->restitution_threshold;
-        /* displacements of the integration, the step's view of each body, swept boxes */
+        /* the awake shaped bodies only: displacements of the integration, the step's view
+         * of each, swept boxes and fat boxes */
         cbody *cb = cw->cb;
-        for (int32_t i = 0; i < n; i++) {
-            rg_real x1 = b->x[i], y1 = b->y[i];
-            rg_real mx = x1 - cw->sx0[i], my = y1 - cw->sy0[i];
+        for (int32_t k = 0; k < na; k++) {
+            int32_t i = cw->adense[k];
+            rg_real x1 = b->x[i], y1 = b->y[i], hx = b->hx[i], hy = b->hy[i];
+            rg_real mx = x1 - cw->sx0[k], my = y1 - cw->sy0[k];
             b->dx[i] = mx;
             b->dy[i] = my;
             b->cflags[i] &= ~CF_GROUNDED; /* set again by the touching contacts */
-            cb[i].sx = x1 - mx;
-            cb[i].sy = y1 - my;
+            cb[i].sx = cw->sx0[k];
+            cb[i].sy = cw->sy0[k];
             cb[i].dx = mx;
             cb[i].dy = my;
-            cb[i].vx = cw->svx0[i];
-            cb[i].vy = cw->svy0[i];
-            cb[i].hx = b->hx[i];
-            cb[i].hy = b->hy[i];
+            cb[i].vx = cw->svx0[k];
+            cb[i].vy = cw->svy0[k];
+            cb[i].hx = hx;
+            cb[i].hy = hy;
             cb[i].gs = b->type[i] == RG_BODY_DYNAMIC ? b->gscale[i] : 0;
             cb[i].im = b->inv_mass[i];
             cb[i].kind = b->shape[i];
             cb[i].pad = 0;
-        }
-        if (nx.unite)
-            for (int32_t i = 0; i < b->n_moving; i++) cw->uf[i] = i;
-        for (int32_t i = 0; i < n; i++) {
-            if (b->shape[i] == RG_SHAPE_NONE) continue;
-            rg_real x1 = b->x[i], y1 = b->y[i], hx = b->hx[i], hy = b->hy[i];
-            rg_real mx = b->dx[i], my = b->dy[i];
             rg_real lx = x1 - hx, ly = y1 - hy, ux = x1 + hx, uy = y1 + hy;
             if (cw->continuous) {
                 lx = rg_min(lx, lx - mx);
@@ -1032,13 +1113,15 @@ void contact_step(rg_world *w, rg_real dt)
             if (b->type[i] == RG_BODY_DYNAMIC && mx * mx + my * my > RG_R(0.25) * h * h) {
                 b->cflags[i] |= CF_FAST;
                 cw->list[n_fast] = b->slot[i];
-                cw->lx[n_fast] = x1 - mx;
-                cw->ly[n_fast] = y1 - my;
+                cw->lx[n_fast] = cw->sx0[k];
+                cw->ly[n_fast] = cw->sy0[k];
                 n_fast++;
             } else {
                 b->cflags[i] &= ~CF_FAST;
             }
         }
+        if (nx.unite)
+            for (int32_t k = 0; k < na; k++) cw->uf[k] = k;
         PROF(0);
         find_pairs(w);
         PROF(1);
@@ -1060,9 +1143,8 @@ void contact_step(rg_world *w, rg_real dt)
         PROF(3);
         if (n_fast > 0 && cw->continuous) clamp_fast(w, n_fast);
         /* fat boxes must hold the final boxes, for queries and the next step */
-        n = b->n_active;
-        for (int32_t i = 0; i < n; i++) {
-            if (b->shape[i] == RG_SHAPE_NONE) continue;
+        for (int32_t k = 0; k < bp->n_active; k++) {
+            int32_t i = dense_of(w, bp->active[k]);
             rg_real x1 = b->x[i], y1 = b->y[i], hx = b->hx[i], hy = b->hy[i];
             refresh_fat(w, i, x1 - hx, y1 - hy, x1 + hx, y1 + hy, b->vx[i] * dt, b->vy[i] * dt);
         }
@@ -1177,6 +1259,7 @@ static rg_status set_shape(rg_world *w, int32_t i, int32_t kind, rg_real hx, rg_
         rg_real box[4];
         rest_box(b, i, box);
         broadphase_insert(&cw->bp, s, box[0], box[1], box[2], box[3]);
+        if (b->type[i] != RG_BODY_STATIC) broadphase_activate(&cw->bp, s);
         cw->shape_count++;
     }
     teleported(w, i);

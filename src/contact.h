@@ -77,6 +77,8 @@ typedef struct contact_world {
     rg_real *hgt, *hgx;       /* [0, cap): their contact points, then heights along gravity */
     int32_t *ord, *tord;      /* [0, cap): staged rows in solving order, radix scratch */
     uint16_t *key, *tkey;     /* [0, cap): their sort keys, radix scratch */
+    int32_t *color;           /* [0, cap): colouring scratch */
+    solver_batch batch;       /* the rows four at a time (rows: SOLVER_WIDE_ROWS(cap)) */
 
     rg_contact_event *ev;     /* events of the last step (3 * cap) */
     int32_t n_ev;
@@ -84,18 +86,25 @@ typedef struct contact_world {
     int32_t n_pend;
     int32_t in_step;
 
-    /* per-body scratch, body capacity + 1 */
-    rg_real *sx0, *sy0;       /* positions before integration (dense) */
-    rg_real *svx0, *svy0;     /* velocities before integration (dense) */
-    rg_real *sv;              /* solver velocities, pairs */
-    rg_real *spv;             /* solver pseudo-velocities of the position pass, pairs */
-    int32_t pv_n;             /* bodies spv covers after this step's position pass, else 0 */
-    int32_t *uf;              /* union-find parents */
-    rg_real *umin;            /* island minimum rest time */
-    int32_t *ihead, *itail;   /* island member lists while falling asleep */
-    int32_t *list;            /* slots */
-    cbody *cb;                /* the step's view of the awake bodies (dense) */
+    /* per-body scratch, body capacity + 1: indexed by place in the broadphase's active list
+     * (k), by dense body index (i) or by solver body (q) */
+    cbody *cb;                /* i: the step's view of the awake shaped bodies */
+    rg_real *sx0, *sy0;       /* k: positions before integration */
+    rg_real *svx0, *svy0;     /* k: velocities before integration */
+    int32_t *adense;          /* k: dense index during the step */
+    rg_real *umin;            /* k: island minimum rest time */
+    int32_t *uf;              /* k: union-find parents */
+    int32_t *ihead, *itail;   /* k: island member lists while falling asleep */
+    int32_t *list;            /* slots (fast bodies, bodies falling asleep) */
     rg_real *lx, *ly;         /* start positions of fast bodies */
+    int32_t *sidx;            /* i: solver index, valid when sstamp[i] == gen */
+    uint32_t *sstamp;         /* i */
+    uint32_t gen;             /* solver index generation (one per step, or more) */
+    int32_t *sbody;           /* q: dense index of solver body q (q >= 1; 0 is the ground) */
+    rg_real *sv;              /* q: solver velocities, pairs */
+    rg_real *spv;             /* q: pseudo-velocities of the position pass, pairs */
+    int32_t pv_valid;         /* spv holds this step's position pass */
+    uint32_t *cmask;          /* q: colouring, the colours each body is in */
     int32_t scap;
 
     /* what the scene uses */

@@ -1,4 +1,6 @@
 /* solver.c: sequential impulses over one-point, translation-only contacts (see solver.h). */
+#include <string.h>
+
 #include "solver.h"
 #include "vec2.h"
 
@@ -18,10 +20,10 @@ static inline rg_real smax(rg_real a, rg_real b) { return a > b ? a : b; }
 static inline rg_real smin(rg_real a, rg_real b) { return a < b ? a : b; }
 #endif
 
-void solver_warm_start(const solver_constraint *c, int32_t n, rg_real *v)
+void solver_warm_start(const solver_constraint *c, const int32_t *list, int32_t k, rg_real *v)
 {
-    for (int32_t k = 0; k < n; k++) {
-        const solver_constraint *q = &c[k];
+    for (int32_t i = 0; i < k; i++) {
+        const solver_constraint *q = &c[list != NULL ? list[i] : i];
         /* P = pn n + pt t with t = (-ny, nx) */
         rg_real px = q->pn * q->nx - q->pt * q->ny;
         rg_real py = q->pn * q->ny + q->pt * q->nx;
@@ -33,10 +35,10 @@ void solver_warm_start(const solver_constraint *c, int32_t n, rg_real *v)
     }
 }
 
-void solver_iterate(solver_constraint *c, int32_t n, rg_real *v)
+void solver_iterate(solver_constraint *c, const int32_t *list, int32_t k, rg_real *v)
 {
-    for (int32_t k = 0; k < n; k++) {
-        solver_constraint *q = &c[k];
+    for (int32_t i = 0; i < k; i++) {
+        solver_constraint *q = &c[list != NULL ? list[i] : i];
         rg_real *va = v + 2 * q->a, *vb = v + 2 * q->b;
         rg_real vax = va[0], vay = va[1], vbx = vb[0], vby = vb[1];
         rg_real nx = q->nx, ny = q->ny, m = q->m, ima = q->ima, imb = q->imb;
@@ -134,13 +136,13 @@ int32_t solver_prepare_position(solver_constraint *c, int32_t n, const rg_real *
     return pushing;
 }
 
-void solver_iterate_position(solver_constraint *c, int32_t n, rg_real *pv)
+void solver_iterate_position(solver_constraint *c, const int32_t *list, int32_t k, rg_real *pv)
 {
-    for (int32_t k = 0; k < n; k++) {
-        solver_constraint *q = &c[k];
+    for (int32_t i = 0; i < k; i++) {
+        solver_constraint *q = &c[list != NULL ? list[i] : i];
         rg_real *va = pv + 2 * q->a, *vb = pv + 2 * q->b;
         rg_real vn = (vb[0] - va[0]) * q->nx + (vb[1] - va[1]) * q->ny;
-        rg_real pp = rg_max(q->pp + q->m * (q->pmin - vn), 0);
+        rg_real pp = smax(q->pp + q->m * (q->pmin - vn), 0);
         rg_real l = pp - q->pp;
         q->pp = pp;
         rg_real px = l * q->nx, py = l * q->ny;
@@ -150,3 +152,279 @@ void solver_iterate_position(solver_constraint *c, int32_t n, rg_real *pv)
         vb[1] += py * q->imb;
     }
 }
+
+/* ---------------------------------------------------------------- four lanes */
+
+void solver_pack(const solver_constraint *c, int32_t n, int32_t nbodies, uint32_t *mask,
+                 int32_t *color, solver_batch *out)
+{
+    const int32_t ground = 0;
+    int32_t count[33];
+    memset(count, 0, sizeof count);
+    memset(mask, 0, (size_t)nbodies * sizeof *mask);
+    /* greedy: the first colour neither movable body is in yet */
+    for (int32_t k = 0; k < n; k++) {
+        const solver_constraint *q = &c[k];
+        int ma = q->ima > 0, mb = q->imb > 0;
+        uint32_t used = (ma ? mask[q->a] : 0) | (mb ? mask[q->b] : 0);
+        int col = 32;
+        if (used != 0xFFFFFFFFu) {
+            col = 0;
+            while (used & (1u << col)) col++;
+            if (ma) mask[q->a] |= 1u << col;
+            if (mb) mask[q->b] |= 1u << col;
+        }
+        color[k] = col;
+        count[col]++;
+    }
+    /* each colour takes whole wide rows; the lanes it leaves over are padding that acts on
+     * the ground with zero mass */
+    int32_t start[33], lane_of[33];
+    int32_t rows = 0;
+    for (int col = 0; col < 32; col++) {
+        start[col] = rows;
+        lane_of[col] = 0;
+        rows += (count[col] + SOLVER_LANES - 1) / SOLVER_LANES;
+    }
+    out->nrows = rows;
+    out->nover = 0;
+    solver_wide *w = out->rows;
+    memset(w, 0, (size_t)rows * sizeof *w);
+    for (int32_t r = 0; r < rows; r++)
+        for (int l = 0; l < SOLVER_LANES; l++) w[r].a[l] = w[r].b[l] = ground;
+    for (int32_t k = 0; k < n; k++) {
+        int col = color[k];
+        if (col == 32) {
+            out->map[k] = -1;
+            out->over[out->nover++] = k;
+            continue;
+        }
+        int32_t slot = start[col] * SOLVER_LANES + lane_of[col]++;
+        out->map[k] = slot;
+        solver_wide *q = &w[slot / SOLVER_LANES];
+        int l = slot % SOLVER_LANES;
+        const solver_constraint *r = &c[k];
+        q->a[l] = r->a;
+        q->b[l] = r->b;
+        q->nx[l] = r->nx;
+        q->ny[l] = r->ny;
+        q->m[l] = r->m;
+        q->mu[l] = r->mu;
+        q->ima[l] = r->ima;
+        q->imb[l] = r->imb;
+        q->vmin[l] = r->vmin;
+        q->pn[l] = r->pn;
+        q->pt[l] = r->pt;
+    }
+}
+
+void solver_unpack(const solver_batch *s, solver_constraint *c, int32_t n, int position)
+{
+    for (int32_t k = 0; k < n; k++) {
+        int32_t slot = s->map[k];
+        if (slot < 0) continue;
+        const solver_wide *q = &s->rows[slot / SOLVER_LANES];
+        int l = slot % SOLVER_LANES;
+        if (position) {
+            c[k].pp = q->pp[l];
+        } else {
+            c[k].pn = q->pn[l];
+            c[k].pt = q->pt[l];
+        }
+    }
+}
+
+void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t n)
+{
+    for (int32_t r = 0; r < s->nrows; r++)
+        for (int l = 0; l < SOLVER_LANES; l++) s->rows[r].pmin[l] = s->rows[r].pp[l] = 0;
+    for (int32_t k = 0; k < n; k++) {
+        int32_t slot = s->map[k];
+        if (slot >= 0) s->rows[slot / SOLVER_LANES].pmin[slot % SOLVER_LANES] = c[k].pmin;
+    }
+}
+
+#if defined(__SSE2__) && !defined(RG_DOUBLE)
+/* The lanes in SSE registers.  Velocities are pairs (x, y): two lanes' pairs load into one
+ * register and shuffle into x and y vectors; the stores undo it.  Lanes of one row never
+ * share a movable body, so the scattered stores never collide; lanes on the ground or a
+ * kinematic body store back the value they loaded. */
+static inline void gather(const float *v, const int32_t *idx, __m128 *x, __m128 *y)
+{
+    __m128 p01 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[0]));
+    p01 = _mm_loadh_pi(p01, (const __m64 *)(const void *)(v + 2 * idx[1]));
+    __m128 p23 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[2]));
+    p23 = _mm_loadh_pi(p23, (const __m64 *)(const void *)(v + 2 * idx[3]));
+    *x = _mm_shuffle_ps(p01, p23, _MM_SHUFFLE(2, 0, 2, 0));
+    *y = _mm_shuffle_ps(p01, p23, _MM_SHUFFLE(3, 1, 3, 1));
+}
+
+static inline void scatter(float *v, const int32_t *idx, __m128 x, __m128 y)
+{
+    __m128 p01 = _mm_unpacklo_ps(x, y), p23 = _mm_unpackhi_ps(x, y);
+    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[0]), p01);
+    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[1]), p01);
+    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[2]), p23);
+    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[3]), p23);
+}
+
+void solver_wide_warm_start(const solver_batch *s, rg_real *v)
+{
+    for (int32_t r = 0; r < s->nrows; r++) {
+        const solver_wide *q = &s->rows[r];
+        __m128 vax, vay, vbx, vby;
+        gather(v, q->a, &vax, &vay);
+        __m128 nx = _mm_loadu_ps(q->nx), ny = _mm_loadu_ps(q->ny);
+        __m128 pn = _mm_loadu_ps(q->pn), pt = _mm_loadu_ps(q->pt);
+        __m128 px = _mm_sub_ps(_mm_mul_ps(pn, nx), _mm_mul_ps(pt, ny));
+        __m128 py = _mm_add_ps(_mm_mul_ps(pn, ny), _mm_mul_ps(pt, nx));
+        __m128 ima = _mm_loadu_ps(q->ima), imb = _mm_loadu_ps(q->imb);
+        scatter(v, q->a, _mm_sub_ps(vax, _mm_mul_ps(px, ima)), _mm_sub_ps(vay, _mm_mul_ps(py, ima)));
+        gather(v, q->b, &vbx, &vby);
+        scatter(v, q->b, _mm_add_ps(vbx, _mm_mul_ps(px, imb)), _mm_add_ps(vby, _mm_mul_ps(py, imb)));
+    }
+}
+
+void solver_wide_iterate(solver_batch *s, rg_real *v)
+{
+    const __m128 zero = _mm_setzero_ps();
+    for (int32_t r = 0; r < s->nrows; r++) {
+        solver_wide *q = &s->rows[r];
+        __m128 vax, vay, vbx, vby;
+        gather(v, q->a, &vax, &vay);
+        gather(v, q->b, &vbx, &vby);
+        __m128 nx = _mm_loadu_ps(q->nx), ny = _mm_loadu_ps(q->ny), m = _mm_loadu_ps(q->m);
+        __m128 pn0 = _mm_loadu_ps(q->pn), pt0 = _mm_loadu_ps(q->pt);
+        __m128 dvx = _mm_sub_ps(vbx, vax), dvy = _mm_sub_ps(vby, vay);
+        __m128 vn = _mm_add_ps(_mm_mul_ps(dvx, nx), _mm_mul_ps(dvy, ny));
+        __m128 vt = _mm_sub_ps(_mm_mul_ps(dvy, nx), _mm_mul_ps(dvx, ny));
+        __m128 pn = _mm_max_ps(_mm_add_ps(pn0, _mm_mul_ps(m, _mm_sub_ps(_mm_loadu_ps(q->vmin), vn))), zero);
+        __m128 maxf = _mm_mul_ps(_mm_loadu_ps(q->mu), pn);
+        __m128 pt = _mm_min_ps(_mm_max_ps(_mm_sub_ps(pt0, _mm_mul_ps(m, vt)), _mm_sub_ps(zero, maxf)), maxf);
+        _mm_storeu_ps(q->pn, pn);
+        _mm_storeu_ps(q->pt, pt);
+        __m128 ln = _mm_sub_ps(pn, pn0), lt = _mm_sub_ps(pt, pt0);
+        __m128 px = _mm_sub_ps(_mm_mul_ps(ln, nx), _mm_mul_ps(lt, ny));
+        __m128 py = _mm_add_ps(_mm_mul_ps(ln, ny), _mm_mul_ps(lt, nx));
+        __m128 ima = _mm_loadu_ps(q->ima), imb = _mm_loadu_ps(q->imb);
+        scatter(v, q->a, _mm_sub_ps(vax, _mm_mul_ps(px, ima)), _mm_sub_ps(vay, _mm_mul_ps(py, ima)));
+        scatter(v, q->b, _mm_add_ps(vbx, _mm_mul_ps(px, imb)), _mm_add_ps(vby, _mm_mul_ps(py, imb)));
+    }
+}
+
+void solver_wide_iterate_position(solver_batch *s, rg_real *pv)
+{
+    const __m128 zero = _mm_setzero_ps();
+    for (int32_t r = 0; r < s->nrows; r++) {
+        solver_wide *q = &s->rows[r];
+        __m128 vax, vay, vbx, vby;
+        gather(pv, q->a, &vax, &vay);
+        gather(pv, q->b, &vbx, &vby);
+        __m128 nx = _mm_loadu_ps(q->nx), ny = _mm_loadu_ps(q->ny), m = _mm_loadu_ps(q->m);
+        __m128 pp0 = _mm_loadu_ps(q->pp);
+        __m128 vn = _mm_add_ps(_mm_mul_ps(_mm_sub_ps(vbx, vax), nx), _mm_mul_ps(_mm_sub_ps(vby, vay), ny));
+        __m128 pp = _mm_max_ps(_mm_add_ps(pp0, _mm_mul_ps(m, _mm_sub_ps(_mm_loadu_ps(q->pmin), vn))), zero);
+        _mm_storeu_ps(q->pp, pp);
+        __m128 l = _mm_sub_ps(pp, pp0);
+        __m128 px = _mm_mul_ps(l, nx), py = _mm_mul_ps(l, ny);
+        __m128 ima = _mm_loadu_ps(q->ima), imb = _mm_loadu_ps(q->imb);
+        scatter(pv, q->a, _mm_sub_ps(vax, _mm_mul_ps(px, ima)), _mm_sub_ps(vay, _mm_mul_ps(py, ima)));
+        scatter(pv, q->b, _mm_add_ps(vbx, _mm_mul_ps(px, imb)), _mm_add_ps(vby, _mm_mul_ps(py, imb)));
+    }
+}
+#else
+/* The same arithmetic lane by lane: all loads of a row before its stores, as in SSE. */
+void solver_wide_warm_start(const solver_batch *s, rg_real *v)
+{
+    for (int32_t r = 0; r < s->nrows; r++) {
+        const solver_wide *q = &s->rows[r];
+        rg_real px[SOLVER_LANES], py[SOLVER_LANES];
+        for (int l = 0; l < SOLVER_LANES; l++) {
+            px[l] = q->pn[l] * q->nx[l] - q->pt[l] * q->ny[l];
+            py[l] = q->pn[l] * q->ny[l] + q->pt[l] * q->nx[l];
+        }
+        for (int l = 0; l < SOLVER_LANES; l++) {
+            rg_real *va = v + 2 * q->a[l];
+            va[0] -= px[l] * q->ima[l];
+            va[1] -= py[l] * q->ima[l];
+        }
+        for (int l = 0; l < SOLVER_LANES; l++) {
+            rg_real *vb = v + 2 * q->b[l];
+            vb[0] += px[l] * q->imb[l];
+            vb[1] += py[l] * q->imb[l];
+        }
+    }
+}
+
+void solver_wide_iterate(solver_batch *s, rg_real *v)
+{
+    for (int32_t r = 0; r < s->nrows; r++) {
+        solver_wide *q = &s->rows[r];
+        rg_real ax[SOLVER_LANES], ay[SOLVER_LANES], bx[SOLVER_LANES], by[SOLVER_LANES];
+        for (int l = 0; l < SOLVER_LANES; l++) {
+            ax[l] = v[2 * q->a[l]];
+            ay[l] = v[2 * q->a[l] + 1];
+            bx[l] = v[2 * q->b[l]];
+            by[l] = v[2 * q->b[l] + 1];
+        }
+        for (int l = 0; l < SOLVER_LANES; l++) {
+            rg_real nx = q->nx[l], ny = q->ny[l], m = q->m[l];
+            rg_real pn0 = q->pn[l], pt0 = q->pt[l];
+            rg_real dvx = bx[l] - ax[l], dvy = by[l] - ay[l];
+            rg_real vn = dvx * nx + dvy * ny, vt = dvy * nx - dvx * ny;
+            rg_real pn = smax(pn0 + m * (q->vmin[l] - vn), 0);
+            rg_real maxf = q->mu[l] * pn;
+            rg_real pt = smin(smax(pt0 - m * vt, 0 - maxf), maxf);
+            q->pn[l] = pn;
+            q->pt[l] = pt;
+            rg_real ln = pn - pn0, lt = pt - pt0;
+            rg_real px = ln * nx - lt * ny, py = ln * ny + lt * nx;
+            ax[l] -= px * q->ima[l];
+            ay[l] -= py * q->ima[l];
+            bx[l] += px * q->imb[l];
+            by[l] += py * q->imb[l];
+        }
+        for (int l = 0; l < SOLVER_LANES; l++) {
+            v[2 * q->a[l]] = ax[l];
+            v[2 * q->a[l] + 1] = ay[l];
+        }
+        for (int l = 0; l < SOLVER_LANES; l++) {
+            v[2 * q->b[l]] = bx[l];
+            v[2 * q->b[l] + 1] = by[l];
+        }
+    }
+}
+
+void solver_wide_iterate_position(solver_batch *s, rg_real *pv)
+{
+    for (int32_t r = 0; r < s->nrows; r++) {
+        solver_wide *q = &s->rows[r];
+        rg_real ax[SOLVER_LANES], ay[SOLVER_LANES], bx[SOLVER_LANES], by[SOLVER_LANES];
+        for (int l = 0; l < SOLVER_LANES; l++) {
+            ax[l] = pv[2 * q->a[l]];
+            ay[l] = pv[2 * q->a[l] + 1];
+            bx[l] = pv[2 * q->b[l]];
+            by[l] = pv[2 * q->b[l] + 1];
+        }
+        for (int l = 0; l < SOLVER_LANES; l++) {
+            rg_real vn = (bx[l] - ax[l]) * q->nx[l] + (by[l] - ay[l]) * q->ny[l];
+            rg_real pp = smax(q->pp[l] + q->m[l] * (q->pmin[l] - vn), 0);
+            rg_real d = pp - q->pp[l];
+            q->pp[l] = pp;
+            rg_real px = d * q->nx[l], py = d * q->ny[l];
+            ax[l] -= px * q->ima[l];
+            ay[l] -= py * q->ima[l];
+            bx[l] += px * q->imb[l];
+            by[l] += py * q->imb[l];
+        }
+        for (int l = 0; l < SOLVER_LANES; l++) {
+            pv[2 * q->a[l]] = ax[l];
+            pv[2 * q->a[l] + 1] = ay[l];
+        }
+        for (int l = 0; l < SOLVER_LANES; l++) {
+            pv[2 * q->b[l]] = bx[l];
+            pv[2 * q->b[l] + 1] = by[l];
+        }
+    }
+}
+#endif

@@ -24,7 +24,7 @@
 #include "rigid.h"
 
 typedef struct solver_constraint {
-    int32_t a, b;      /* solver body indices (velocity pairs) */
+    int32_t a, b;      /* solver body indices (velocity pairs); 0 is the ground */
     rg_real ima, imb;  /* inverse masses, 1/kg */
     rg_real nx, ny;    /* unit normal from a to b */
     rg_real m;         /* effective mass, kg */
@@ -61,10 +61,12 @@ static inline rg_real solver_vmin(rg_real s0, rg_real vn0, rg_real e, int closin
     return vmin;
 }
 
+/* ---- rows one at a time.  `list` (k of them) selects rows by index; NULL takes c[0..k). */
+
 /* Applies the accumulated impulses to the velocities v (pairs vx, vy per solver body). */
-void solver_warm_start(const solver_constraint *c, int32_t n, rg_real *v);
+void solver_warm_start(const solver_constraint *c, const int32_t *list, int32_t k, rg_real *v);
 /* One Gauss-Seidel sweep over the velocity rows. */
-void solver_iterate(solver_constraint *c, int32_t n, rg_real *v);
+void solver_iterate(solver_constraint *c, const int32_t *list, int32_t k, rg_real *v);
 /* Shock propagation (one sweep, rows ordered bottom-up along gravity): each row whose
  * normal lies within 60 degrees of gravity direction (gx, gy) (unit) is solved as if its
  * lower body were immovable, so only the upper body changes.  What the sweeps before it left
@@ -79,6 +81,48 @@ void solver_shock_position(solver_constraint *c, int32_t n, rg_real *pv, rg_real
 int32_t solver_prepare_position(solver_constraint *c, int32_t n, const rg_real *v,
                                 const solver_params *p);
 /* One Gauss-Seidel sweep over the position rows on pseudo-velocities pv. */
-void solver_iterate_position(solver_constraint *c, int32_t n, rg_real *pv);
+void solver_iterate_position(solver_constraint *c, const int32_t *list, int32_t k, rg_real *pv);
+
+/* ---- rows four at a time.  A greedy graph colouring splits the rows into colours whose
+ * rows share no movable body (inverse mass > 0; the ground and kinematic bodies, which no
+ * row changes, may be shared); each colour is packed into groups of four lanes solved
+ * together (SSE2 in the float build on x86, a plain loop over the lanes elsewhere: the
+ * same arithmetic, so the same results).  Rows keep their bottom-up order within a colour.
+ * Rows of bodies already in 32 colours overflow to a list solved one at a time. */
+
+#define SOLVER_LANES 4
+
+typedef struct solver_wide {
+    int32_t a[SOLVER_LANES], b[SOLVER_LANES];
+    rg_real nx[SOLVER_LANES], ny[SOLVER_LANES];
+    rg_real m[SOLVER_LANES], mu[SOLVER_LANES];
+    rg_real ima[SOLVER_LANES], imb[SOLVER_LANES];
+    rg_real vmin[SOLVER_LANES], pn[SOLVER_LANES], pt[SOLVER_LANES];
+    rg_real pmin[SOLVER_LANES], pp[SOLVER_LANES];
+} solver_wide;
+
+/* Most wide rows n rows can need. */
+#define SOLVER_WIDE_ROWS(n) ((n) / SOLVER_LANES + 33)
+
+typedef struct solver_batch {
+    solver_wide *rows;   /* [0, nrows) */
+    int32_t nrows;
+    int32_t *map;        /* per row of c: its wide slot (row * 4 + lane), or -1 */
+    int32_t *over;       /* rows of c in the overflow list, [0, nover) */
+    int32_t nover;
+} solver_batch;
+
+/* Colours and packs rows c[0..n) over solver bodies [0, nbodies), body 0 being the ground
+ * (padding lanes act on it with zero mass): `mask` (nbodies words) and `color` (n) are
+ * scratch; rows, map and over must hold SOLVER_WIDE_ROWS(n), n and n. */
+void solver_pack(const solver_constraint *c, int32_t n, int32_t nbodies, uint32_t *mask,
+                 int32_t *color, solver_batch *out);
+void solver_wide_warm_start(const solver_batch *s, rg_real *v);
+void solver_wide_iterate(solver_batch *s, rg_real *v);
+/* Copies the accumulated impulses pn, pt (or the pseudo impulses pp) back into c. */
+void solver_unpack(const solver_batch *s, solver_constraint *c, int32_t n, int position);
+/* Copies c's position rows (pmin, pp = 0) into the lanes. */
+void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t n);
+void solver_wide_iterate_position(solver_batch *s, rg_real *pv);
 
 #endif
