@@ -65,7 +65,6 @@ void contact_release(rg_world *w)
     broadphase_release(&cw->bp, m);
     mem_free(m, cw->c, (size_t)cw->cap * sizeof *cw->c);
     mem_free(m, cw->awake, (size_t)cw->cap * sizeof *cw->awake);
-    mem_free(m, cw->con, (size_t)cw->cap * sizeof *cw->con);
     mem_free(m, cw->ev, (size_t)cw->cap * 3 * sizeof *cw->ev);
     mem_free(m, cw->pend, (size_t)cw->cap * sizeof *cw->pend);
     if (cw->cap > 0) mem_free(m, cw->batch.rows, SORT_SIZE(cw->cap));
@@ -84,15 +83,13 @@ static rg_status contact_grow(rg_world *w)
     int32_t cap = old < 256 ? 256 : old * 2;
     contact *c = mem_alloc(m, (size_t)cap * sizeof *c);
     int32_t *awake = mem_alloc(m, (size_t)cap * sizeof *awake);
-    solver_constraint *con = mem_alloc(m, (size_t)cap * sizeof *con);
     rg_contact_event *ev = mem_alloc(m, (size_t)cap * 3 * sizeof *ev);
     rg_contact_event *pend = mem_alloc(m, (size_t)cap * sizeof *pend);
     char *sortbuf = mem_alloc(m, SORT_SIZE(cap));
-    if (c == NULL || awake == NULL || con == NULL || ev == NULL || pend == NULL || sortbuf == NULL) {
+    if (c == NULL || awake == NULL || ev == NULL || pend == NULL || sortbuf == NULL) {
         mem_free(m, sortbuf, SORT_SIZE(cap));
         mem_free(m, c, (size_t)cap * sizeof *c);
         mem_free(m, awake, (size_t)cap * sizeof *awake);
-        mem_free(m, con, (size_t)cap * sizeof *con);
         mem_free(m, ev, (size_t)cap * 3 * sizeof *ev);
         mem_free(m, pend, (size_t)cap * sizeof *pend);
         return RG_ERR_OUT_OF_MEMORY;
@@ -105,7 +102,6 @@ static rg_status contact_grow(rg_world *w)
     }
     mem_free(m, cw->c, (size_t)old * sizeof *cw->c);
     mem_free(m, cw->awake, (size_t)old * sizeof *cw->awake);
-    mem_free(m, cw->con, (size_t)old * sizeof *cw->con);
     mem_free(m, cw->ev, (size_t)old * 3 * sizeof *cw->ev);
     mem_free(m, cw->pend, (size_t)old * sizeof *cw->pend);
     if (old > 0) mem_free(m, cw->batch.rows, SORT_SIZE(old));
@@ -123,7 +119,6 @@ static rg_status contact_grow(rg_world *w)
     cw->tkey = cw->key + cap;
     cw->c = c;
     cw->awake = awake;
-    cw->con = con;
     cw->ev = ev;
     cw->pend = pend;
     cw->cap = cap;
@@ -702,7 +697,12 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
         c->s0 = s0;
         c->vn0 = vn0;
         if (d < 0) c->flags |= CT_CLOSING;
-        if (!(c->flags & CT_SENSOR) && d < SPECULATIVE * cw->slop && rg_finite(s0) && rg_finite(vn0)) {
+        /* solved when the pair could close within the step: not only by the free motion
+         * (d), but also when the solver stops either body (an impact below it) while the
+         * other moves on, so each body's own motion toward the other counts */
+        rg_real reach = rg_fabs(A.dx * nx + A.dy * ny) + rg_fabs(B.dx * nx + B.dy * ny);
+        if (!(c->flags & CT_SENSOR) && s0 - reach < SPECULATIVE * cw->slop && rg_finite(s0) &&
+            rg_finite(vn0)) {
             int32_t n = x->n;
             rg_real ima = A.im, imb = B.im;
             if (ima + imb > 0) {
@@ -968,9 +968,10 @@ static void solve(rg_world *w, narrow_ctx *x)
             cw->ord[k] = k;
         }
         radix_sort16(cw->key, cw->ord, cw->tkey, cw->tord, nc);
-        con = cw->con;
-        for (int32_t k = 0; k < nc; k++) con[k] = cw->stage[cw->ord[k]];
+    } else {
+        for (int32_t k = 0; k < nc; k++) cw->ord[k] = k;
     }
+    const int32_t *ord = cw->ord;
     /* the solver's bodies: 0 is the ground, 1..ns the awake bodies the rows meet */
     int32_t ns = x->ns;
     const int32_t *sbody = cw->sbody;
@@ -981,7 +982,7 @@ static void solve(rg_world *w, narrow_ctx *x)
         v[2 * q + 1] = b->vy[sbody[q]];
     }
     solver_batch *sb = &cw->batch;
-    solver_pack(con, nc, ns + 1, cw->cmask, cw->color, sb);
+    solver_pack(con, ord, nc, ns + 1, cw->cmask, cw->color, sb);
     solver_wide_warm_start(sb, v);
     solver_warm_start(con, sb->over, sb->nover, v);
     for (int32_t it = 0; it < cw->iterations; it++) {
@@ -989,7 +990,7 @@ static void solve(rg_world *w, narrow_ctx *x)
         solver_iterate(con, sb->over, sb->nover, v);
     }
     solver_unpack(sb, con, nc, 0);
-    if (shock) solver_shock(con, nc, v, gx, gy);
+    if (shock) solver_shock(con, ord, nc, v, gx, gy);
     /* positions move with the solved velocities, then by the pseudo-velocities of the
      * position pass, which leave the velocities alone */
     for (int32_t q = 1; q <= ns; q++) {
@@ -1008,7 +1009,7 @@ static void solve(rg_world *w, narrow_ctx *x)
             solver_iterate_position(con, sb->over, sb->nover, pv);
         }
         solver_unpack(sb, con, nc, 1);
-        if (shock) solver_shock_position(con, nc, pv, gx, gy);
+        if (shock) solver_shock_position(con, ord, nc, pv, gx, gy);
         cw->pv_valid = 1;
         for (int32_t q = 1; q <= ns; q++) {
             b->x[sbody[q]] += pv[2 * q] * dt;

@@ -72,7 +72,6 @@ typedef struct contact_world {
     int32_t *awake;           /* ids of awake contacts, [0, n_awake) */
     int32_t n_awake;
     int32_t n_touching;
-    solver_constraint *con;   /* [0, cap) */
     solver_constraint *stage; /* [0, cap): rows in contact order, before sorting */
     rg_real *hgt, *hgx;       /* [0, cap): their contact points, then heights along gravity */
     int32_t *ord, *tord;      /* [0, cap): staged rows in solving order, radix scratch */

@@ -63,10 +63,11 @@ void solver_iterate(solver_constraint *c, const int32_t *list, int32_t k, rg_rea
     }
 }
 
-void solver_shock(solver_constraint *c, int32_t n, rg_real *v, rg_real gx, rg_real gy)
+void solver_shock(solver_constraint *c, const int32_t *order, int32_t n, rg_real *v, rg_real gx,
+                  rg_real gy)
 {
     for (int32_t k = 0; k < n; k++) {
-        solver_constraint *q = &c[k];
+        solver_constraint *q = &c[order[k]];
         rg_real ng = q->nx * gx + q->ny * gy; /* > 0: the normal a -> b points down, a is upper */
         if (rg_fabs(ng) < RG_R(0.5)) continue;
         rg_real im = ng > 0 ? q->ima : q->imb;
@@ -95,10 +96,11 @@ void solver_shock(solver_constraint *c, int32_t n, rg_real *v, rg_real gx, rg_re
     }
 }
 
-void solver_shock_position(solver_constraint *c, int32_t n, rg_real *pv, rg_real gx, rg_real gy)
+void solver_shock_position(solver_constraint *c, const int32_t *order, int32_t n, rg_real *pv,
+                           rg_real gx, rg_real gy)
 {
     for (int32_t k = 0; k < n; k++) {
-        solver_constraint *q = &c[k];
+        solver_constraint *q = &c[order[k]];
         rg_real ng = q->nx * gx + q->ny * gy;
         if (rg_fabs(ng) < RG_R(0.5)) continue;
         rg_real im = ng > 0 ? q->ima : q->imb;
@@ -155,15 +157,16 @@ void solver_iterate_position(solver_constraint *c, const int32_t *list, int32_t 
 
 /* ---------------------------------------------------------------- four lanes */
 
-void solver_pack(const solver_constraint *c, int32_t n, int32_t nbodies, uint32_t *mask,
-                 int32_t *color, solver_batch *out)
+void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, int32_t nbodies,
+                 uint32_t *mask, int32_t *color, solver_batch *out)
 {
     const int32_t ground = 0;
     int32_t count[33];
     memset(count, 0, sizeof count);
     memset(mask, 0, (size_t)nbodies * sizeof *mask);
     /* greedy: the first colour neither movable body is in yet */
-    for (int32_t k = 0; k < n; k++) {
+    for (int32_t j = 0; j < n; j++) {
+        int32_t k = order[j];
         const solver_constraint *q = &c[k];
         int ma = q->ima > 0, mb = q->imb > 0;
         uint32_t used = (ma ? mask[q->a] : 0) | (mb ? mask[q->b] : 0);
@@ -192,7 +195,8 @@ void solver_pack(const solver_constraint *c, int32_t n, int32_t nbodies, uint32_
     memset(w, 0, (size_t)rows * sizeof *w);
     for (int32_t r = 0; r < rows; r++)
         for (int l = 0; l < SOLVER_LANES; l++) w[r].a[l] = w[r].b[l] = ground;
-    for (int32_t k = 0; k < n; k++) {
+    for (int32_t j = 0; j < n; j++) {
+        int32_t k = order[j];
         int col = color[k];
         if (col == 32) {
             out->map[k] = -1;

@@ -72,10 +72,12 @@ void solver_iterate(solver_constraint *c, const int32_t *list, int32_t k, rg_rea
  * lower body were immovable, so only the upper body changes.  What the sweeps before it left
  * of a stack's compression is removed in one pass from the ground up; a light body under a
  * heavy one holds.  Dissipative: it only takes approach velocity out of upper bodies. */
-void solver_shock(solver_constraint *c, int32_t n, rg_real *v, rg_real gx, rg_real gy);
+void solver_shock(solver_constraint *c, const int32_t *order, int32_t n, rg_real *v, rg_real gx,
+                  rg_real gy);
 /* The same sweep over the position rows on pseudo-velocities pv: a stack pushed out of the
  * ground is pushed out as a whole, however heavy its top. */
-void solver_shock_position(solver_constraint *c, int32_t n, rg_real *pv, rg_real gx, rg_real gy);
+void solver_shock_position(solver_constraint *c, const int32_t *order, int32_t n, rg_real *pv,
+                           rg_real gx, rg_real gy);
 /* Position rows from the penetration the velocities v leave; returns how many rows need a
  * push (0: the position pass can be skipped). */
 int32_t solver_prepare_position(solver_constraint *c, int32_t n, const rg_real *v,
@@ -112,11 +114,12 @@ typedef struct solver_batch {
     int32_t nover;
 } solver_batch;
 
-/* Colours and packs rows c[0..n) over solver bodies [0, nbodies), body 0 being the ground
- * (padding lanes act on it with zero mass): `mask` (nbodies words) and `color` (n) are
- * scratch; rows, map and over must hold SOLVER_WIDE_ROWS(n), n and n. */
-void solver_pack(const solver_constraint *c, int32_t n, int32_t nbodies, uint32_t *mask,
-                 int32_t *color, solver_batch *out);
+/* Colours and packs rows c[order[0..n)] (in that order) over solver bodies [0, nbodies),
+ * body 0 being the ground (padding lanes act on it with zero mass): `mask` (nbodies words)
+ * and `color` (n) are scratch; rows, map and over must hold SOLVER_WIDE_ROWS(n), n and n.
+ * map and over are indexed by row of c. */
+void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, int32_t nbodies,
+                 uint32_t *mask, int32_t *color, solver_batch *out);
 void solver_wide_warm_start(const solver_batch *s, rg_real *v);
 void solver_wide_iterate(solver_batch *s, rg_real *v);
 /* Copies the accumulated impulses pn, pt (or the pseudo impulses pp) back into c. */
