@@ -10,8 +10,22 @@
 #define BP_LIM 268435456 /* 2^28 */
 #define BP_MIN_BUCKET_BITS 6
 
-static inline rg_real level_cell(int li) { return (rg_real)ldexp(1.0, li + BP_LEVEL_MIN); }
-static inline rg_real level_inv(int li) { return (rg_real)ldexp(1.0, -(li + BP_LEVEL_MIN)); }
+/* Cell sides 2^L m and their inverses, L = BP_LEVEL_MIN .. BP_LEVEL_MAX (exact in float);
+ * the tables must list BP_LEVELS entries. */
+static const double level_cells[BP_LEVELS] = {
+    0x1p-10, 0x1p-9, 0x1p-8, 0x1p-7, 0x1p-6, 0x1p-5, 0x1p-4, 0x1p-3,
+    0x1p-2, 0x1p-1, 0x1p0, 0x1p1, 0x1p2, 0x1p3, 0x1p4, 0x1p5,
+    0x1p6, 0x1p7, 0x1p8, 0x1p9, 0x1p10, 0x1p11, 0x1p12, 0x1p13,
+    0x1p14, 0x1p15, 0x1p16, 0x1p17, 0x1p18, 0x1p19, 0x1p20,
+};
+static const double level_invs[BP_LEVELS] = {
+    0x1p10, 0x1p9, 0x1p8, 0x1p7, 0x1p6, 0x1p5, 0x1p4, 0x1p3,
+    0x1p2, 0x1p1, 0x1p0, 0x1p-1, 0x1p-2, 0x1p-3, 0x1p-4, 0x1p-5,
+    0x1p-6, 0x1p-7, 0x1p-8, 0x1p-9, 0x1p-10, 0x1p-11, 0x1p-12, 0x1p-13,
+    0x1p-14, 0x1p-15, 0x1p-16, 0x1p-17, 0x1p-18, 0x1p-19, 0x1p-20,
+};
+static inline rg_real level_cell(int li) { return (rg_real)level_cells[li]; }
+static inline rg_real level_inv(int li) { return (rg_real)level_invs[li]; }
 
 /* floor(v * inv) clamped to [-LIM, LIM - 1]; inv is a power of two, so v * inv is exact. */
 static inline int64_t cell_coord(rg_real v, rg_real inv)

@@ -239,6 +239,44 @@ static void test_friction_stops_a_sliding_box_where_coulomb_says(void **state)
     rg_world_destroy(w);
 }
 
+/* A pair uses the geometric mean of the frictions: floor 0.25 and box 1 slide as 0.5; and the
+ * larger restitution: a ball with e 0.8 bounces off a floor with e 0 as e = 0.8. */
+static void test_pairs_mix_friction_by_geometric_mean_and_restitution_by_maximum(void **state)
+{
+    (void)state;
+    const double g = 10, v0 = 6;
+    rg_world *w = new_world(-g);
+    rg_body fl = floor_of(w);
+    assert_ok(rg_body_set_friction(w, fl, 0.25f));
+    rg_body b = box(w, RG_BODY_DYNAMIC, 2, 0, 0.5, 0.5, 0.5);
+    assert_ok(rg_body_set_friction(w, b, 1));
+    assert_ok(rg_body_set_velocity(w, b, v2(v0, 0)));
+    step_n(w, 180, DT);
+    assert_near(PX(w, b), v0 * v0 / (2 * 0.5 * g), v0 * DT + 1e-3);
+    /* materials changed on touching bodies apply from the next step */
+    assert_ok(rg_body_set_friction(w, fl, 0));
+    assert_ok(rg_body_set_velocity(w, b, v2(2, 0)));
+    step_n(w, 30, DT);
+    assert_near(VX(w, b), 2, 1e-5);
+    rg_world_destroy(w);
+
+    const double h = 2, e = 0.8, V = sqrt(2 * g * h), bound = (1 + e) * (V + g * DT) * DT + g * DT * DT;
+    w = new_world(-g);
+    floor_of(w);
+    rg_body ball = circle(w, RG_BODY_DYNAMIC, 1, 0, 0.5 + h, 0.5);
+    assert_ok(rg_body_set_restitution(w, ball, (rg_real)e));
+    double apex = 0;
+    int up = 0;
+    for (int i = 0; i < 240; i++) {
+        assert_ok(rg_world_step(w, (rg_real)DT));
+        if (VY(w, ball) > 0) up = 1;
+        if (up) apex = fmax(apex, PY(w, ball) - 0.5);
+        if (up && VY(w, ball) < 0) break;
+    }
+    assert_near(apex, e * e * h, bound);
+    rg_world_destroy(w);
+}
+
 static void test_without_friction_a_box_keeps_sliding(void **state)
 {
     (void)state;
@@ -487,6 +525,7 @@ int main(void)
         cmocka_unit_test(test_elastic_bounces_never_gain_height),
         cmocka_unit_test(test_a_ball_and_a_box_rest_on_the_floor_for_ten_seconds),
         cmocka_unit_test(test_friction_stops_a_sliding_box_where_coulomb_says),
+        cmocka_unit_test(test_pairs_mix_friction_by_geometric_mean_and_restitution_by_maximum),
         cmocka_unit_test(test_without_friction_a_box_keeps_sliding),
         cmocka_unit_test(test_friction_holds_a_circle_on_a_circle_within_the_cone),
         cmocka_unit_test(test_a_pile_of_circles_comes_to_rest_in_its_container),
