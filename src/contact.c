@@ -9,7 +9,7 @@
 #define DEFAULT_FRICTION RG_R(0.6)
 #define FAT_MARGIN       RG_R(0.1)  /* m, at most the shape's larger half extent */
 #ifndef LOOKAHEAD
-#define LOOKAHEAD        RG_R(2)    /* fat boxes reach this many steps of motion ahead */
+#define LOOKAHEAD        RG_R(4)    /* fat boxes reach this many steps of motion ahead */
 #endif
 #define SPECULATIVE      RG_R(4)    /* solve pairs predicted within SPECULATIVE * slop */
 #define COS45            RG_R(0.70710678)
