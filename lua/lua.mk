@@ -78,3 +78,15 @@ bench-lua: $(LUA_MOD) $(LUA_HOST)
 	@$(LUA_HOST) lua/bench_calls.lua --budget 100000000000
 
 -include $(LUA_HOST_OBJ:.o=.d) $(LUA_BIND_OBJ:.o=.d)
+
+# The README's Lua example, extracted and run in the host, so it stays true.
+TEST_RUNS += check-readme-lua
+.PHONY: check-readme-lua
+$(B)/readme_example.lua: README.md
+	@mkdir -p $(@D)
+	awk '/^<!-- example:lua -->/{on=1;next} on&&/^```lua/{inb=1;next} inb&&/^```/{exit} inb{print}' $< > $@
+	@test -s $@ || { echo "README.md has no Lua example"; exit 1; }
+
+check-readme-lua: $(LUA_HOST) $(B)/readme_example.lua
+	@echo "== README Lua example"
+	$(LUA_HOST) $(B)/readme_example.lua --seconds 4 --svg $(B)/readme_example.svg
