@@ -54,10 +54,10 @@ void contact_init(rg_world *w)
     cw->restitution_threshold = RG_R(1);
 }
 
-/* Per-body scratch: 11 reals and 9 int32 per body, and the body views. */
+/* Per-body scratch: 9 reals and 9 int32 per body, and the body views. */
 static size_t scratch_block_size(int32_t n)
 {
-    return (size_t)n * (11 * sizeof(rg_real) + 9 * sizeof(int32_t) + sizeof(cbody)) + 64;
+    return (size_t)n * (9 * sizeof(rg_real) + 9 * sizeof(int32_t) + sizeof(cbody)) + 64;
 }
 
 void contact_release(rg_world *w)
@@ -151,8 +151,6 @@ rg_status contact_prepare(rg_world *w)
     cw->svx0 = (rg_real *)(void *)p; p += r;
     cw->svy0 = (rg_real *)(void *)p; p += r;
     cw->umin = (rg_real *)(void *)p; p += r;
-    cw->lx = (rg_real *)(void *)p; p += r;
-    cw->ly = (rg_real *)(void *)p; p += r;
     cw->sv = (rg_real *)(void *)p; p += 2 * r;
     cw->spv = (rg_real *)(void *)p; p += 2 * r;
     cw->adense = (int32_t *)(void *)p; p += q;
@@ -437,7 +435,6 @@ static void sleep_islands(rg_world *w, rg_real dt, int united)
         int32_t i = dense_of(w, list[k]);
         b->vx[i] = b->vy[i] = 0;
         b->dx[i] = b->dy[i] = 0;
-        b->cflags[i] &= ~CF_FAST;
         body_move_to_partition(w, i, BODY_PART_ASLEEP);
         broadphase_deactivate(bp, list[k]);
     }
@@ -499,6 +496,7 @@ typedef struct pair_ctx {
     int32_t s, is;
     int teleported;
     int failed;
+    int woke;
 } pair_ctx;
 
 static int pair_admitted(const body_store *b, int32_t i, int32_t j)
@@ -532,14 +530,17 @@ static void pair_visit(void *p, int32_t t)
     if (q->teleported && body_partition(w, it) == BODY_PART_ASLEEP) {
         wake_island(w, it);
         q->is = dense_of(w, s);
+        q->woke = 1;
     }
 }
 
-static void find_pairs(rg_world *w)
+/* Searches the pairs of the moved bodies; returns 1 when that woke sleeping bodies. */
+static int find_pairs(rg_world *w)
 {
     contact_world *cw = &w->coll;
     broadphase *bp = &cw->bp;
     int32_t n = bp->n_moved, kept = 0;
+    int woke = 0;
     for (int32_t k = 0; k < n; k++) {
         int32_t s = bp->moved[k];
         const bp_entry *e = &bp->e[s];
@@ -555,7 +556,9 @@ static void find_pairs(rg_world *w)
         q.is = dense_of(w, s);
         q.teleported = (w->b.cflags[q.is] & CF_TELEPORTED) != 0;
         q.failed = 0;
+        q.woke = 0;
         broadphase_query(bp, e->lx, e->ly, e->ux, e->uy, pair_visit, &q);
+        woke |= q.woke;
         if (q.failed)
             bp->e[s].moved = 2; /* out of memory: search again next step */
         else
@@ -571,6 +574,7 @@ static void find_pairs(rg_world *w)
         }
     }
     bp->n_moved = kept;
+    return woke;
 }
 
 /* ---------------------------------------------------------------- narrowphase */
@@ -818,17 +822,24 @@ static void sort_events(rg_contact_event *e, int32_t n)
     }
 }
 
-/* Post-solve safety net for fast bodies: sweep the final path against the non-dynamic
- * shapes they touch and stop at the first impact if the solver left them through one. */
-static void clamp_fast(rg_world *w, int32_t n_fast)
+/* Post-solve safety net: a body whose whole motion this step (integration, contacts and
+ * position correction) exceeds half its size is swept from its start to where the step left
+ * it against the static, kinematic and sleeping shapes it has contacts with; if the path
+ * crosses one, the body stops just short of the first impact and loses its velocity into it.
+ * The solver's time-of-impact rows normally make this a no-op; it catches what an
+ * unconverged solve (a light body crushed by a far heavier one) would push through. */
+static void clamp_fast(rg_world *w, int32_t na)
 {
     contact_world *cw = &w->coll;
     body_store *b = &w->b;
-    for (int32_t k = 0; k < n_fast; k++) {
-        int32_t s = cw->list[k];
-        int32_t i = dense_of(w, s);
-        rg_vec2 p0 = rg_v2(cw->lx[k], cw->ly[k]), p1 = rg_v2(b->x[i], b->y[i]);
+    for (int32_t k = 0; k < na; k++) {
+        int32_t i = cw->adense[k];
+        if (b->type[i] != RG_BODY_DYNAMIC) continue;
+        rg_vec2 p0 = rg_v2(cw->sx0[k], cw->sy0[k]), p1 = rg_v2(b->x[i], b->y[i]);
         rg_vec2 D = rg_v2_sub(p1, p0), hf = rg_v2(b->hx[i], b->hy[i]);
+        rg_real h = rg_min(hf.x, hf.y);
+        if (!(D.x * D.x + D.y * D.y > RG_R(0.25) * h * h)) continue;
+        int32_t s = b->slot[i];
         rg_real tmin = 1;
         rg_vec2 nbest = rg_v2(0, 0), vbest = rg_v2(0, 0);
         for (int32_t id = b->chead[i] - 1; id >= 0; id = next_of(&cw->c[id], s)) {
@@ -842,16 +853,14 @@ static void clamp_fast(rg_world *w, int32_t n_fast)
             rg_vec2 dob = active ? rg_v2(b->dx[j], b->dy[j]) : rg_v2(0, 0);
             rg_vec2 o0 = rg_v2_sub(o1, dob);
             rg_real t;
-            coll_manifold m;
-            if (!coll_sweep(b->shape[j], o0, ho, b->shape[i], p0, hf, rg_v2_sub(D, dob), &t, &m)) continue;
+            coll_manifold hit, end;
+            if (!coll_sweep(b->shape[j], o0, ho, b->shape[i], p0, hf, rg_v2_sub(D, dob), &t, &hit)) continue;
             if (!(t > 0 && t < tmin)) continue;
-            coll_manifold_of(b->shape[j], o1, ho, b->shape[i], p1, hf, &m);
-            if (m.depth >= 0 && m.depth <= cw->slop) continue; /* resting at the end */
+            coll_manifold_of(b->shape[j], o1, ho, b->shape[i], p1, hf, &end);
+            if (end.depth >= 0 && end.depth <= cw->slop) continue; /* resting at the end */
             tmin = t;
-            nbest = m.normal;
+            nbest = hit.normal;
             vbest = active ? rg_v2(b->vx[j], b->vy[j]) : rg_v2(0, 0);
-            coll_sweep(b->shape[j], o0, ho, b->shape[i], p0, hf, rg_v2_sub(D, dob), &t, &m);
-            nbest = m.normal;
         }
         if (tmin >= 1) continue;
         rg_real len = rg_v2_len(D);
@@ -993,6 +1002,7 @@ static void solve(rg_world *w, narrow_ctx *x)
     }
     solver_unpack(sb, con, nc, 0);
     if (shock) solver_shock(con, ord, nc, v, gx, gy);
+    solver_fixed_rows(con, nc, v, 0);
     /* positions move with the solved velocities, then by the pseudo-velocities of the
      * position pass, which leave the velocities alone */
     for (int32_t q = 1; q <= ns; q++) {
@@ -1012,6 +1022,7 @@ static void solve(rg_world *w, narrow_ctx *x)
         }
         solver_unpack(sb, con, nc, 1);
         if (shock) solver_shock_position(con, ord, nc, pv, gx, gy);
+        solver_fixed_rows(con, nc, pv, 1);
         cw->pv_valid = 1;
         for (int32_t q = 1; q <= ns; q++) {
             b->x[sbody[q]] += pv[2 * q] * dt;
@@ -1064,7 +1075,7 @@ void contact_step(rg_world *w, rg_real dt)
     cw->in_step = 1;
     if (cw->shape_count > 0) {
         PROF(-1);
-        int32_t n = b->n_active, n_fast = 0;
+        int32_t n = b->n_active;
         broadphase *bp = &cw->bp;
         int32_t na = bp->n_active;
         narrow_ctx nx;
@@ -1112,21 +1123,11 @@ void contact_step(rg_world *w, rg_real dt)
                 uy = rg_max(uy, uy - my);
             }
             refresh_fat(w, i, lx, ly, ux, uy, mx, my);
-            rg_real h = rg_min(hx, hy);
-            if (b->type[i] == RG_BODY_DYNAMIC && mx * mx + my * my > RG_R(0.25) * h * h) {
-                b->cflags[i] |= CF_FAST;
-                cw->list[n_fast] = b->slot[i];
-                cw->lx[n_fast] = cw->sx0[k];
-                cw->ly[n_fast] = cw->sy0[k];
-                n_fast++;
-            } else {
-                b->cflags[i] &= ~CF_FAST;
-            }
         }
         if (nx.unite)
             for (int32_t k = 0; k < na; k++) cw->uf[k] = k;
         PROF(0);
-        find_pairs(w);
+        nx.woke = find_pairs(w);
         PROF(1);
         for (int32_t k = 0; k < cw->n_awake; k++) {
 #ifdef __GNUC__
@@ -1144,7 +1145,7 @@ void contact_step(rg_world *w, rg_real dt)
         PROF(2);
         solve(w, &nx);
         PROF(3);
-        if (n_fast > 0 && cw->continuous) clamp_fast(w, n_fast);
+        if (cw->continuous) clamp_fast(w, na);
         /* fat boxes must hold the final boxes, for queries and the next step */
         for (int32_t k = 0; k < bp->n_active; k++) {
             int32_t i = dense_of(w, bp->active[k]);
@@ -1224,7 +1225,7 @@ static void remove_shape(rg_world *w, int32_t i)
     w->coll.shape_count--;
     b->shape[i] = RG_SHAPE_NONE;
     b->hx[i] = b->hy[i] = 0;
-    b->cflags[i] &= ~(CF_GROUNDED | CF_FAST | CF_TELEPORTED);
+    b->cflags[i] &= ~(CF_GROUNDED | CF_TELEPORTED);
 }
 
 int32_t contact_body_destroy(rg_world *w, int32_t i)

@@ -28,8 +28,7 @@
 /* body cflags */
 #define CF_SENSOR   1u
 #define CF_GROUNDED 2u
-#define CF_FAST     4u  /* moved more than half its size in the last step */
-#define CF_TELEPORTED 8u /* placed by the API since its last pair search */
+#define CF_TELEPORTED 4u /* placed by the API since its last pair search */
 
 /* contact flags */
 #define CT_TOUCHING 1u
@@ -94,8 +93,7 @@ typedef struct contact_world {
     rg_real *umin;            /* k: island minimum rest time */
     int32_t *uf;              /* k: union-find parents */
     int32_t *ihead, *itail;   /* k: island member lists while falling asleep */
-    int32_t *list;            /* slots (fast bodies, bodies falling asleep) */
-    rg_real *lx, *ly;         /* start positions of fast bodies */
+    int32_t *list;            /* slots of bodies falling asleep */
     int32_t *sidx;            /* i: solver index, valid when sstamp[i] == gen */
     uint32_t *sstamp;         /* i */
     uint32_t gen;             /* solver index generation (one per step, or more) */

@@ -120,6 +120,18 @@ void solver_shock_position(solver_constraint *c, const int32_t *order, int32_t n
     }
 }
 
+void solver_fixed_rows(solver_constraint *c, int32_t n, rg_real *v, int position)
+{
+    for (int32_t k = 0; k < n; k++) {
+        solver_constraint *q = &c[k];
+        if (q->ima > 0 && q->imb > 0) continue;
+        if (position)
+            solver_iterate_position(c, &k, 1, v);
+        else
+            solver_iterate(c, &k, 1, v);
+    }
+}
+
 int32_t solver_prepare_position(solver_constraint *c, int32_t n, const rg_real *v,
                                 const solver_params *p)
 {

@@ -78,6 +78,11 @@ void solver_shock(solver_constraint *c, const int32_t *order, int32_t n, rg_real
  * ground is pushed out as a whole, however heavy its top. */
 void solver_shock_position(solver_constraint *c, const int32_t *order, int32_t n, rg_real *pv,
                            rg_real gx, rg_real gy);
+/* One last sweep over the rows against an immovable body (static, kinematic, sleeping), so
+ * that these win over what the other rows left: a light body squeezed by a far heavier one
+ * may end inside it, but not pushed through a wall.  Velocity rows on v, or position rows on
+ * pseudo-velocities pv. */
+void solver_fixed_rows(solver_constraint *c, int32_t n, rg_real *v, int position);
 /* Position rows from the penetration the velocities v leave; returns how many rows need a
  * push (0: the position pass can be skipped). */
 int32_t solver_prepare_position(solver_constraint *c, int32_t n, const rg_real *v,

@@ -443,6 +443,27 @@ static void test_clearing_a_shape_or_changing_the_filter_ends_contacts(void **st
     rg_world_destroy(w);
 }
 
+static void test_an_end_and_a_new_begin_of_one_pair_come_end_first(void **state)
+{
+    (void)state;
+    rg_world *w = new_world(-10);
+    rg_body fl = floor_of(w);
+    rg_body b = box(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
+    step_n(w, 5);
+    assert_int_equal(rg_world_touching_count(w), 1);
+    /* off and on again between two steps: the contact ends now and begins anew */
+    assert_ok(rg_body_set_filter(w, b, 1, 0));
+    assert_ok(rg_body_set_filter(w, b, 1, 0xFFFFFFFFu));
+    assert_ok(rg_world_step(w, (rg_real)DT));
+    rg_contact_event ev[4];
+    assert_int_equal(events(w, ev, 4), 2);
+    assert_int_equal(ev[0].kind, RG_CONTACT_END);
+    assert_int_equal(ev[1].kind, RG_CONTACT_BEGIN);
+    assert_true(ev[0].a == ev[1].a && ev[0].b == ev[1].b);
+    assert_true(ev[0].a == (fl < b ? fl : b));
+    rg_world_destroy(w);
+}
+
 /* ---------------------------------------------------------------- sensors and filters */
 
 static void test_a_sensor_reports_begin_and_end_but_never_pushes(void **state)
@@ -687,6 +708,39 @@ static void test_disabling_sleep_wakes_everything_and_thresholds_apply(void **st
     assert_int_equal(flag(rg_body_is_awake, w, b), 1);
     step_n(w, 30);
     assert_int_equal(flag(rg_body_is_awake, w, b), 0);
+    /* a sleep time shorter than a step: asleep after one step at rest */
+    assert_ok(rg_world_set_sleep_thresholds(w, 0.05f, 0.001f));
+    assert_ok(rg_body_wake(w, b));
+    assert_ok(rg_world_step(w, (rg_real)DT));
+    assert_int_equal(flag(rg_body_is_awake, w, b), 0);
+    rg_world_destroy(w);
+}
+
+/* Springs join islands: two boxes tied together rest and sleep together; a box tied to a
+ * body without a shape that keeps moving never sleeps. */
+static void test_springs_join_islands(void **state)
+{
+    (void)state;
+    rg_world *w = new_world(-10);
+    floor_of(w);
+    rg_body a = box(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5), b = box(w, RG_BODY_DYNAMIC, 1, 3, 0.5, 0.5, 0.5);
+    uint64_t sp;
+    assert_ok(rg_spring_create(w, a, b, v2(0, 0), 3, 10, 1, &sp));
+    step_n(w, 60);
+    assert_int_equal(flag(rg_body_is_awake, w, a), 0);
+    assert_int_equal(flag(rg_body_is_awake, w, b), 0);
+    /* waking one wakes the other: they are one island */
+    assert_ok(rg_body_wake(w, a));
+    assert_int_equal(flag(rg_body_is_awake, w, b), 1);
+    /* a box tied to a swinging weight without a shape stays awake */
+    rg_body c = box(w, RG_BODY_DYNAMIC, 1, 10, 0.5, 0.5, 0.5);
+    rg_body weight = make_body(w, 1, 12, 3);
+    assert_ok(rg_body_set_gravity_scale(w, weight, 0));
+    assert_ok(rg_body_set_velocity(w, weight, v2(0, 1)));
+    uint64_t sp2;
+    assert_ok(rg_spring_create(w, c, weight, v2(0, 0), 2, 0.5f, 0, &sp2));
+    step_n(w, 120);
+    assert_int_equal(flag(rg_body_is_awake, w, c), 1);
     rg_world_destroy(w);
 }
 
@@ -885,6 +939,25 @@ static void test_a_fast_fall_onto_a_thin_floor_lands_on_it(void **state)
     rg_world_destroy(w);
 }
 
+/* A light ball at 300 m/s rammed from behind by a body ten thousand times heavier, at a thin
+ * wall: whatever the solver makes of that, the ball never ends past the wall. */
+static void test_a_fast_ball_rammed_into_a_thin_wall_stays_on_its_side(void **state)
+{
+    (void)state;
+    for (int k = 0; k < 16; k++) {
+        rg_world *w = new_world(0);
+        box(w, RG_BODY_STATIC, 0, 0, 0, 0.005, 1);
+        double x0 = -1 - (k / 16.0) * 5;
+        rg_body ball = circle(w, RG_BODY_DYNAMIC, 1, x0, 0, 0.05);
+        rg_body ram = box(w, RG_BODY_DYNAMIC, 1e4, x0 - 0.3, 0, 0.2, 0.2);
+        assert_ok(rg_body_set_velocity(w, ball, v2(300, 0)));
+        assert_ok(rg_body_set_velocity(w, ram, v2(300, 0)));
+        step_n(w, 6);
+        assert_true(PX(w, ball) < 0);
+        rg_world_destroy(w);
+    }
+}
+
 /* ---------------------------------------------------------------- cost and memory */
 
 static rg_world *world_with(test_alloc *ta)
@@ -1013,6 +1086,7 @@ int main(void)
         cmocka_unit_test(test_events_are_sorted_and_capacity_only_limits_the_copy),
         cmocka_unit_test(test_destroying_a_body_ends_its_contacts_with_an_end_event),
         cmocka_unit_test(test_clearing_a_shape_or_changing_the_filter_ends_contacts),
+        cmocka_unit_test(test_an_end_and_a_new_begin_of_one_pair_come_end_first),
         cmocka_unit_test(test_a_sensor_reports_begin_and_end_but_never_pushes),
         cmocka_unit_test(test_filters_decide_which_pairs_collide),
         cmocka_unit_test(test_grounded_is_false_in_the_air_and_true_at_rest),
@@ -1023,6 +1097,7 @@ int main(void)
         cmocka_unit_test(test_a_body_landing_on_a_sleeping_pile_wakes_it),
         cmocka_unit_test(test_removing_or_moving_a_support_wakes_what_rests_on_it),
         cmocka_unit_test(test_disabling_sleep_wakes_everything_and_thresholds_apply),
+        cmocka_unit_test(test_springs_join_islands),
         cmocka_unit_test(test_kinematic_and_static_bodies_never_sleep_and_a_moving_platform_wakes_riders),
         cmocka_unit_test(test_raycast_finds_the_closest_shape_with_point_normal_and_fraction),
         cmocka_unit_test(test_raycast_ties_go_to_the_lower_handle_and_long_rays_work),
@@ -1032,6 +1107,7 @@ int main(void)
         cmocka_unit_test(test_continuous_collision_stops_fast_balls_and_boxes_at_thin_walls),
         cmocka_unit_test(test_a_fast_ball_is_stopped_by_a_thin_dynamic_plank_too),
         cmocka_unit_test(test_a_fast_fall_onto_a_thin_floor_lands_on_it),
+        cmocka_unit_test(test_a_fast_ball_rammed_into_a_thin_wall_stays_on_its_side),
         cmocka_unit_test(test_a_world_without_shapes_allocates_nothing_for_collision),
         cmocka_unit_test(test_steady_state_steps_do_not_allocate),
         cmocka_unit_test(test_out_of_memory_on_set_shape_or_step_changes_nothing),

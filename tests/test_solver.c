@@ -421,6 +421,26 @@ static void test_a_light_box_holds_a_box_a_hundred_times_heavier(void **state)
     rg_world_destroy(w);
 }
 
+/* Sixty small balls on one wide dynamic plank: the plank is in more rows than the solver has
+ * colours (32), so some of its rows are solved one at a time; the load still holds. */
+static void test_a_body_in_more_rows_than_colours_still_holds_its_load(void **state)
+{
+    (void)state;
+    rg_world *w = new_world(-10);
+    assert_ok(rg_world_set_sleeping(w, 0));
+    floor_of(w);
+    rg_body plank = box(w, RG_BODY_DYNAMIC, 10, 0, 0.25, 31, 0.25);
+    rg_body ball[60];
+    for (int i = 0; i < 60; i++) ball[i] = circle(w, RG_BODY_DYNAMIC, 1, -29.5 + i, 0.75, 0.25);
+    step_n(w, 300, DT);
+    assert_near(PY(w, plank), 0.25, 0.006);
+    for (int i = 0; i < 60; i++) {
+        assert_near(PY(w, ball[i]), 0.75, 0.011);
+        assert_near(VY(w, ball[i]), 0, 1e-3);
+    }
+    rg_world_destroy(w);
+}
+
 /* ---------------------------------------------------------------- body types */
 
 static void test_kinematic_bodies_push_and_are_not_pushed(void **state)
@@ -531,6 +551,7 @@ int main(void)
         cmocka_unit_test(test_a_pile_of_circles_comes_to_rest_in_its_container),
         cmocka_unit_test(test_a_pile_of_boxes_comes_to_rest_in_its_container),
         cmocka_unit_test(test_a_light_box_holds_a_box_a_hundred_times_heavier),
+        cmocka_unit_test(test_a_body_in_more_rows_than_colours_still_holds_its_load),
         cmocka_unit_test(test_kinematic_bodies_push_and_are_not_pushed),
         cmocka_unit_test(test_static_bodies_never_move),
         cmocka_unit_test(test_position_correction_adds_no_energy),
