@@ -209,7 +209,14 @@ RG_API int32_t rg_spring_is_valid(const rg_world *world, uint64_t spring);
  * A body without a shape never collides and costs nothing in the collision stage; a world
  * where no body has a shape skips the stage entirely.  Contacts are resolved with impulses
  * (restitution, Coulomb friction) and a position correction that adds no energy; bodies
- * at rest fall asleep and stop costing time until something touches or pushes them. */
+ * at rest fall asleep and stop costing time until something touches or pushes them.
+ *
+ * Contacts are speculative: a pair the step would bring together stops exactly where it
+ * touches, within the step.  So an impact turns a body at the end of the step in which it
+ * would have reached the surface, from where it was when that step began: a bouncing body
+ * may turn up to one step's travel short of the surface (6 cm at 6 m/s and 60 Hz), with the
+ * rebound speed and height of an impact at the surface.  An elastic bounce (restitution 1)
+ * neither gains nor loses energy. */
 
 #define RG_SHAPE_NONE   0
 #define RG_SHAPE_CIRCLE 1
@@ -302,9 +309,11 @@ RG_API rg_status rg_world_get_contact_tuning(const rg_world *world, rg_real *out
                                              rg_real *out_restitution_threshold);
 /* Continuous collision (1, the default): the broadphase sees each body's swept path over
  * the step, and a pair whose relative motion in the step exceeds half the smaller shape
- * is solved at its time of impact, so fast bodies never pass through thin walls.  0
- * checks only the shapes where the step leaves them (a discrete check: fast bodies
- * tunnel), for comparison. */
+ * is solved at its time of impact, so fast bodies never pass through thin walls; after the
+ * solve, a body that moved more than half its size is swept once more against the static,
+ * kinematic and sleeping shapes it touches and stopped at the first impact.  0 checks only
+ * the shapes where the step leaves them (a discrete check: fast bodies tunnel), for
+ * comparison. */
 RG_API rg_status rg_world_set_continuous(rg_world *world, int32_t enabled);
 RG_API rg_status rg_world_get_continuous(const rg_world *world, int32_t *out_enabled);
 /* Pairs touching after the last step (sensor overlaps included); 0 for NULL. */
@@ -330,8 +339,10 @@ typedef struct rg_contact_event {
  * capacity is 0.  RG_ERR_INVALID_ARGUMENT for a NULL world, capacity < 0, or out NULL with
  * capacity > 0.  A pair that touches once gives exactly one begin and one end.  Contacts
  * ended between steps (a body destroyed, its shape, sensor flag or filter changed) are
- * reported with the next step's events; an end event repeats the begin's normal, point,
- * depth and speed. */
+ * reported with the next step's events, under the handles they had (a destroyed body's is
+ * stale by then).  An end event carries the pair's last normal and point and the depth and
+ * speed of its begin.  Touching means the step ends with the pair in contact: a body that
+ * jumps off a surface ends its contact in that step. */
 RG_API int32_t rg_world_get_contact_events(const rg_world *world, rg_contact_event *out,
                                            int32_t capacity);
 
