@@ -1,17 +1,30 @@
 /* contact.h: the collide stage of the step: persistent contacts, narrowphase, the solver
  * call, continuous collision, events, grounded flags and sleeping islands.
  *
- * Pairs: every body with a shape has a fat box in the broadphase (its box grown by a margin,
- * the path of its last step and a look-ahead).  A body whose swept box leaves its fat box
- * gets a new fat box and joins the move buffer; only moved bodies query the broadphase, and
- * a query creates a contact for each new overlapping fat box that the filter admits.  A
- * contact lives while the two fat boxes overlap, so a settled pile finds no pairs at all.
+ * Who pays: only bodies with a shape are in the broadphase, and only the awake ones among
+ * them (the broadphase's active list) are visited per step; static and sleeping bodies and
+ * bodies without shapes cost nothing.  A world with no shape skips the stage.
+ *
+ * Pairs: every shaped body has a fat box in the broadphase (its box grown by a margin, the
+ * path of its last step and a look-ahead of four steps of motion).  A body whose swept box
+ * leaves its fat box gets a new one and joins the move buffer; only moved bodies query the
+ * broadphase, and a query creates a contact for each new overlapping fat box that the
+ * filter admits.  A contact lives while the two fat boxes overlap, so a settled pile finds
+ * no pairs at all.
  *
  * Narrowphase: the manifold is taken at the start of the step (positions minus the step's
  * displacement) and extrapolated linearly: s0 is the start separation along the normal and
  * the solver keeps s0 + vn*dt >= 0 (speculative contacts), so a body moving less than its
  * size stops exactly at a surface.  A pair whose relative motion exceeds half the smaller
- * shape uses the time of impact instead (continuous collision).
+ * shape uses the time of impact instead (continuous collision).  A pair is solved when it
+ * could close within the step, counting each body's own motion toward the other (the solver
+ * may stop either).  Touching (events, grounded, islands) means the step's free motion ends
+ * in contact, with a slop of hysteresis.
+ *
+ * Solve: rows are staged in the narrowphase, ordered bottom-up along gravity (radix sort of
+ * the contact heights) and handed to the solver (solver.h); then a post-solve sweep stops
+ * any body the step moved by more than half its size at the first static, kinematic or
+ * sleeping shape its path crosses.
  *
  * Contacts are identified by an id into `c`; the awake ones (at least one body awake) are
  * listed in `awake`, in a deterministic order; each body heads a doubly linked list of its
