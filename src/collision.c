@@ -92,6 +92,74 @@ int coll_manifold_of(int32_t ka, rg_vec2 pa, rg_vec2 ha, int32_t kb, rg_vec2 pb,
     return hit;
 }
 
+/* Box-box grazing: separation along one axis within tol of zero while the other axis
+ * overlaps or closes: the contact is along the touching axis. */
+static int graze_boxes(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 hb, rg_vec2 r, rg_real tol,
+                       coll_manifold *m)
+{
+    rg_vec2 d = rg_v2_sub(pb, pa);
+    rg_real ox = (ha.x + hb.x) - rg_fabs(d.x), oy = (ha.y + hb.y) - rg_fabs(d.y);
+    int y_face = rg_fabs(oy) <= tol && (ox > 0 || d.x * r.x < 0);
+    int x_face = !y_face && rg_fabs(ox) <= tol && (oy > 0 || d.y * r.y < 0);
+    if (!y_face && !x_face) return 0;
+    if (y_face) {
+        rg_real sy = sign_of(d.y);
+        m->normal = rg_v2(0, sy);
+        m->depth = oy;
+        m->point = rg_v2(pb.x - sign_of(d.x) * rg_min(hb.x, rg_fabs(d.x)), pa.y + sy * ha.y);
+    } else {
+        rg_real sx = sign_of(d.x);
+        m->normal = rg_v2(sx, 0);
+        m->depth = ox;
+        m->point = rg_v2(pa.x + sx * ha.x, pb.y - sign_of(d.y) * rg_min(hb.y, rg_fabs(d.y)));
+    }
+    return 1;
+}
+
+/* Circle-box grazing: the circle beside a corner with its edge within tol of a face plane,
+ * moving toward the box along that plane: the face's contact.  q is the circle centre in
+ * the box frame, rc the circle's motion relative to the box; n_out from circle to box. */
+static int graze_circle(rg_vec2 q, rg_real rad, rg_vec2 hb, rg_vec2 rc, rg_real tol, rg_vec2 *n_out,
+                        rg_real *depth)
+{
+    if (!(rg_fabs(q.x) > hb.x && rg_fabs(q.y) > hb.y)) return 0; /* not at a corner */
+    rg_real dx = rg_fabs(q.x) - hb.x, dy = rg_fabs(q.y) - hb.y;
+    if (rg_fabs(dy - rad) <= tol && q.x * rc.x < 0) {
+        *n_out = rg_v2(0, -sign_of(q.y));
+        *depth = rad - dy;
+        return 1;
+    }
+    if (rg_fabs(dx - rad) <= tol && q.y * rc.y < 0) {
+        *n_out = rg_v2(-sign_of(q.x), 0);
+        *depth = rad - dx;
+        return 1;
+    }
+    return 0;
+}
+
+int coll_contact(int32_t ka, rg_vec2 pa, rg_vec2 ha, int32_t kb, rg_vec2 pb, rg_vec2 hb, rg_vec2 r,
+                 rg_real tol, coll_manifold *m)
+{
+    int hit = coll_manifold_of(ka, pa, ha, kb, pb, hb, m);
+    if (ka == RG_SHAPE_CIRCLE && kb == RG_SHAPE_CIRCLE) return hit;
+    if (ka == RG_SHAPE_AABB && kb == RG_SHAPE_AABB) {
+        if (graze_boxes(pa, ha, pb, hb, r, tol, m)) return m->depth >= 0;
+        return hit;
+    }
+    /* circle against box, either order; normals from the circle toward the box */
+    int circle_a = ka == RG_SHAPE_CIRCLE;
+    rg_vec2 pc = circle_a ? pa : pb, pbox = circle_a ? pb : pa, hbox = circle_a ? hb : ha;
+    rg_real rad = circle_a ? ha.x : hb.x;
+    rg_vec2 rc = circle_a ? rg_v2_neg(r) : r; /* the circle's motion relative to the box */
+    rg_vec2 n;
+    rg_real depth;
+    if (!graze_circle(rg_v2_sub(pc, pbox), rad, hbox, rc, tol, &n, &depth)) return hit;
+    m->normal = circle_a ? n : rg_v2_neg(n);
+    m->depth = depth;
+    m->point = rg_v2(pc.x + n.x * (rad - RG_R(0.5) * depth), pc.y + n.y * (rad - RG_R(0.5) * depth));
+    return depth >= 0;
+}
+
 /* Smallest t in [0, 1] with |o + t d - c| = r for a ray starting outside the circle.
  * a t^2 + 2 b t + k = 0 with a = d.d, b = (o - c).d, k = |o - c|^2 - r^2 > 0; the entry root
  * t = k / (-b + sqrt(b^2 - a k)) avoids cancellation. */

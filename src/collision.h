@@ -29,6 +29,15 @@ int coll_circle_aabb(rg_vec2 pc, rg_real r, rg_vec2 pb, rg_vec2 hb, coll_manifol
 int coll_manifold_of(int32_t ka, rg_vec2 pa, rg_vec2 ha, int32_t kb, rg_vec2 pb, rg_vec2 hb,
                      coll_manifold *m);
 
+/* The contact a step starts with: coll_manifold_of, except for grazing.  A body whose side
+ * is flush with a box's face plane (within tol) and that moves onto the box along that
+ * plane slides over its corner instead of catching on it: the contact is that face's, with
+ * its normal.  So a box or a circle sliding along a row of flush boxes (a tile floor, a tile
+ * wall) keeps its speed at the seams, while one moving off the end of a ledge still falls.
+ * r is b's motion relative to a over the step. */
+int coll_contact(int32_t ka, rg_vec2 pa, rg_vec2 ha, int32_t kb, rg_vec2 pb, rg_vec2 hb, rg_vec2 r,
+                 rg_real tol, coll_manifold *m);
+
 /* Ray p(t) = origin + t * d, t in [0, 1], against the rounded box {q : dist(q, box(c, h))
  * <= radius} (a circle when h = 0, a box when radius = 0).  Returns 1 and the entry
  * fraction *t and outward unit normal *n on a hit, 0 on a miss, -1 when the origin lies

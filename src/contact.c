@@ -659,33 +659,37 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
     int active = 1;
     rg_real size = rg_min(rg_min(ha.x, ha.y), rg_min(hb.x, hb.y));
     int slow = r.x * r.x + r.y * r.y <= RG_R(0.25) * size * size;
-    if (cw->continuous && slow && ka == RG_SHAPE_CIRCLE && kb == RG_SHAPE_CIRCLE) {
-        /* the common case inline: two circles at the start of the step */
-        rg_real ex = B.sx - A.sx, ey = B.sy - A.sy;
-        rg_real dist = rg_sqrt(ex * ex + ey * ey);
-        rg_real nx = 0, ny = 1;
-        if (dist > 0) {
-            rg_real inv = 1 / dist;
-            nx = ex * inv;
-            ny = ey * inv;
-        }
-        m.normal = rg_v2(nx, ny);
-        s0 = dist - ha.x - hb.x;
-        rg_real f = ha.x + RG_R(0.5) * s0; /* halfway between the surfaces, from a */
-        m.point = rg_v2(A.sx + nx * f, A.sy + ny * f);
-    } else if (!cw->continuous) {
+    if (!cw->continuous) {
         /* discrete: the shapes where the step left them, extrapolated back */
         coll_manifold_of(ka, rg_v2(A.sx + A.dx, A.sy + A.dy), ha, kb, rg_v2(B.sx + B.dx, B.sy + B.dy), hb, &m);
         s0 = -m.depth - rg_v2_dot(r, m.normal);
-    } else if (!slow) {
-        rg_real t;
-        if (coll_sweep(ka, rg_v2(A.sx, A.sy), ha, kb, rg_v2(B.sx, B.sy), hb, r, &t, &m))
-            s0 = t > 0 ? -t * rg_v2_dot(r, m.normal) : -m.depth;
-        else
-            active = 0;
     } else {
-        coll_manifold_of(ka, rg_v2(A.sx, A.sy), ha, kb, rg_v2(B.sx, B.sy), hb, &m);
-        s0 = -m.depth;
+        if (ka == RG_SHAPE_CIRCLE && kb == RG_SHAPE_CIRCLE) {
+            /* the common case inline: two circles at the start of the step */
+            rg_real ex = B.sx - A.sx, ey = B.sy - A.sy;
+            rg_real dist = rg_sqrt(ex * ex + ey * ey);
+            rg_real nx = 0, ny = 1;
+            if (dist > 0) {
+                rg_real inv = 1 / dist;
+                nx = ex * inv;
+                ny = ey * inv;
+            }
+            m.normal = rg_v2(nx, ny);
+            s0 = dist - ha.x - hb.x;
+            rg_real f = ha.x + RG_R(0.5) * s0; /* halfway between the surfaces, from a */
+            m.point = rg_v2(A.sx + nx * f, A.sy + ny * f);
+        } else {
+            coll_contact(ka, rg_v2(A.sx, A.sy), ha, kb, rg_v2(B.sx, B.sy), hb, r, cw->slop, &m);
+            s0 = -m.depth;
+        }
+        /* apart at the start and fast: the time of impact instead */
+        if (!slow && s0 > cw->slop) {
+            rg_real t;
+            if (coll_sweep(ka, rg_v2(A.sx, A.sy), ha, kb, rg_v2(B.sx, B.sy), hb, r, &t, &m))
+                s0 = t > 0 ? -t * rg_v2_dot(r, m.normal) : -m.depth;
+            else
+                active = 0;
+        }
     }
     uint32_t was = c->flags & CT_TOUCHING, now = 0;
     c->flags &= ~(CT_SOLVE | CT_CLOSING);

@@ -163,6 +163,58 @@ static void test_manifold_of_dispatches_and_flips_the_box_circle_order(void **st
     assert_near(m1.depth, 0.1, TOL);
 }
 
+/* ---------------------------------------------------------------- grazing */
+
+static void test_a_box_sliding_onto_a_flush_tile_grazes_its_corner(void **state)
+{
+    (void)state;
+    coll_manifold m;
+    rg_vec2 tile = v2(0.5, 0.5), body = v2(0.4, 0.4);
+    /* the box rests at the tiles' top level (y 0.4 over a tile centred at y -0.5), 5 cm left
+     * of the next tile, moving right by 13 cm */
+    rg_vec2 pb = v2(-0.95, 0.4), r = v2(0.133, 0);
+    /* the plain test sees a gap along x: the side of the tile */
+    coll_manifold_of(RG_SHAPE_AABB, v2(0, -0.5), tile, RG_SHAPE_AABB, pb, body, &m);
+    assert_vec(m.normal, -1, 0, 0);
+    /* grazing: the top face's contact */
+    coll_contact(RG_SHAPE_AABB, v2(0, -0.5), tile, RG_SHAPE_AABB, pb, body, r, 0.005f, &m);
+    assert_vec(m.normal, 0, 1, 0);
+    assert_near(m.depth, 0, TOL);
+    /* moving away (off a ledge): the plain contact, which lets it fall */
+    coll_contact(RG_SHAPE_AABB, v2(0, -0.5), tile, RG_SHAPE_AABB, pb, body, v2(-0.133, 0), 0.005f, &m);
+    assert_vec(m.normal, -1, 0, 0);
+    /* sliding down along a wall of tiles: the side face */
+    coll_contact(RG_SHAPE_AABB, v2(0, 0), tile, RG_SHAPE_AABB, v2(0.9, 1.0), body, v2(0, -0.2), 0.005f, &m);
+    assert_vec(m.normal, 1, 0, 0);
+    /* too far below the top to graze: it hits the side */
+    coll_contact(RG_SHAPE_AABB, v2(0, -0.5), tile, RG_SHAPE_AABB, v2(-0.95, 0.35), body, r, 0.005f, &m);
+    assert_vec(m.normal, -1, 0, 0);
+}
+
+static void test_a_circle_sliding_onto_a_flush_tile_grazes_its_corner(void **state)
+{
+    (void)state;
+    coll_manifold m;
+    rg_vec2 tile = v2(0.5, 0.5), ball = v2(0.4, 0.4);
+    rg_vec2 pc = v2(-0.7, 0.4); /* on the tiles' top level, 20 cm left of the corner */
+    /* plain: the corner, a tilted normal */
+    coll_manifold_of(RG_SHAPE_CIRCLE, pc, ball, RG_SHAPE_AABB, v2(0, -0.5), tile, &m);
+    assert_true(m.normal.x > 0.4f);
+    /* moving toward the tile along its top: the top face, from circle to box */
+    coll_contact(RG_SHAPE_CIRCLE, pc, ball, RG_SHAPE_AABB, v2(0, -0.5), tile, v2(-0.133, 0), 0.005f, &m);
+    assert_vec(m.normal, 0, -1, 0);
+    assert_near(m.depth, 0, TOL);
+    /* the same with the box first */
+    coll_contact(RG_SHAPE_AABB, v2(0, -0.5), tile, RG_SHAPE_CIRCLE, pc, ball, v2(0.133, 0), 0.005f, &m);
+    assert_vec(m.normal, 0, 1, 0);
+    /* moving away: the corner */
+    coll_contact(RG_SHAPE_CIRCLE, pc, ball, RG_SHAPE_AABB, v2(0, -0.5), tile, v2(0.133, 0), 0.005f, &m);
+    assert_true(m.normal.x > 0.4f);
+    /* circle pairs are never changed */
+    coll_contact(RG_SHAPE_CIRCLE, v2(0, 0), ball, RG_SHAPE_CIRCLE, v2(0.6, 0.3), ball, v2(1, 0), 0.005f, &m);
+    assert_near(m.depth, 0.8 - sqrt(0.45), TOL);
+}
+
 /* ---------------------------------------------------------------- rays */
 
 static void test_ray_hits_a_circle_at_the_entry_fraction(void **state)
@@ -390,6 +442,8 @@ int main(void)
         cmocka_unit_test(test_circle_aabb_centre_inside_is_pushed_out_through_the_nearest_face),
         cmocka_unit_test(test_circle_aabb_centre_on_a_corner_region_boundary),
         cmocka_unit_test(test_manifold_of_dispatches_and_flips_the_box_circle_order),
+        cmocka_unit_test(test_a_box_sliding_onto_a_flush_tile_grazes_its_corner),
+        cmocka_unit_test(test_a_circle_sliding_onto_a_flush_tile_grazes_its_corner),
         cmocka_unit_test(test_ray_hits_a_circle_at_the_entry_fraction),
         cmocka_unit_test(test_ray_hits_a_box_face_with_its_normal),
         cmocka_unit_test(test_ray_misses_short_far_and_parallel),

@@ -313,6 +313,46 @@ static void test_friction_holds_a_circle_on_a_circle_within_the_cone(void **stat
     }
 }
 
+/* ---------------------------------------------------------------- tile seams */
+
+/* A row of 1 m static tiles without friction: a box and a circle slide across 60 seams at
+ * 8 m/s without losing speed (no ghost collisions), and slide off the end of the row and
+ * fall.  Tiles stacked into a wall: a box falls along it without catching. */
+static void test_bodies_slide_across_tile_seams_and_off_the_end(void **state)
+{
+    (void)state;
+    for (int shape = 0; shape < 2; shape++) {
+        rg_world *w = new_world(-10);
+        for (int i = 0; i < 60; i++) {
+            rg_body t = box(w, RG_BODY_STATIC, 0, i, -0.5, 0.5, 0.5);
+            assert_ok(rg_body_set_friction(w, t, 0));
+        }
+        rg_body b = shape ? circle(w, RG_BODY_DYNAMIC, 1, 1, 0.4, 0.4) : box(w, RG_BODY_DYNAMIC, 1, 1, 0.4, 0.4, 0.4);
+        assert_ok(rg_body_set_friction(w, b, 0));
+        assert_ok(rg_body_set_velocity(w, b, v2(8, 0)));
+        for (int i = 0; i < 420; i++) { /* 56 m, all on the tiles */
+            assert_ok(rg_world_step(w, (rg_real)DT));
+            assert_near(VX(w, b), 8, 1e-4);
+            assert_near(PY(w, b), 0.4, 0.006);
+        }
+        step_n(w, 90, DT); /* past the last tile (x 59.5): falling */
+        assert_true(PY(w, b) < -1);
+        rg_world_destroy(w);
+    }
+    rg_world *w = new_world(-10);
+    for (int i = 0; i < 40; i++) {
+        rg_body t = box(w, RG_BODY_STATIC, 0, 0, i, 0.5, 0.5);
+        assert_ok(rg_body_set_friction(w, t, 0));
+    }
+    rg_body b = box(w, RG_BODY_DYNAMIC, 1, 0.9, 38, 0.4, 0.4);
+    assert_ok(rg_body_set_friction(w, b, 0));
+    assert_ok(rg_body_apply_force(w, b, v2(-20, 0)));
+    step_n(w, 60, DT);
+    /* free fall from rest for 1 s, to the step: y = 38 - g dt^2 n(n+1)/2 */
+    assert_near(PY(w, b), 38 - 10 * DT * DT * 60 * 61 / 2, 0.01);
+    rg_world_destroy(w);
+}
+
 /* ---------------------------------------------------------------- piles */
 
 typedef struct pile_stats {
@@ -548,6 +588,7 @@ int main(void)
         cmocka_unit_test(test_pairs_mix_friction_by_geometric_mean_and_restitution_by_maximum),
         cmocka_unit_test(test_without_friction_a_box_keeps_sliding),
         cmocka_unit_test(test_friction_holds_a_circle_on_a_circle_within_the_cone),
+        cmocka_unit_test(test_bodies_slide_across_tile_seams_and_off_the_end),
         cmocka_unit_test(test_a_pile_of_circles_comes_to_rest_in_its_container),
         cmocka_unit_test(test_a_pile_of_boxes_comes_to_rest_in_its_container),
         cmocka_unit_test(test_a_light_box_holds_a_box_a_hundred_times_heavier),
