@@ -199,7 +199,7 @@ static void test_a_circle_sliding_onto_a_flush_tile_grazes_its_corner(void **sta
     rg_vec2 pc = v2(-0.7, 0.4); /* on the tiles' top level, 20 cm left of the corner */
     /* plain: the corner, a tilted normal */
     coll_manifold_of(RG_SHAPE_CIRCLE, pc, ball, RG_SHAPE_AABB, v2(0, -0.5), tile, &m);
-    assert_true(m.normal.x > 0.4f);
+    assert_true(m.normal.x > (rg_real)0.4);
     /* moving toward the tile along its top: the top face, from circle to box */
     coll_contact(RG_SHAPE_CIRCLE, pc, ball, RG_SHAPE_AABB, v2(0, -0.5), tile, v2(-0.133, 0), 0.005f, &m);
     assert_vec(m.normal, 0, -1, 0);
@@ -209,7 +209,7 @@ static void test_a_circle_sliding_onto_a_flush_tile_grazes_its_corner(void **sta
     assert_vec(m.normal, 0, 1, 0);
     /* moving away: the corner */
     coll_contact(RG_SHAPE_CIRCLE, pc, ball, RG_SHAPE_AABB, v2(0, -0.5), tile, v2(0.133, 0), 0.005f, &m);
-    assert_true(m.normal.x > 0.4f);
+    assert_true(m.normal.x > (rg_real)0.4);
     /* circle pairs are never changed */
     coll_contact(RG_SHAPE_CIRCLE, v2(0, 0), ball, RG_SHAPE_CIRCLE, v2(0.6, 0.3), ball, v2(1, 0), 0.005f, &m);
     assert_near(m.depth, 0.8 - sqrt(0.45), TOL);
