@@ -116,7 +116,13 @@ RG_API rg_status rg_world_get_fixed_step(const rg_world *world, rg_real *out_dt,
 /* Adds frame_time (>= 0, finite, seconds) to an accumulator and takes as many fixed steps
  * as fit, at most max_steps_per_advance; time beyond that is dropped (the game slows down
  * instead of spiralling).  *out_steps (may be NULL) receives the number of steps taken.
- * The state after k fixed steps is bit-identical whatever frame times fed the accumulator. */
+ * The state after k fixed steps is bit-identical whatever frame times fed the accumulator.
+ * The contact events read after it (rg_world_get_contact_events) are those of every step it
+ * took, in step order; none when it took no step.  Their buffer grows as needed and then
+ * stays (no allocation in steady state); if it cannot grow for a later step, the advance
+ * stops after the steps whose events it holds and still returns RG_OK: *out_steps tells how
+ * many, the time of the others stays in the accumulator (rg_world_get_alpha may read 1 or
+ * more) and the next advance takes them.  No event is lost and the simulation is the same. */
 RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *out_steps);
 /* accumulator / fixed dt after the last advance, in [0, 1): the blend factor for rendering. */
 RG_API rg_status rg_world_get_alpha(const rg_world *world, rg_real *out_alpha);
@@ -319,7 +325,7 @@ RG_API rg_status rg_world_get_continuous(const rg_world *world, int32_t *out_ena
 /* Pairs touching after the last step (sensor overlaps included); 0 for NULL. */
 RG_API int32_t rg_world_touching_count(const rg_world *world);
 
-/* ---- contact events of the last step, read after it */
+/* ---- contact events of the last step or advance, read after it */
 
 #define RG_CONTACT_BEGIN 0
 #define RG_CONTACT_END   1
@@ -334,9 +340,10 @@ typedef struct rg_contact_event {
     int32_t sensor;     /* 1 when either body is a sensor */
 } rg_contact_event;
 
-/* Returns how many events the last step produced and copies min(count, capacity) of them to
- * out, sorted by (a, b), an end before a begin of the same pair.  out may be NULL when
- * capacity is 0.  RG_ERR_INVALID_ARGUMENT for a NULL world, capacity < 0, or out NULL with
+/* Returns how many events the last rg_world_step produced, or the last rg_world_advance (all
+ * the steps it took, step after step; none when it took no step), and copies min(count,
+ * capacity) of them to out.  Each step's events are sorted by (a, b), an end before a begin of
+ * the same pair.  out may be NULL when capacity is 0.  RG_ERR_INVALID_ARGUMENT for a NULL world, capacity < 0, or out NULL with
  * capacity > 0.  A pair that touches once gives exactly one begin and one end.  Contacts
  * ended between steps (a body destroyed, its shape, sensor flag or filter changed) are
  * reported with the next step's events, under the handles they had (a destroyed body's is

@@ -18,6 +18,7 @@
  *   world:integrator() / set_integrator(name)   world:fixed_step() / set_fixed_step(dt [, max])
  *   world:bodies() --> live bodies in creation order   world:body_count()  world:spring_count()
  *   world:events() --> { kind = "begin" | "end", a, b, nx, ny, x, y, depth, speed, sensor }...
+ *                      (of the last world:step, or of every step of the last world:advance)
  *   world:raycast(x, y, dx, dy [, mask]) --> body, hit_x, hit_y, nx, ny, fraction | nil
  *   world:query_aabb(x0, y0, x1, y1 [, mask]) --> { body... }
  *   world:set_sleeping(on) / sleeping()  set_sleep_thresholds(speed, time)
@@ -1424,7 +1425,8 @@ static int spring_tostring(lua_State *L)
 /* ---------------------------------------------------------------- collision */
 
 #ifdef LRIGID_COLLISION
-/* Pushes the events of the last step of the open world at idx as an array of tables. */
+/* Pushes the events of the last step, or of every step of the last advance, of the open world
+ * at idx as an array of tables. */
 static void push_events(lua_State *L, int idx, rg_world *w)
 {
     int32_t n = rg_world_get_contact_events(w, NULL, 0), i;

@@ -67,7 +67,7 @@ void contact_release(rg_world *w)
     broadphase_release(&cw->bp, m);
     mem_free(m, cw->c, (size_t)cw->cap * sizeof *cw->c);
     mem_free(m, cw->awake, (size_t)cw->cap * sizeof *cw->awake);
-    mem_free(m, cw->ev, (size_t)cw->cap * 3 * sizeof *cw->ev);
+    mem_free(m, cw->ev, (size_t)cw->ev_cap * sizeof *cw->ev);
     mem_free(m, cw->pend, (size_t)cw->cap * sizeof *cw->pend);
     if (cw->cap > 0) mem_free(m, cw->batch.rows, SORT_SIZE(cw->cap));
     mem_free(m, cw->cb, scratch_block_size(cw->scap));
@@ -75,7 +75,13 @@ void contact_release(rg_world *w)
     cw->cap = 0;
 }
 
-/* Doubles contact storage (contacts, awake list, solver rows, events); all-or-nothing. */
+/* Events one step can produce with contact capacity cap: ends of the contacts touching when
+ * it starts (found gone or updated), ends reported between steps (pend, at most cap) and
+ * begins of the contacts touching when it ends: 3 * cap. */
+#define STEP_EVENTS(cap) (3 * (int64_t)(cap))
+
+/* Doubles contact storage (contacts, awake list, solver rows, events); all-or-nothing.  The
+ * event buffer keeps the events held and room for the current step at the new capacity. */
 static rg_status contact_grow(rg_world *w)
 {
     contact_world *cw = &w->coll;
@@ -83,28 +89,32 @@ static rg_status contact_grow(rg_world *w)
     int32_t old = cw->cap;
     if (old > INT32_MAX / 8) return RG_ERR_CAPACITY;
     int32_t cap = old < 256 ? 256 : old * 2;
+    int64_t need = (int64_t)cw->ev_base + STEP_EVENTS(cap);
+    if (need > INT32_MAX) return RG_ERR_CAPACITY;
+    int32_t ev_cap = cw->ev_cap > need ? cw->ev_cap : (int32_t)need;
     contact *c = mem_alloc(m, (size_t)cap * sizeof *c);
     int32_t *awake = mem_alloc(m, (size_t)cap * sizeof *awake);
-    rg_contact_event *ev = mem_alloc(m, (size_t)cap * 3 * sizeof *ev);
+    size_t ev_size = mem_array_size((size_t)ev_cap, sizeof(rg_contact_event));
+    rg_contact_event *ev = ev_size > 0 ? mem_alloc(m, ev_size) : NULL;
     rg_contact_event *pend = mem_alloc(m, (size_t)cap * sizeof *pend);
     char *sortbuf = mem_alloc(m, SORT_SIZE(cap));
     if (c == NULL || awake == NULL || ev == NULL || pend == NULL || sortbuf == NULL) {
         mem_free(m, sortbuf, SORT_SIZE(cap));
         mem_free(m, c, (size_t)cap * sizeof *c);
         mem_free(m, awake, (size_t)cap * sizeof *awake);
-        mem_free(m, ev, (size_t)cap * 3 * sizeof *ev);
+        mem_free(m, ev, ev_size);
         mem_free(m, pend, (size_t)cap * sizeof *pend);
         return RG_ERR_OUT_OF_MEMORY;
     }
     if (old > 0) {
         memcpy(c, cw->c, (size_t)old * sizeof *c);
         memcpy(awake, cw->awake, (size_t)cw->n_awake * sizeof *awake);
-        memcpy(ev, cw->ev, (size_t)cw->n_ev * sizeof *ev);
         memcpy(pend, cw->pend, (size_t)cw->n_pend * sizeof *pend);
     }
+    if (cw->n_ev > 0) memcpy(ev, cw->ev, (size_t)cw->n_ev * sizeof *ev);
     mem_free(m, cw->c, (size_t)old * sizeof *cw->c);
     mem_free(m, cw->awake, (size_t)old * sizeof *cw->awake);
-    mem_free(m, cw->ev, (size_t)old * 3 * sizeof *cw->ev);
+    mem_free(m, cw->ev, (size_t)cw->ev_cap * sizeof *cw->ev);
     mem_free(m, cw->pend, (size_t)old * sizeof *cw->pend);
     if (old > 0) mem_free(m, cw->batch.rows, SORT_SIZE(old));
     /* the wide rows first, for their alignment */
@@ -122,6 +132,7 @@ static rg_status contact_grow(rg_world *w)
     cw->c = c;
     cw->awake = awake;
     cw->ev = ev;
+    cw->ev_cap = ev_cap;
     cw->pend = pend;
     cw->cap = cap;
     /* new ids on the free list, lowest first */
@@ -171,7 +182,32 @@ rg_status contact_prepare(rg_world *w)
 int contact_stage_needed(const rg_world *w)
 {
     const contact_world *cw = &w->coll;
-    return cw->shape_count > 0 || cw->n_ev > 0 || cw->n_pend > 0;
+    return cw->shape_count > 0 || cw->n_pend > 0;
+}
+
+void contact_events_clear(rg_world *w)
+{
+    w->coll.n_ev = 0;
+    w->coll.ev_base = 0;
+}
+
+rg_status contact_events_reserve(rg_world *w)
+{
+    contact_world *cw = &w->coll;
+    int64_t need = (int64_t)cw->n_ev + STEP_EVENTS(cw->cap);
+    if (need <= cw->ev_cap) return RG_OK;
+    if (need > INT32_MAX) return RG_ERR_OUT_OF_MEMORY;
+    /* grow by half again at least, so a run of busy advances reallocates only a few times */
+    int64_t want = (int64_t)cw->ev_cap + cw->ev_cap / 2;
+    int32_t cap = (int32_t)(want > need && want <= INT32_MAX ? want : need);
+    size_t size = mem_array_size((size_t)cap, sizeof(rg_contact_event));
+    rg_contact_event *ev = size > 0 ? mem_alloc(&w->mem, size) : NULL;
+    if (ev == NULL) return RG_ERR_OUT_OF_MEMORY;
+    if (cw->n_ev > 0) memcpy(ev, cw->ev, (size_t)cw->n_ev * sizeof *ev);
+    mem_free(&w->mem, cw->ev, (size_t)cw->ev_cap * sizeof *cw->ev);
+    cw->ev = ev;
+    cw->ev_cap = cap;
+    return RG_OK;
 }
 
 /* ---------------------------------------------------------------- contacts */
@@ -1072,9 +1108,12 @@ void contact_step(rg_world *w, rg_real dt)
 {
     contact_world *cw = &w->coll;
     body_store *b = &w->b;
-    /* the events of this step start with the ends reported between steps */
-    if (cw->n_pend > 0) memcpy(cw->ev, cw->pend, (size_t)cw->n_pend * sizeof *cw->ev);
-    cw->n_ev = cw->n_pend;
+    /* the events of this step follow those of the advance's earlier steps, and start with
+     * the ends reported between steps */
+    int32_t base = cw->n_ev;
+    cw->ev_base = base;
+    if (cw->n_pend > 0) memcpy(cw->ev + base, cw->pend, (size_t)cw->n_pend * sizeof *cw->ev);
+    cw->n_ev = base + cw->n_pend;
     cw->n_pend = 0;
     cw->in_step = 1;
     if (cw->shape_count > 0) {
@@ -1161,7 +1200,8 @@ void contact_step(rg_world *w, rg_real dt)
         PROF(5);
         PROF_REPORT(w);
     }
-    sort_events(cw->ev, cw->n_ev);
+    sort_events(cw->ev + base, cw->n_ev - base);
+    cw->ev_base = cw->n_ev;
     cw->in_step = 0;
 }
 

@@ -91,8 +91,9 @@ typedef struct contact_world {
     int32_t *color;           /* [0, cap): colouring scratch */
     solver_batch batch;       /* the rows four at a time (rows: SOLVER_WIDE_ROWS(cap)) */
 
-    rg_contact_event *ev;     /* events of the last step (3 * cap) */
-    int32_t n_ev;
+    rg_contact_event *ev;     /* events of the last step, or of every step of the last advance */
+    int32_t n_ev, ev_cap;     /* held, room (>= ev_base + 3 * cap during a step) */
+    int32_t ev_base;          /* where the current step's events start */
     rg_contact_event *pend;   /* ends between steps, reported with the next step (cap) */
     int32_t n_pend;
     int32_t in_step;
@@ -135,8 +136,13 @@ void contact_init(struct rg_world *w);
 void contact_release(struct rg_world *w);
 /* Scratch a step needs; call before anything changes. */
 rg_status contact_prepare(struct rg_world *w);
-/* Whether the step must run the collide stage (shapes, or events to deliver or clear). */
+/* Whether the step must run the collide stage (shapes, or ended contacts to report). */
 int contact_stage_needed(const struct rg_world *w);
+/* The events readable so far are dropped: a step or an advance begins. */
+void contact_events_clear(struct rg_world *w);
+/* Room for one more step's events after those held (a later step of one advance);
+ * RG_ERR_OUT_OF_MEMORY changes nothing. */
+rg_status contact_events_reserve(struct rg_world *w);
 /* Before integration: remembers where the awake bodies start. */
 void contact_begin(struct rg_world *w);
 /* After integration: the collide stage. */

@@ -145,6 +145,7 @@ RG_API rg_status rg_world_step(rg_world *world, rg_real dt)
     rg_status st = integrator_prepare(world);
     if (st == RG_OK) st = contact_prepare(world);
     if (st != RG_OK) return st;
+    contact_events_clear(world);
     world_step_prepared(world, dt);
     world->prev_valid = 0;
     return RG_OK;
@@ -176,8 +177,19 @@ RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *
     body_store *b = &world->b;
     rg_real dt = (rg_real)world->fixed_dt;
     int32_t steps = 0;
+    int cut = 0;
+    /* The events readable after an advance are those of all its steps, in step order. */
+    contact_events_clear(world);
     world->accumulator += (double)frame_time;
     while (world->accumulator >= world->fixed_dt && steps < world->max_steps) {
+        /* The first step's events always fit (their room comes with the contact storage);
+         * a later one needs room after the events held.  Without it the advance stops here
+         * and the steps not taken wait in the accumulator for the next advance: no event
+         * is lost and the simulation is the same, only later. */
+        if (steps > 0 && contact_events_reserve(world) != RG_OK) {
+            cut = 1;
+            break;
+        }
         if (b->n_moving > 0) {
             memcpy(b->px, b->x, (size_t)b->n_moving * sizeof *b->x);
             memcpy(b->py, b->y, (size_t)b->n_moving * sizeof *b->y);
@@ -187,7 +199,7 @@ RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *
         steps++;
     }
     /* Past the cap, whole steps are dropped (no spiral of death); the fraction stays. */
-    if (world->accumulator >= world->fixed_dt)
+    if (!cut && world->accumulator >= world->fixed_dt)
         world->accumulator = fmod(world->accumulator, world->fixed_dt);
     if (steps > 0) world->prev_valid = 1;
     if (out_steps != NULL) *out_steps = steps;

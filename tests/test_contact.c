@@ -464,6 +464,148 @@ static void test_an_end_and_a_new_begin_of_one_pair_come_end_first(void **state)
     rg_world_destroy(w);
 }
 
+/* A ball (r 0.1) at 6 m/s, 0.1 m per 1/60 s step, toward a sensor 4 cm thick whose near face
+ * is 8 cm ahead of the ball: its free motion ends overlapping the sensor after steps 1, 2
+ * and 3, and 8 cm past it after step 4.  So one begin in step 1 and one end in step 4. */
+static rg_world *sensor_gate(rg_alloc_fn alloc, void *user, rg_body *gate, rg_body *ball)
+{
+    rg_world *w;
+    assert_ok(rg_world_create_with_allocator(alloc, user, &w));
+    *gate = box(w, RG_BODY_STATIC, 0, 0, 0, 0.02, 1);
+    assert_ok(rg_body_set_sensor(w, *gate, 1));
+    *ball = circle(w, RG_BODY_DYNAMIC, 1, -0.2, 0, 0.1);
+    assert_ok(rg_body_set_velocity(w, *ball, v2(6, 0)));
+    assert_ok(rg_world_set_fixed_step(w, (rg_real)DT, 8));
+    return w;
+}
+
+static void *plain_alloc(void *user, void *ptr, size_t old_size, size_t new_size)
+{
+    (void)user;
+    (void)old_size;
+    if (new_size == 0) {
+        free(ptr);
+        return NULL;
+    }
+    return realloc(ptr, new_size);
+}
+
+static void assert_gate_event(const rg_contact_event *e, int32_t kind, rg_body gate, rg_body ball)
+{
+    assert_int_equal(e->kind, kind);
+    assert_int_equal(e->sensor, 1);
+    assert_true(e->a == (gate < ball ? gate : ball) && e->b == (gate < ball ? ball : gate));
+}
+
+/* A slow frame: one advance takes four steps, the ball enters the sensor in the first and
+ * leaves it in the fourth.  Both events are there, in step order (a step's own order puts
+ * an end before a begin, so a sort over the whole advance would not). */
+static void test_an_advance_reports_the_events_of_every_step_it_took(void **state)
+{
+    (void)state;
+    rg_body gate, ball;
+    rg_world *w = sensor_gate(plain_alloc, NULL, &gate, &ball);
+    int32_t steps = 0;
+    assert_ok(rg_world_advance(w, (rg_real)(4.5 * DT), &steps));
+    assert_int_equal(steps, 4);
+    rg_contact_event ev[4];
+    assert_int_equal(events(w, ev, 4), 2);
+    assert_gate_event(&ev[0], RG_CONTACT_BEGIN, gate, ball);
+    assert_gate_event(&ev[1], RG_CONTACT_END, gate, ball);
+    /* the same through single steps, one event in the first and one in the fourth */
+    rg_body gate2, ball2;
+    rg_world *w2 = sensor_gate(plain_alloc, NULL, &gate2, &ball2);
+    int32_t per_step[4];
+    for (int i = 0; i < 4; i++) {
+        assert_ok(rg_world_step(w2, (rg_real)DT));
+        per_step[i] = events(w2, NULL, 0);
+    }
+    assert_int_equal(per_step[0], 1);
+    assert_int_equal(per_step[1], 0);
+    assert_int_equal(per_step[2], 0);
+    assert_int_equal(per_step[3], 1);
+    rg_world_destroy(w2);
+    /* an advance that takes no step has no events to report; a direct step reports its own */
+    assert_ok(rg_world_advance(w, (rg_real)(0.25 * DT), &steps));
+    assert_int_equal(steps, 0);
+    assert_int_equal(events(w, NULL, 0), 0);
+    rg_world_destroy(w);
+}
+
+/* Advances that keep producing events reach a buffer size and stop allocating. */
+static void test_busy_advances_do_not_allocate_in_steady_state(void **state)
+{
+    (void)state;
+    test_alloc ta = {0, 0, 0, 0};
+    rg_world *w;
+    assert_ok(rg_world_create_with_allocator(test_alloc_fn, &ta, &w));
+    assert_ok(rg_world_set_fixed_step(w, (rg_real)DT, 8));
+    /* balls shuttling elastically between two walls 1.2 m apart, touching one every 7 steps */
+    box(w, RG_BODY_STATIC, 0, -1.1, 0, 0.5, 20);
+    box(w, RG_BODY_STATIC, 0, 1.1, 0, 0.5, 20);
+    for (int i = 0; i < 30; i++) {
+        rg_body b = circle(w, RG_BODY_DYNAMIC, 1, -0.3 + 0.02 * i, i * 1.0 - 15, 0.2);
+        assert_ok(rg_body_set_restitution(w, b, 1));
+        assert_ok(rg_body_set_friction(w, b, 0));
+        assert_ok(rg_body_set_velocity(w, b, v2(3, 0)));
+    }
+    long total = 0;
+    for (int i = 0; i < 60; i++) {
+        int32_t steps;
+        assert_ok(rg_world_advance(w, (rg_real)(8 * DT), &steps));
+        total += events(w, NULL, 0);
+    }
+    assert_true(total > 100);
+    long before = ta.calls;
+    for (int i = 0; i < 60; i++) {
+        int32_t steps;
+        assert_ok(rg_world_advance(w, (rg_real)(8 * DT), &steps));
+        assert_true(events(w, NULL, 0) > 0);
+    }
+    assert_int_equal(ta.calls, before);
+    rg_world_destroy(w);
+    assert_int_equal(ta.live_blocks, 0);
+}
+
+/* An advance whose event buffer cannot grow stops after the steps whose events it holds; the
+ * time of the others stays in the accumulator and the next advance takes them.  Nothing is
+ * lost, and the end state is the one of four single steps. */
+static void test_an_advance_out_of_memory_for_events_stops_early_and_loses_nothing(void **state)
+{
+    (void)state;
+    test_alloc ta = {0, 0, 0, 0};
+    rg_body gate, ball;
+    rg_world *w = sensor_gate(test_alloc_fn, &ta, &gate, &ball);
+    /* a first step from farther away allocates the scratch and the contact (not touching) */
+    assert_ok(rg_body_set_position(w, ball, v2(-0.5, 0)));
+    assert_ok(rg_world_step(w, (rg_real)DT));
+    assert_int_equal(events(w, NULL, 0), 0);
+    assert_ok(rg_body_set_position(w, ball, v2(-0.2, 0)));
+    ta.fail_at = ta.calls + 1;
+    int32_t steps = -1;
+    assert_ok(rg_world_advance(w, (rg_real)(4.5 * DT), &steps));
+    assert_int_equal(steps, 1); /* step 2 needed room after the begin event */
+    rg_contact_event ev[4];
+    assert_int_equal(events(w, ev, 4), 1);
+    assert_gate_event(&ev[0], RG_CONTACT_BEGIN, gate, ball);
+    rg_real alpha;
+    assert_ok(rg_world_get_alpha(w, &alpha));
+    assert_near(alpha, 3.5, 1e-3);
+    ta.fail_at = 0;
+    assert_ok(rg_world_advance(w, 0, &steps));
+    assert_int_equal(steps, 3);
+    assert_int_equal(events(w, ev, 4), 1);
+    assert_gate_event(&ev[0], RG_CONTACT_END, gate, ball);
+    /* the same four steps as a fresh world's */
+    rg_body gate2, ball2;
+    rg_world *w2 = sensor_gate(plain_alloc, NULL, &gate2, &ball2);
+    for (int i = 0; i < 4; i++) assert_ok(rg_world_step(w2, (rg_real)DT));
+    assert_true(pos_of(w, ball).x == pos_of(w2, ball2).x);
+    rg_world_destroy(w2);
+    rg_world_destroy(w);
+    assert_int_equal(ta.live_blocks, 0);
+}
+
 /* ---------------------------------------------------------------- sensors and filters */
 
 static void test_a_sensor_reports_begin_and_end_but_never_pushes(void **state)
@@ -1087,6 +1229,9 @@ int main(void)
         cmocka_unit_test(test_destroying_a_body_ends_its_contacts_with_an_end_event),
         cmocka_unit_test(test_clearing_a_shape_or_changing_the_filter_ends_contacts),
         cmocka_unit_test(test_an_end_and_a_new_begin_of_one_pair_come_end_first),
+        cmocka_unit_test(test_an_advance_reports_the_events_of_every_step_it_took),
+        cmocka_unit_test(test_busy_advances_do_not_allocate_in_steady_state),
+        cmocka_unit_test(test_an_advance_out_of_memory_for_events_stops_early_and_loses_nothing),
         cmocka_unit_test(test_a_sensor_reports_begin_and_end_but_never_pushes),
         cmocka_unit_test(test_filters_decide_which_pairs_collide),
         cmocka_unit_test(test_grounded_is_false_in_the_air_and_true_at_rest),

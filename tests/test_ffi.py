@@ -295,6 +295,29 @@ def contact_events_read_through_ctypes():
     lib.rg_world_destroy(w)
 
 
+@test
+def one_advance_of_several_steps_reports_every_steps_events():
+    # A slow frame: one advance takes four 1/60 s steps while a ball (r 0.1, 6 m/s, 0.1 m a
+    # step) crosses a 4 cm sensor whose near face is 8 cm ahead: it enters in the first
+    # step and leaves in the fourth, and both events are read after the advance, in order.
+    w = new_world()
+    gate = body(w, STATIC, 0, 0, 0)
+    lib.rg_body_set_aabb(w, gate, 0.02, 1)
+    lib.rg_body_set_sensor(w, gate, 1)
+    ball = body(w, DYNAMIC, 1, -0.2, 0)
+    lib.rg_body_set_circle(w, ball, 0.1)
+    lib.rg_body_set_velocity(w, ball, Vec2(6, 0))
+    lib.rg_world_set_fixed_step(w, 1.0 / 60, 8)
+    steps = C.c_int32(-1)
+    check(lib.rg_world_advance(w, 4.5 / 60, C.byref(steps)) == OK and steps.value == 4, "four steps")
+    n = lib.rg_world_get_contact_events(w, None, 0)
+    buf = (ContactEvent * 4)()
+    check(n == 2 and lib.rg_world_get_contact_events(w, buf, 4) == 2, "two events, got %d" % n)
+    check([buf[0].kind, buf[1].kind] == [BEGIN, END], "begin then end")
+    check(all(e.sensor == 1 and {e.a, e.b} == {gate.value, ball.value} for e in buf[:2]), "the pair")
+    lib.rg_world_destroy(w)
+
+
 def main():
     passed = failed = 0
     for t in TESTS:
