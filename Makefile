@@ -41,9 +41,12 @@ CMOCKA_LIBS := -lcmocka
 TEST_SRC := $(wildcard tests/test_*.c)
 TEST_BINS := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_SRC))
 
-# Fragments append to these.
+# Fragments append to these; they are included here, before any rule uses the lists
+# (a prerequisite list is expanded when make reads the rule).
 ALL_TARGETS := $(LIB_A) $(LIB_SO)
 TEST_RUNS := check-c check-ffi check-readme check-exports
+.DEFAULT_GOAL := all
+include $(sort $(wildcard lua/*.mk tools/*.mk))
 
 .PHONY: all test test-all deps sanitize install clean run run-main bench charts $(TEST_RUNS)
 all: $(ALL_TARGETS)
@@ -132,7 +135,5 @@ install: $(LIB_A) $(LIB_SO) $(B)/rigid.pc
 clean:
 	rm -rf build
 
-# Lua binding and host, tools (seed scene, accuracy lab, benchmark): their own fragments.
-include $(sort $(wildcard lua/*.mk tools/*.mk))
 
 -include $(LIB_OBJ:.o=.d) $(TEST_BINS:=.d)

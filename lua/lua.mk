@@ -31,7 +31,6 @@ LUA_STAMP := $(B)/lua/collision-$(if $(LUA_COLLISION),on,off)
 ALL_TARGETS += $(LUA_MOD) $(LUA_HOST)
 TEST_RUNS += check-lua
 # The Makefile expands `all:` and .PHONY before it includes the fragments.
-all: $(LUA_MOD) $(LUA_HOST)
 .PHONY: check-lua bench-lua
 
 $(LUA_STAMP):
