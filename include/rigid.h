@@ -218,11 +218,19 @@ RG_API int32_t rg_spring_is_valid(const rg_world *world, uint64_t spring);
  * at rest fall asleep and stop costing time until something touches or pushes them.
  *
  * Contacts are speculative: a pair the step would bring together stops exactly where it
- * touches, within the step.  So an impact turns a body at the end of the step in which it
- * would have reached the surface, from where it was when that step began: a bouncing body
- * may turn up to one step's travel short of the surface (6 cm at 6 m/s and 60 Hz), with the
- * rebound speed and height of an impact at the surface.  An elastic bounce (restitution 1)
- * neither gains nor loses energy. */
+ * touches, within the step.  Impacts are timed: a body whose free motion in a step closes its
+ * gap to a surface (or to several at one moment, as across a tile seam), a fraction t into
+ * the step, moves freely until then and with its outgoing velocity after.  A bounce turns at
+ * the surface: the body ends the step at surface + v_out * (1 - t) * dt along the normal,
+ * v_out being restitution times its speed at the impact less what gravity and the other
+ * forces took off since; the rebound rises to restitution^2 times the drop height within
+ * g*dt^2/8, and an elastic bounce (restitution 1) neither gains nor loses energy.  A landing
+ * without a bounce ends its step on the surface with no velocity into it (and grounded).
+ * A body that meets two surfaces at different moments of one step, that is hit while it
+ * touches something, or that lands with another movable body near it (a tower falling as
+ * one) is stopped at the surface from where the step began instead: it ends the step
+ * touching, its velocity into the surface reads until the next step, and a bounce turns it
+ * up to one step's travel short of the surface. */
 
 #define RG_SHAPE_NONE   0
 #define RG_SHAPE_CIRCLE 1

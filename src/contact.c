@@ -13,8 +13,8 @@
 #endif
 #define SPECULATIVE      RG_R(4)    /* solve pairs predicted within SPECULATIVE * slop */
 #define COS45            RG_R(0.70710678)
-/* per contact: stage, hgt, hgx, ord, tord, map, over, color, key, tkey; then the wide rows */
-#define SORT_BYTES (sizeof(solver_constraint) + 2 * sizeof(rg_real) + 5 * sizeof(int32_t) + 2 * sizeof(uint16_t))
+/* per contact: stage, hgt, hgx, ord, tord, map, over, color, imp, key, tkey; then the wide rows */
+#define SORT_BYTES (sizeof(solver_constraint) + 2 * sizeof(rg_real) + 6 * sizeof(int32_t) + 2 * sizeof(uint16_t))
 #define SORT_SIZE(cap) ((size_t)(cap) * SORT_BYTES + 64 + (size_t)SOLVER_WIDE_ROWS(cap) * sizeof(solver_wide))
 
 static inline int32_t dense_of(const rg_world *w, int32_t slot)
@@ -54,10 +54,10 @@ void contact_init(rg_world *w)
     cw->restitution_threshold = RG_R(1);
 }
 
-/* Per-body scratch: 9 reals and 9 int32 per body, and the body views. */
+/* Per-body scratch: 10 reals and 9 int32 per body, and the body views. */
 static size_t scratch_block_size(int32_t n)
 {
-    return (size_t)n * (9 * sizeof(rg_real) + 9 * sizeof(int32_t) + sizeof(cbody)) + 64;
+    return (size_t)n * (10 * sizeof(rg_real) + 9 * sizeof(int32_t) + sizeof(cbody)) + 64;
 }
 
 void contact_release(rg_world *w)
@@ -127,7 +127,8 @@ static rg_status contact_grow(rg_world *w)
     cw->batch.map = cw->tord + cap;
     cw->batch.over = cw->batch.map + cap;
     cw->color = cw->batch.over + cap;
-    cw->key = (uint16_t *)(void *)(cw->color + cap);
+    cw->imp = cw->color + cap;
+    cw->key = (uint16_t *)(void *)(cw->imp + cap);
     cw->tkey = cw->key + cap;
     cw->c = c;
     cw->awake = awake;
@@ -164,6 +165,7 @@ rg_status contact_prepare(rg_world *w)
     cw->umin = (rg_real *)(void *)p; p += r;
     cw->sv = (rg_real *)(void *)p; p += 2 * r;
     cw->spv = (rg_real *)(void *)p; p += 2 * r;
+    cw->stoi = (rg_real *)(void *)p; p += r;
     cw->adense = (int32_t *)(void *)p; p += q;
     cw->sidx = (int32_t *)(void *)p; p += q;
     cw->sstamp = (uint32_t *)(void *)p; p += q;
@@ -638,6 +640,7 @@ typedef struct narrow_ctx {
     int32_t na;         /* awake shaped bodies then (the island list's range) */
     int32_t nc;         /* staged rows */
     int32_t ns;         /* solver bodies, 0 being the ground */
+    int32_t nimp;       /* staged impact rows (cw->imp) */
     int woke;
     int unite;          /* join islands (sleeping is near) */
     solver_params p;
@@ -766,6 +769,15 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
                 q->mu = c->mu;
                 q->s0 = s0;
                 q->vmin = solver_vmin(s0, vn0, c->e, d < 0, &x->p);
+                /* An impact: the free motion closes the gap of a pair that was apart, at
+                 * the fraction toi of the step (solve decides whether to time it).  A pair
+                 * in contact (touching after the last step, or overlapping) has toi 0: it
+                 * may carry weight or pass on an impulse at any moment of the step.  A pair
+                 * apart that the free motion does not close has toi -1. */
+                rg_real toi = was || s0 <= 0 ? 0 : -1;
+                if (d < 0) toi = s0 > 0 && !was ? s0 / (s0 - d) : 0;
+                if (toi > 0) cw->imp[x->nimp++] = x->nc;
+                q->toi = c->toi = toi;
                 q->pn = c->pn;
                 q->pt = c->pt;
                 q->cid = id;
@@ -955,6 +967,7 @@ static void restage(rg_world *w, narrow_ctx *x)
     int32_t n = b->n_active, nc = 0;
     next_gen(cw);
     x->ns = 0;
+    x->nimp = 0;
     for (int32_t k = 0; k < cw->n_awake; k++) {
         int32_t id = cw->awake[k];
         contact *c = &cw->c[id];
@@ -979,6 +992,8 @@ static void restage(rg_world *w, narrow_ctx *x)
         q->mu = c->mu;
         q->s0 = c->s0;
         q->vmin = solver_vmin(c->s0, c->vn0, c->e, (c->flags & CT_CLOSING) != 0, &x->p);
+        q->toi = c->toi;
+        if (q->toi > 0) cw->imp[x->nimp++] = nc;
         q->pn = c->pn;
         q->pt = c->pt;
         q->cid = id;
@@ -986,6 +1001,80 @@ static void restage(rg_world *w, narrow_ctx *x)
     }
     x->n = n;
     x->nc = nc;
+}
+
+/* Impacts of one body within this fraction of the step of each other count as one (a box
+ * across a tile seam meets both tiles at once, to rounding). */
+#define SAME_IMPACT RG_R(1e-4)
+
+/* The fraction of the step at which movable body i (dense) meets what it meets, if it can be
+ * timed, else 0.  It can when its solved rows are impacts at one moment and rows with
+ * immovable bodies that stay apart, with at most one of them with another movable body, an
+ * impact (*partner: that body, else -1).  No body in contact with it, and no body near it
+ * but that partner, then has a velocity that depends on the moment of its impact. */
+static rg_real impact_time(const rg_world *w, int32_t i, int32_t n, int32_t *partner)
+{
+    const contact_world *cw = &w->coll;
+    const body_store *b = &w->b;
+    int32_t s = b->slot[i];
+    rg_real t0 = RG_HUGE, t1 = 0;
+    *partner = -1;
+    for (int32_t id = b->chead[i] - 1; id >= 0; id = next_of(&cw->c[id], s)) {
+        const contact *c = &cw->c[id];
+        if (!(c->flags & CT_SOLVE)) continue;
+        int32_t j = dense_of(w, other_of(c, s));
+        int impact = c->toi > 0;
+        if (c->toi >= 0) {
+            if (!impact) return 0;
+            t0 = rg_min(t0, c->toi);
+            t1 = rg_max(t1, c->toi);
+        }
+        if (j < n && b->inv_mass[j] > 0) {
+            if (!impact || *partner >= 0) return 0;
+            *partner = j;
+        }
+    }
+    return t0 <= t1 && t1 - t0 <= SAME_IMPACT ? t0 : 0;
+}
+
+/* Whether movable body i is timed, at *t: it can be, and so can the partner of its impact with
+ * another movable body (whose only such row is that impact). */
+static int timed_body(const rg_world *w, int32_t i, int32_t n, rg_real *t)
+{
+    int32_t p, q;
+    *t = impact_time(w, i, n, &p);
+    return *t > 0 && (p < 0 || impact_time(w, p, n, &q) > 0);
+}
+
+/* Timed impacts (contact.h): an impact row whose movable bodies are all timed aims at the
+ * velocity the impact leaves (solver_vout), and stoi[q] becomes the fraction of the step at
+ * which solver body q's velocity changes (0: at the start, as the speculative rows assume).
+ * A body that is not timed shares no row with a timed one but with immovable bodies, so it
+ * solves exactly as without timing.  Costs nothing in a step without impacts.  Returns
+ * whether any body is timed. */
+static int time_impacts(rg_world *w, narrow_ctx *x)
+{
+    contact_world *cw = &w->coll;
+    const body_store *b = &w->b;
+    if (x->nimp == 0) return 0;
+    memset(cw->stoi, 0, (size_t)(x->ns + 1) * sizeof *cw->stoi);
+    int any = 0;
+    for (int32_t k = 0; k < x->nimp; k++) {
+        solver_constraint *r = &cw->stage[cw->imp[k]];
+        int32_t ia = r->a > 0 ? cw->sbody[r->a] : -1, ib = r->b > 0 ? cw->sbody[r->b] : -1;
+        rg_real ta = 0, tb = 0;
+        if (r->ima > 0 && !timed_body(w, ia, x->n, &ta)) continue;
+        if (r->imb > 0 && !timed_body(w, ib, x->n, &tb)) continue;
+        rg_real v1n = 0;
+        if (ib >= 0) v1n += b->vx[ib] * r->nx + b->vy[ib] * r->ny;
+        if (ia >= 0) v1n -= b->vx[ia] * r->nx + b->vy[ia] * r->ny;
+        const contact *c = &cw->c[r->cid];
+        r->vmin = solver_vout(c->vn0, v1n, r->toi, c->e, &x->p);
+        if (r->ima > 0) cw->stoi[r->a] = ta;
+        if (r->imb > 0) cw->stoi[r->b] = tb;
+        any = 1;
+    }
+    return any;
 }
 
 static void solve(rg_world *w, narrow_ctx *x)
@@ -1023,6 +1112,7 @@ static void solve(rg_world *w, narrow_ctx *x)
         for (int32_t k = 0; k < nc; k++) cw->ord[k] = k;
     }
     const int32_t *ord = cw->ord;
+    int timed = time_impacts(w, x);
     /* the solver's bodies: 0 is the ground, 1..ns the awake bodies the rows meet */
     int32_t ns = x->ns;
     const int32_t *sbody = cw->sbody;
@@ -1044,13 +1134,27 @@ static void solve(rg_world *w, narrow_ctx *x)
     if (shock) solver_shock(con, ord, nc, v, gx, gy);
     solver_fixed_rows(con, nc, v, 0);
     /* positions move with the solved velocities, then by the pseudo-velocities of the
-     * position pass, which leave the velocities alone */
+     * position pass, which leave the velocities alone.  A timed body's velocity changes at
+     * its impact, t into the step; v then holds the velocity of its whole step's motion, for
+     * the position pass to see where the step leaves it. */
     for (int32_t q = 1; q <= ns; q++) {
         int32_t i = sbody[q];
-        b->x[i] += (v[2 * q] - b->vx[i]) * dt;
-        b->y[i] += (v[2 * q + 1] - b->vy[i]) * dt;
-        b->vx[i] = v[2 * q];
-        b->vy[i] = v[2 * q + 1];
+        rg_real dvx = v[2 * q] - b->vx[i], dvy = v[2 * q + 1] - b->vy[i];
+        rg_real t = timed ? cw->stoi[q] : 0;
+        if (t > 0) {
+            rg_real after = 1 - t, fx = b->vx[i], fy = b->vy[i];
+            b->x[i] += dvx * after * dt;
+            b->y[i] += dvy * after * dt;
+            b->vx[i] = v[2 * q];
+            b->vy[i] = v[2 * q + 1];
+            v[2 * q] = fx + dvx * after;
+            v[2 * q + 1] = fy + dvy * after;
+        } else {
+            b->x[i] += dvx * dt;
+            b->y[i] += dvy * dt;
+            b->vx[i] = v[2 * q];
+            b->vy[i] = v[2 * q + 1];
+        }
     }
     if (cw->position > 0 && solver_prepare_position(con, nc, v, &x->p) > 0) {
         rg_real *pv = cw->spv;
@@ -1128,6 +1232,7 @@ void contact_step(rg_world *w, rg_real dt)
         nx.na = na;
         nx.nc = 0;
         nx.ns = 0;
+        nx.nimp = 0;
         nx.woke = 0;
         nx.unite = cw->sleeping && cw->near_sleep;
         nx.p.dt = dt;
@@ -1136,6 +1241,9 @@ void contact_step(rg_world *w, rg_real dt)
         nx.p.bias_rate = cw->bias_rate;
         nx.p.max_push = cw->max_push;
         nx.p.restitution_threshold = cw->restitution_threshold;
+        nx.p.stagger = w->integrator == RG_INTEGRATOR_SEMI_IMPLICIT_EULER ? RG_R(0.5)
+                     : w->integrator == RG_INTEGRATOR_EXPLICIT_EULER     ? RG_R(-0.5)
+                                                                         : 0;
         /* the awake shaped bodies only: displacements of the integration, the step's view
          * of each, swept boxes and fat boxes */
         cbody *cb = cw->cb;

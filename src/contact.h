@@ -26,6 +26,18 @@
  * any body the step moved by more than half its size at the first static, kinematic or
  * sleeping shape its path crosses.
  *
+ * Timed impacts: an impact is a pair apart after the last step whose free motion closes the
+ * gap s0 > 0 within this one, at the fraction t = s0 / (approach distance) of the step.  A
+ * body whose rows are impacts at one t (one, or several at once: a box landing across a
+ * tile seam) and rows with immovable bodies that stay apart moves freely until t and with
+ * its solved velocity after it: it ends at x_free + (1 - t) dt (v - v_free), so a bounce turns
+ * at the surface and leaves at solver_vout for the rest of the step, and a landing ends on
+ * the surface with no velocity into it.  It may share a row with one other movable body if
+ * that row is an impact timed at both ends (two balls colliding).  Every other body (in
+ * contact with something, near another body, meeting two things at different moments)
+ * keeps the speculative rows, which stop it at the surface from where the step began, and
+ * shares no row with a timed one but with immovable bodies, so it solves as without timing.
+ *
  * Contacts are identified by an id into `c`; the awake ones (at least one body awake) are
  * listed in `awake`, in a deterministic order; each body heads a doubly linked list of its
  * contacts (`chead` in the body fields). */
@@ -61,6 +73,7 @@ typedef struct contact {
     rg_real vn0;              /* last relative normal velocity at the start of the step, m/s */
     rg_real depth, speed;     /* at the begin, for the events */
     rg_real pn, pt;           /* accumulated impulses, N*s (warm start) */
+    rg_real toi;              /* its solver row's toi (solver.h) */
 } contact;
 
 /* The step's view of a body, cached once per step for the awake ones (one cache line's worth
@@ -89,6 +102,7 @@ typedef struct contact_world {
     int32_t *ord, *tord;      /* [0, cap): staged rows in solving order, radix scratch */
     uint16_t *key, *tkey;     /* [0, cap): their sort keys, radix scratch */
     int32_t *color;           /* [0, cap): colouring scratch */
+    int32_t *imp;             /* [0, cap): staged rows that are impacts (toi > 0) */
     solver_batch batch;       /* the rows four at a time (rows: SOLVER_WIDE_ROWS(cap)) */
 
     rg_contact_event *ev;     /* events of the last step, or of every step of the last advance */
@@ -114,6 +128,7 @@ typedef struct contact_world {
     int32_t *sbody;           /* q: dense index of solver body q (q >= 1; 0 is the ground) */
     rg_real *sv;              /* q: solver velocities, pairs */
     rg_real *spv;             /* q: pseudo-velocities of the position pass, pairs */
+    rg_real *stoi;            /* q: fraction of the step at which its velocity changes */
     int32_t pv_valid;         /* spv holds this step's position pass */
     uint32_t *cmask;          /* q: colouring, the colours each body is in */
     int32_t scap;

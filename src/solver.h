@@ -9,8 +9,10 @@
  *   1. velocity iterations: vn >= vmin, where vmin = -s0/dt lets a pair that starts a gap
  *      s0 apart close it within the step and no further (a speculative contact), vmin = 0
  *      holds a touching pair, and vmin = -e * vn0 bounces an impact faster than the
- *      restitution threshold (vn0: the approach velocity at the start of the step).  No position error enters these rows, so the velocities
- *      that leave the step carry no push.
+ *      restitution threshold (vn0: the approach velocity at the start of the step); a timed
+ *      impact (contact.h) aims at the velocity it leaves with instead, solver_vout.  No
+ *      position error enters these rows, so the velocities that leave the step carry no
+ *      push.
  *      Under gravity a final shock-propagation sweep (below) settles stacks at once.
  *   2. position iterations on pseudo-velocities that start at zero each step and only move
  *      positions: the penetration left after the velocity pass, s1 = s0 + vn*dt < -slop, is
@@ -34,6 +36,9 @@ typedef struct solver_constraint {
     rg_real pmin;      /* position row: pseudo vn >= pmin, m/s */
     rg_real pn, pt;    /* accumulated normal and friction impulses, N*s */
     rg_real pp;        /* accumulated pseudo impulse, N*s */
+    rg_real toi;       /* the free motion closes the pair's gap at this fraction of the
+                        * step, in (0, 1); 0 for a pair in contact; -1 for one apart that
+                        * it does not close */
     int32_t cid;       /* the contact it came from */
 } solver_constraint;
 
@@ -43,13 +48,15 @@ typedef struct solver_params {
     rg_real bias_rate;     /* 1 */
     rg_real max_push;      /* m/s */
     rg_real restitution_threshold; /* m/s */
+    rg_real stagger;       /* where the integrator's velocities sit in time (solver_vout) */
 } solver_params;
 
-/* The velocity row of a contact that starts s0 apart (m) with relative normal velocity vn0
- * (m/s, at the start of the step) and restitution e; `closing`: the step's free motion would
- * make the pair overlap.  The bounce reverses the velocity the pair arrived with, vn0, not
- * the one forces added during the step: with e = 1 an impact then neither gains nor loses
- * energy, whatever the phase of the impact within the step. */
+/* The speculative velocity row of a contact that starts s0 apart (m) with relative normal
+ * velocity vn0 (m/s, at the start of the step) and restitution e; `closing`: the step's free
+ * motion would make the pair overlap.  The bounce turns the pair where the step began and
+ * reverses the velocity it arrived with, vn0, not the one forces added during the step: with
+ * e = 1 an impact then neither gains nor loses semi-implicit Euler's energy, whatever the
+ * phase of the impact within the step. */
 static inline rg_real solver_vmin(rg_real s0, rg_real vn0, rg_real e, int closing,
                                   const solver_params *p)
 {
@@ -59,6 +66,33 @@ static inline rg_real solver_vmin(rg_real s0, rg_real vn0, rg_real e, int closin
         if (bounce > vmin) vmin = bounce;
     }
     return vmin;
+}
+
+/* The relative normal velocity a pair leaves with when its free motion closes a gap at
+ * fraction t of the step and the impact is timed: the bodies move freely until t and with the
+ * solved velocity after it (contact.c places them so).  vn0 and vn1: the relative normal
+ * velocity at the start of the step and after integration; dv = vn1 - vn0 is what the forces
+ * add over the step.  An integrator's velocities sit at a time of their own: the true
+ * velocity at the start of the step is vn0 + stagger * dv (semi-implicit Euler 1/2: its
+ * velocity is that of the middle of the step it moved the body over; Verlet and RK4 0;
+ * explicit Euler -1/2).  The pair meets at vi = vn0 + (stagger + t) dv, leaves at -e vi, and
+ * the forces act on for the rest of the step:
+ *     vout = -e vi + (1 - stagger - t) dv.
+ * Under a constant acceleration a along the normal, semi-implicit Euler keeps
+ * E = 1/2 v^2 - a y + 1/2 a dt v + a^2 dt^2 / 8 exactly in free flight (y the gap); with the
+ * body ending the step at y = vout (1 - t) dt, this vout gives E' = e^2 E + (1 - e^2) a^2
+ * dt^2 t (1 - t) / 2: an elastic bounce keeps E exactly, and a rebound rises to e^2 times the
+ * drop height within a dt^2 / 8 (whatever the sign of a: floors and ceilings alike).  Without
+ * a bounce (e = 0, an impact slower than the threshold, or one too weak to outlast the step)
+ * the pair stays in contact: 0. */
+static inline rg_real solver_vout(rg_real vn0, rg_real vn1, rg_real t, rg_real e,
+                                  const solver_params *p)
+{
+    if (!(e > 0 && vn0 < -p->restitution_threshold)) return 0;
+    rg_real dv = vn1 - vn0;
+    rg_real vi = vn0 + (p->stagger + t) * dv;
+    rg_real out = -e * vi + (1 - p->stagger - t) * dv;
+    return out > 0 ? out : 0;
 }
 
 /* ---- rows one at a time.  `list` (k of them) selects rows by index; NULL takes c[0..k). */
