@@ -124,7 +124,8 @@ RG_API rg_status rg_world_get_fixed_step(const rg_world *world, rg_real *out_dt,
  * many, the time of the others stays in the accumulator (rg_world_get_alpha may read 1 or
  * more) and the next advance takes them.  No event is lost and the simulation is the same. */
 RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *out_steps);
-/* accumulator / fixed dt after the last advance, in [0, 1): the blend factor for rendering. */
+/* accumulator / fixed dt after the last advance: the blend factor for rendering, in [0, 1)
+ * (1 or more only after an advance that stopped early for lack of memory; see above). */
 RG_API rg_status rg_world_get_alpha(const rg_world *world, rg_real *out_alpha);
 /* prev + alpha * (current - prev), where prev is the position before the last step taken
  * by rg_world_advance.  After a direct rg_world_step, or a set_position, it is the current
