@@ -4,31 +4,7 @@
 
 #define DT (1.0 / 60)
 
-static rg_world *new_world(double gy)
-{
-    rg_world *w;
-    assert_ok(rg_world_create(&w));
-    assert_ok(rg_world_set_gravity(w, v2(0, gy)));
-    return w;
-}
-
-static rg_body circle(rg_world *w, int32_t type, double m, double x, double y, double r)
-{
-    rg_body b;
-    assert_ok(rg_body_create(w, type, (rg_real)m, v2(x, y), &b));
-    assert_ok(rg_body_set_circle(w, b, (rg_real)r));
-    return b;
-}
-
-static rg_body box(rg_world *w, int32_t type, double m, double x, double y, double hw, double hh)
-{
-    rg_body b;
-    assert_ok(rg_body_create(w, type, (rg_real)m, v2(x, y), &b));
-    assert_ok(rg_body_set_aabb(w, b, (rg_real)hw, (rg_real)hh));
-    return b;
-}
-
-static rg_body floor_of(rg_world *w) { return box(w, RG_BODY_STATIC, 0, 0, -0.5, 100, 0.5); }
+static rg_body floor_of(rg_world *w) { return box_body(w, RG_BODY_STATIC, 0, 0, -0.5, 100, 0.5); }
 
 static double PX(rg_world *w, rg_body b) { return (double)pos_of(w, b).x; }
 static double PY(rg_world *w, rg_body b) { return (double)pos_of(w, b).y; }
@@ -82,7 +58,7 @@ static body_snapshot snap(rg_world *w, rg_body b)
 static void test_defaults_and_getters(void **state)
 {
     (void)state;
-    rg_world *w = new_world(0);
+    rg_world *w = gravity_world(0);
     rg_body b = make_body(w, 1, 0, 0);
     body_snapshot s = snap(w, b);
     assert_int_equal(s.kind, RG_SHAPE_NONE);
@@ -139,7 +115,7 @@ static void test_defaults_and_getters(void **state)
 static void test_bad_shape_sizes_are_rejected_and_change_nothing(void **state)
 {
     (void)state;
-    rg_world *w = new_world(0);
+    rg_world *w = gravity_world(0);
     rg_body b = make_body(w, 1, 0, 0);
     assert_ok(rg_body_set_circle(w, b, 0.5f));
     body_snapshot before = snap(w, b);
@@ -159,7 +135,7 @@ static void test_bad_shape_sizes_are_rejected_and_change_nothing(void **state)
 static void test_every_entry_point_rejects_null_and_stale_handles(void **state)
 {
     (void)state;
-    rg_world *w = new_world(0);
+    rg_world *w = gravity_world(0);
     rg_body b = make_body(w, 1, 0, 0), dead = make_body(w, 1, 5, 0);
     assert_ok(rg_body_destroy(w, dead));
     rg_body handles[3] = {dead, 0, 0xFFFFFFFFFFFFull};
@@ -238,7 +214,7 @@ static void test_every_entry_point_rejects_null_and_stale_handles(void **state)
 static void test_bad_materials_flags_and_settings_are_rejected_and_change_nothing(void **state)
 {
     (void)state;
-    rg_world *w = new_world(0);
+    rg_world *w = gravity_world(0);
     rg_body b = make_body(w, 1, 0, 0);
     assert_ok(rg_body_set_circle(w, b, 1));
     body_snapshot before = snap(w, b);
@@ -297,7 +273,7 @@ static void test_bad_materials_flags_and_settings_are_rejected_and_change_nothin
 static void test_event_and_query_arguments_are_checked(void **state)
 {
     (void)state;
-    rg_world *w = new_world(0);
+    rg_world *w = gravity_world(0);
     rg_contact_event ev;
     assert_int_equal(rg_world_get_contact_events(w, NULL, 0), 0);
     assert_int_equal(rg_world_get_contact_events(w, &ev, -1), RG_ERR_INVALID_ARGUMENT);
@@ -323,9 +299,9 @@ static void test_event_and_query_arguments_are_checked(void **state)
 static void test_a_pair_that_touches_once_gives_one_begin_and_one_end(void **state)
 {
     (void)state;
-    rg_world *w = new_world(0);
-    rg_body wall = box(w, RG_BODY_STATIC, 0, 3, 0, 0.5, 2);
-    rg_body ball = circle(w, RG_BODY_DYNAMIC, 1, 0, 0.3, 0.5);
+    rg_world *w = gravity_world(0);
+    rg_body wall = box_body(w, RG_BODY_STATIC, 0, 3, 0, 0.5, 2);
+    rg_body ball = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 0.3, 0.5);
     assert_ok(rg_body_set_restitution(w, ball, 1));
     assert_ok(rg_body_set_velocity(w, ball, v2(5, 0)));
     int begins = 0, ends = 0;
@@ -358,9 +334,9 @@ static void test_a_pair_that_touches_once_gives_one_begin_and_one_end(void **sta
 static void test_events_are_sorted_and_capacity_only_limits_the_copy(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     rg_body fl = floor_of(w);
-    for (int i = 0; i < 6; i++) circle(w, RG_BODY_DYNAMIC, 1, i * 2.0, 0.55, 0.5);
+    for (int i = 0; i < 6; i++) circle_body(w, RG_BODY_DYNAMIC, 1, i * 2.0, 0.55, 0.5);
     rg_contact_event ev[16];
     int32_t n = 0;
     for (int i = 0; i < 10 && n == 0; i++) {
@@ -388,10 +364,10 @@ static void test_events_are_sorted_and_capacity_only_limits_the_copy(void **stat
 static void test_destroying_a_body_ends_its_contacts_with_an_end_event(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     rg_body fl = floor_of(w);
-    rg_body a = circle(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5);
-    rg_body top = circle(w, RG_BODY_DYNAMIC, 1, 0, 1.5, 0.5);
+    rg_body a = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5);
+    rg_body top = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 1.5, 0.5);
     step_n(w, 10);
     assert_int_equal(rg_world_touching_count(w), 2);
     assert_ok(rg_body_destroy(w, a));
@@ -423,10 +399,10 @@ static void test_destroying_a_body_ends_its_contacts_with_an_end_event(void **st
 static void test_clearing_a_shape_or_changing_the_filter_ends_contacts(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     floor_of(w);
-    rg_body a = circle(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5);
-    rg_body c = circle(w, RG_BODY_DYNAMIC, 1, 3, 0.5, 0.5);
+    rg_body a = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5);
+    rg_body c = circle_body(w, RG_BODY_DYNAMIC, 1, 3, 0.5, 0.5);
     step_n(w, 5);
     assert_int_equal(rg_world_touching_count(w), 2);
     assert_ok(rg_body_clear_shape(w, a));
@@ -446,9 +422,9 @@ static void test_clearing_a_shape_or_changing_the_filter_ends_contacts(void **st
 static void test_an_end_and_a_new_begin_of_one_pair_come_end_first(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     rg_body fl = floor_of(w);
-    rg_body b = box(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
+    rg_body b = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
     step_n(w, 5);
     assert_int_equal(rg_world_touching_count(w), 1);
     /* off and on again between two steps: the contact ends now and begins anew */
@@ -471,9 +447,9 @@ static rg_world *sensor_gate(rg_alloc_fn alloc, void *user, rg_body *gate, rg_bo
 {
     rg_world *w;
     assert_ok(rg_world_create_with_allocator(alloc, user, &w));
-    *gate = box(w, RG_BODY_STATIC, 0, 0, 0, 0.02, 1);
+    *gate = box_body(w, RG_BODY_STATIC, 0, 0, 0, 0.02, 1);
     assert_ok(rg_body_set_sensor(w, *gate, 1));
-    *ball = circle(w, RG_BODY_DYNAMIC, 1, -0.2, 0, 0.1);
+    *ball = circle_body(w, RG_BODY_DYNAMIC, 1, -0.2, 0, 0.1);
     assert_ok(rg_body_set_velocity(w, *ball, v2(6, 0)));
     assert_ok(rg_world_set_fixed_step(w, (rg_real)DT, 8));
     return w;
@@ -541,10 +517,10 @@ static void test_busy_advances_do_not_allocate_in_steady_state(void **state)
     assert_ok(rg_world_create_with_allocator(test_alloc_fn, &ta, &w));
     assert_ok(rg_world_set_fixed_step(w, (rg_real)DT, 8));
     /* balls shuttling elastically between two walls 1.2 m apart, touching one every 7 steps */
-    box(w, RG_BODY_STATIC, 0, -1.1, 0, 0.5, 20);
-    box(w, RG_BODY_STATIC, 0, 1.1, 0, 0.5, 20);
+    box_body(w, RG_BODY_STATIC, 0, -1.1, 0, 0.5, 20);
+    box_body(w, RG_BODY_STATIC, 0, 1.1, 0, 0.5, 20);
     for (int i = 0; i < 30; i++) {
-        rg_body b = circle(w, RG_BODY_DYNAMIC, 1, -0.3 + 0.02 * i, i * 1.0 - 15, 0.2);
+        rg_body b = circle_body(w, RG_BODY_DYNAMIC, 1, -0.3 + 0.02 * i, i * 1.0 - 15, 0.2);
         assert_ok(rg_body_set_restitution(w, b, 1));
         assert_ok(rg_body_set_friction(w, b, 0));
         assert_ok(rg_body_set_velocity(w, b, v2(3, 0)));
@@ -612,11 +588,11 @@ static void test_a_sensor_reports_begin_and_end_but_never_pushes(void **state)
 {
     (void)state;
     for (int which = 0; which < 2; which++) {
-        rg_world *w = new_world(-10);
-        rg_body zone = box(w, RG_BODY_STATIC, 0, 0, 0, 2, 0.5);
-        rg_body ball = circle(w, RG_BODY_DYNAMIC, 1, 0, 3, 0.5);
+        rg_world *w = gravity_world(-10);
+        rg_body zone = box_body(w, RG_BODY_STATIC, 0, 0, 0, 2, 0.5);
+        rg_body ball = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 3, 0.5);
         assert_ok(rg_body_set_sensor(w, which == 0 ? zone : ball, 1));
-        rg_body free_ball = circle(w, RG_BODY_DYNAMIC, 1, 50, 3, 0.5); /* the same fall, alone */
+        rg_body free_ball = circle_body(w, RG_BODY_DYNAMIC, 1, 50, 3, 0.5); /* the same fall, alone */
         int begins = 0, ends = 0;
         for (int i = 0; i < 90; i++) {
             assert_ok(rg_world_step(w, (rg_real)DT));
@@ -639,8 +615,8 @@ static void test_a_sensor_reports_begin_and_end_but_never_pushes(void **state)
 static void test_filters_decide_which_pairs_collide(void **state)
 {
     (void)state;
-    rg_world *w = new_world(0);
-    rg_body a = circle(w, RG_BODY_DYNAMIC, 1, 0, 0, 0.5), b = circle(w, RG_BODY_DYNAMIC, 1, 3, 0, 0.5);
+    rg_world *w = gravity_world(0);
+    rg_body a = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 0, 0.5), b = circle_body(w, RG_BODY_DYNAMIC, 1, 3, 0, 0.5);
     assert_ok(rg_body_set_velocity(w, a, v2(3, 0)));
     /* a in category 2 masks out 4; b in category 4: one side refuses, no collision */
     assert_ok(rg_body_set_filter(w, a, 2, ~4u));
@@ -664,9 +640,9 @@ static void test_filters_decide_which_pairs_collide(void **state)
 static void test_grounded_is_false_in_the_air_and_true_at_rest(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     floor_of(w);
-    rg_body ball = circle(w, RG_BODY_DYNAMIC, 1, 0, 2, 0.5);
+    rg_body ball = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 2, 0.5);
     assert_int_equal(flag(rg_body_is_grounded, w, ball), 0);
     int landed_at = -1;
     for (int i = 0; i < 120; i++) {
@@ -687,10 +663,10 @@ static void test_grounded_is_false_in_the_air_and_true_at_rest(void **state)
 static void test_walls_and_ceilings_are_not_ground_unless_gravity_says_so(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     /* a box pressed against a wall in the air */
-    box(w, RG_BODY_STATIC, 0, 1, 5, 0.5, 5);
-    rg_body b = box(w, RG_BODY_DYNAMIC, 1, 0, 5, 0.5, 0.5);
+    box_body(w, RG_BODY_STATIC, 0, 1, 5, 0.5, 5);
+    rg_body b = box_body(w, RG_BODY_DYNAMIC, 1, 0, 5, 0.5, 0.5);
     assert_ok(rg_body_set_velocity(w, b, v2(2, 0)));
     assert_ok(rg_body_set_friction(w, b, 0));
     rg_contact_event ev[4];
@@ -703,15 +679,15 @@ static void test_walls_and_ceilings_are_not_ground_unless_gravity_says_so(void *
     }
     assert_true(touched);
     /* under a ceiling with gravity scale -1 (falls up): the ceiling is its ground */
-    rg_body up = box(w, RG_BODY_DYNAMIC, 1, -10, 9.4, 0.5, 0.5);
-    box(w, RG_BODY_STATIC, 0, -10, 10.5, 2, 0.5);
+    rg_body up = box_body(w, RG_BODY_DYNAMIC, 1, -10, 9.4, 0.5, 0.5);
+    box_body(w, RG_BODY_STATIC, 0, -10, 10.5, 2, 0.5);
     assert_ok(rg_body_set_gravity_scale(w, up, -1));
     step_n(w, 30);
     assert_int_equal(flag(rg_body_is_grounded, w, up), 1);
     /* no gravity: never grounded */
-    rg_world *z = new_world(0);
+    rg_world *z = gravity_world(0);
     floor_of(z);
-    rg_body r = circle(z, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5);
+    rg_body r = circle_body(z, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5);
     step_n(z, 10);
     assert_int_equal(flag(rg_body_is_grounded, z, r), 0);
     rg_world_destroy(z);
@@ -723,9 +699,9 @@ static void test_grounded_on_a_slope_within_45_degrees_only(void **state)
     (void)state;
     for (int k = 0; k < 2; k++) {
         double theta = k == 0 ? 0.5 : 0.9; /* 29 and 52 degrees */
-        rg_world *w = new_world(-10);
-        circle(w, RG_BODY_STATIC, 0, 0, 0, 0.5);
-        rg_body top = circle(w, RG_BODY_DYNAMIC, 1, sin(theta), cos(theta), 0.5);
+        rg_world *w = gravity_world(-10);
+        circle_body(w, RG_BODY_STATIC, 0, 0, 0, 0.5);
+        rg_body top = circle_body(w, RG_BODY_DYNAMIC, 1, sin(theta), cos(theta), 0.5);
         assert_ok(rg_body_set_friction(w, top, 10)); /* holds it there */
         step_n(w, 3);
         assert_int_equal(flag(rg_body_is_grounded, w, top), k == 0);
@@ -738,9 +714,9 @@ static void test_grounded_on_a_slope_within_45_degrees_only(void **state)
 static void test_a_body_at_rest_sleeps_and_wakes_when_pushed(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     floor_of(w);
-    rg_body b = box(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
+    rg_body b = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
     step_n(w, 60);
     assert_int_equal(flag(rg_body_is_awake, w, b), 0);
     assert_int_equal(rg_world_awake_body_count(w), 0);
@@ -764,10 +740,10 @@ static void test_a_body_at_rest_sleeps_and_wakes_when_pushed(void **state)
 static void test_sleeping_bodies_do_not_move_and_cost_no_steps(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     floor_of(w);
     rg_body b[10];
-    for (int i = 0; i < 10; i++) b[i] = box(w, RG_BODY_DYNAMIC, 1, i * 1.5, 0.5, 0.5, 0.5);
+    for (int i = 0; i < 10; i++) b[i] = box_body(w, RG_BODY_DYNAMIC, 1, i * 1.5, 0.5, 0.5, 0.5);
     step_n(w, 60);
     assert_int_equal(rg_world_awake_body_count(w), 0);
     rg_vec2 p[10];
@@ -783,13 +759,13 @@ static void test_sleeping_bodies_do_not_move_and_cost_no_steps(void **state)
 static void test_a_body_landing_on_a_sleeping_pile_wakes_it(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     floor_of(w);
-    rg_body base = box(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
-    rg_body mid = box(w, RG_BODY_DYNAMIC, 1, 0, 1.5, 0.5, 0.5);
+    rg_body base = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
+    rg_body mid = box_body(w, RG_BODY_DYNAMIC, 1, 0, 1.5, 0.5, 0.5);
     step_n(w, 60);
     assert_int_equal(flag(rg_body_is_awake, w, base), 0);
-    rg_body drop = circle(w, RG_BODY_DYNAMIC, 5, 0, 6, 0.5);
+    rg_body drop = circle_body(w, RG_BODY_DYNAMIC, 5, 0, 6, 0.5);
     int woke = 0;
     for (int i = 0; i < 120; i++) {
         assert_ok(rg_world_step(w, (rg_real)DT));
@@ -804,9 +780,9 @@ static void test_a_body_landing_on_a_sleeping_pile_wakes_it(void **state)
 static void test_removing_or_moving_a_support_wakes_what_rests_on_it(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
-    rg_body shelf = box(w, RG_BODY_STATIC, 0, 0, -0.5, 3, 0.5);
-    rg_body b = box(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
+    rg_world *w = gravity_world(-10);
+    rg_body shelf = box_body(w, RG_BODY_STATIC, 0, 0, -0.5, 3, 0.5);
+    rg_body b = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
     step_n(w, 60);
     assert_int_equal(flag(rg_body_is_awake, w, b), 0);
     assert_ok(rg_body_set_position(w, shelf, v2(0, -3))); /* the static shelf drops away */
@@ -814,9 +790,9 @@ static void test_removing_or_moving_a_support_wakes_what_rests_on_it(void **stat
     step_n(w, 60);
     assert_true(PY(w, b) < -1.9 && PY(w, b) > -2.1); /* fell onto the shelf's new place */
     /* a sleeping body on a dynamic support that is destroyed */
-    rg_body b2 = box(w, RG_BODY_DYNAMIC, 1, 10, 0.5, 0.5, 0.5);
-    box(w, RG_BODY_STATIC, 0, 10, -1.5, 3, 0.5);
-    rg_body support = box(w, RG_BODY_DYNAMIC, 1, 10, -0.5, 0.5, 0.5);
+    rg_body b2 = box_body(w, RG_BODY_DYNAMIC, 1, 10, 0.5, 0.5, 0.5);
+    box_body(w, RG_BODY_STATIC, 0, 10, -1.5, 3, 0.5);
+    rg_body support = box_body(w, RG_BODY_DYNAMIC, 1, 10, -0.5, 0.5, 0.5);
     step_n(w, 60);
     assert_int_equal(flag(rg_body_is_awake, w, b2), 0);
     assert_ok(rg_body_destroy(w, support));
@@ -824,7 +800,7 @@ static void test_removing_or_moving_a_support_wakes_what_rests_on_it(void **stat
     /* a body teleported into a sleeping one wakes it */
     step_n(w, 90);
     assert_int_equal(flag(rg_body_is_awake, w, b2), 0);
-    rg_body intruder = circle(w, RG_BODY_DYNAMIC, 1, 30, 30, 0.5);
+    rg_body intruder = circle_body(w, RG_BODY_DYNAMIC, 1, 30, 30, 0.5);
     assert_ok(rg_body_set_position(w, intruder, v2(10, PY(w, b2) + 0.8)));
     assert_ok(rg_world_step(w, (rg_real)DT));
     assert_int_equal(flag(rg_body_is_awake, w, b2), 1);
@@ -834,9 +810,9 @@ static void test_removing_or_moving_a_support_wakes_what_rests_on_it(void **stat
 static void test_disabling_sleep_wakes_everything_and_thresholds_apply(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     floor_of(w);
-    rg_body b = box(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
+    rg_body b = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
     step_n(w, 60);
     assert_int_equal(rg_world_awake_body_count(w), 0);
     assert_ok(rg_world_set_sleeping(w, 0));
@@ -863,9 +839,9 @@ static void test_disabling_sleep_wakes_everything_and_thresholds_apply(void **st
 static void test_springs_join_islands(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     floor_of(w);
-    rg_body a = box(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5), b = box(w, RG_BODY_DYNAMIC, 1, 3, 0.5, 0.5, 0.5);
+    rg_body a = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5), b = box_body(w, RG_BODY_DYNAMIC, 1, 3, 0.5, 0.5, 0.5);
     uint64_t sp;
     assert_ok(rg_spring_create(w, a, b, v2(0, 0), 3, 10, 1, &sp));
     step_n(w, 60);
@@ -875,7 +851,7 @@ static void test_springs_join_islands(void **state)
     assert_ok(rg_body_wake(w, a));
     assert_int_equal(flag(rg_body_is_awake, w, b), 1);
     /* a box tied to a swinging weight without a shape stays awake */
-    rg_body c = box(w, RG_BODY_DYNAMIC, 1, 10, 0.5, 0.5, 0.5);
+    rg_body c = box_body(w, RG_BODY_DYNAMIC, 1, 10, 0.5, 0.5, 0.5);
     rg_body weight = make_body(w, 1, 12, 3);
     assert_ok(rg_body_set_gravity_scale(w, weight, 0));
     assert_ok(rg_body_set_velocity(w, weight, v2(0, 1)));
@@ -889,9 +865,9 @@ static void test_springs_join_islands(void **state)
 static void test_kinematic_and_static_bodies_never_sleep_and_a_moving_platform_wakes_riders(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
-    rg_body k = box(w, RG_BODY_KINEMATIC, 0, 0, -0.5, 3, 0.5);
-    rg_body rider = box(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
+    rg_world *w = gravity_world(-10);
+    rg_body k = box_body(w, RG_BODY_KINEMATIC, 0, 0, -0.5, 3, 0.5);
+    rg_body rider = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
     step_n(w, 60);
     assert_int_equal(flag(rg_body_is_awake, w, k), 1);
     assert_int_equal(flag(rg_body_is_awake, w, rider), 0);
@@ -910,10 +886,10 @@ static void test_kinematic_and_static_bodies_never_sleep_and_a_moving_platform_w
 static void test_raycast_finds_the_closest_shape_with_point_normal_and_fraction(void **state)
 {
     (void)state;
-    rg_world *w = new_world(0);
-    rg_body near_box = box(w, RG_BODY_STATIC, 0, 5, 0, 1, 1);
-    rg_body far_ball = circle(w, RG_BODY_DYNAMIC, 1, 10, 0, 1);
-    rg_body side = circle(w, RG_BODY_DYNAMIC, 1, 2, 3, 0.5);
+    rg_world *w = gravity_world(0);
+    rg_body near_box = box_body(w, RG_BODY_STATIC, 0, 5, 0, 1, 1);
+    rg_body far_ball = circle_body(w, RG_BODY_DYNAMIC, 1, 10, 0, 1);
+    rg_body side = circle_body(w, RG_BODY_DYNAMIC, 1, 2, 3, 0.5);
     (void)side;
     rg_ray_hit hit;
     /* before any step */
@@ -948,9 +924,9 @@ static void test_raycast_finds_the_closest_shape_with_point_normal_and_fraction(
 static void test_raycast_ties_go_to_the_lower_handle_and_long_rays_work(void **state)
 {
     (void)state;
-    rg_world *w = new_world(0);
-    rg_body a = box(w, RG_BODY_STATIC, 0, 5000, 1, 1, 1), b = box(w, RG_BODY_STATIC, 0, 5000, -1, 1, 1);
-    for (int i = 0; i < 200; i++) box(w, RG_BODY_STATIC, 0, i * 3.0, 10, 0.5, 0.5);
+    rg_world *w = gravity_world(0);
+    rg_body a = box_body(w, RG_BODY_STATIC, 0, 5000, 1, 1, 1), b = box_body(w, RG_BODY_STATIC, 0, 5000, -1, 1, 1);
+    for (int i = 0; i < 200; i++) box_body(w, RG_BODY_STATIC, 0, i * 3.0, 10, 0.5, 0.5);
     rg_ray_hit hit;
     assert_int_equal(rg_world_raycast(w, v2(0, 0), v2(10000, 0), 0xFFFFFFFFu, &hit), 1);
     assert_true(hit.body == (a < b ? a : b));
@@ -961,9 +937,9 @@ static void test_raycast_ties_go_to_the_lower_handle_and_long_rays_work(void **s
 static void test_aabb_query_returns_sorted_handles_and_the_full_count(void **state)
 {
     (void)state;
-    rg_world *w = new_world(0);
+    rg_world *w = gravity_world(0);
     rg_body b[10];
-    for (int i = 0; i < 10; i++) b[i] = circle(w, RG_BODY_DYNAMIC, 1, i, 0, 0.25);
+    for (int i = 0; i < 10; i++) b[i] = circle_body(w, RG_BODY_DYNAMIC, 1, i, 0, 0.25);
     rg_body none = make_body(w, 1, 3, 0); /* no shape: never found */
     (void)none;
     assert_ok(rg_body_set_sensor(w, b[4], 1));         /* sensors are found */
@@ -988,9 +964,9 @@ static void test_aabb_query_returns_sorted_handles_and_the_full_count(void **sta
 static void test_aabb_query_counts_beyond_capacity_and_sees_teleports(void **state)
 {
     (void)state;
-    rg_world *w = new_world(0);
+    rg_world *w = gravity_world(0);
     rg_body b[20];
-    for (int i = 0; i < 20; i++) b[i] = box(w, i % 2 ? RG_BODY_STATIC : RG_BODY_DYNAMIC, 1, i, 0, 0.4, 0.4);
+    for (int i = 0; i < 20; i++) b[i] = box_body(w, i % 2 ? RG_BODY_STATIC : RG_BODY_DYNAMIC, 1, i, 0, 0.4, 0.4);
     rg_body out[20];
     assert_int_equal(rg_world_query_aabb(w, v2(-1, -1), v2(30, 1), 0xFFFFFFFFu, out, 20), 20);
     for (int k = 1; k < 20; k++) assert_true(out[k - 1] < out[k]);
@@ -1019,13 +995,13 @@ static void test_aabb_query_counts_beyond_capacity_and_sees_teleports(void **sta
  * one side, then on the other, and it passes; with it, never. */
 static int ball_passes_wall(int continuous, double phase, int32_t wall_type, int box_shape)
 {
-    rg_world *w = new_world(0);
+    rg_world *w = gravity_world(0);
     assert_ok(rg_world_set_continuous(w, continuous));
-    rg_body wall = box(w, wall_type, 0, 0, 0, 0.005, 1);
+    rg_body wall = box_body(w, wall_type, 0, 0, 0, 0.005, 1);
     (void)wall;
     double x0 = -1 - phase * 300 * DT;
-    rg_body ball = box_shape ? box(w, RG_BODY_DYNAMIC, 1, x0, 0.3, 0.05, 0.05)
-                             : circle(w, RG_BODY_DYNAMIC, 1, x0, 0.3, 0.05);
+    rg_body ball = box_shape ? box_body(w, RG_BODY_DYNAMIC, 1, x0, 0.3, 0.05, 0.05)
+                             : circle_body(w, RG_BODY_DYNAMIC, 1, x0, 0.3, 0.05);
     assert_ok(rg_body_set_velocity(w, ball, v2(300, 0)));
     step_n(w, 4);
     int passed = PX(w, ball) > 0;
@@ -1056,9 +1032,9 @@ static void test_continuous_collision_stops_fast_balls_and_boxes_at_thin_walls(v
 static void test_a_fast_ball_is_stopped_by_a_thin_dynamic_plank_too(void **state)
 {
     (void)state;
-    rg_world *w = new_world(0);
-    rg_body plank = box(w, RG_BODY_DYNAMIC, 10, 0, 0, 0.005, 1);
-    rg_body ball = circle(w, RG_BODY_DYNAMIC, 1, -2.3, 0.2, 0.05);
+    rg_world *w = gravity_world(0);
+    rg_body plank = box_body(w, RG_BODY_DYNAMIC, 10, 0, 0, 0.005, 1);
+    rg_body ball = circle_body(w, RG_BODY_DYNAMIC, 1, -2.3, 0.2, 0.05);
     assert_ok(rg_body_set_velocity(w, ball, v2(300, 0)));
     step_n(w, 3);
     assert_true(PX(w, ball) < PX(w, plank));
@@ -1070,9 +1046,9 @@ static void test_a_fast_ball_is_stopped_by_a_thin_dynamic_plank_too(void **state
 static void test_a_fast_fall_onto_a_thin_floor_lands_on_it(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
-    box(w, RG_BODY_STATIC, 0, 0, 0, 5, 0.005);
-    rg_body b = circle(w, RG_BODY_DYNAMIC, 1, 0, 20, 0.05);
+    rg_world *w = gravity_world(-10);
+    box_body(w, RG_BODY_STATIC, 0, 0, 0, 5, 0.005);
+    rg_body b = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 20, 0.05);
     assert_ok(rg_body_set_velocity(w, b, v2(0, -500)));
     step_n(w, 30);
     assert_near(PY(w, b), 0.055, 0.006);
@@ -1087,11 +1063,11 @@ static void test_a_fast_ball_rammed_into_a_thin_wall_stays_on_its_side(void **st
 {
     (void)state;
     for (int k = 0; k < 16; k++) {
-        rg_world *w = new_world(0);
-        box(w, RG_BODY_STATIC, 0, 0, 0, 0.005, 1);
+        rg_world *w = gravity_world(0);
+        box_body(w, RG_BODY_STATIC, 0, 0, 0, 0.005, 1);
         double x0 = -1 - (k / 16.0) * 5;
-        rg_body ball = circle(w, RG_BODY_DYNAMIC, 1, x0, 0, 0.05);
-        rg_body ram = box(w, RG_BODY_DYNAMIC, 1e4, x0 - 0.3, 0, 0.2, 0.2);
+        rg_body ball = circle_body(w, RG_BODY_DYNAMIC, 1, x0, 0, 0.05);
+        rg_body ram = box_body(w, RG_BODY_DYNAMIC, 1e4, x0 - 0.3, 0, 0.2, 0.2);
         assert_ok(rg_body_set_velocity(w, ball, v2(300, 0)));
         assert_ok(rg_body_set_velocity(w, ram, v2(300, 0)));
         step_n(w, 6);
@@ -1130,7 +1106,7 @@ static void test_steady_state_steps_do_not_allocate(void **state)
     rg_world *w = world_with(&ta);
     assert_ok(rg_world_set_sleeping(w, 0));
     floor_of(w);
-    for (int i = 0; i < 200; i++) circle(w, RG_BODY_DYNAMIC, 1, (i % 20) * 1.05, 1 + (i / 20) * 1.05, 0.5);
+    for (int i = 0; i < 200; i++) circle_body(w, RG_BODY_DYNAMIC, 1, (i % 20) * 1.05, 1 + (i / 20) * 1.05, 0.5);
     step_n(w, 240); /* settled: the contact set stops growing */
     long before = ta.calls;
     step_n(w, 60);
@@ -1175,7 +1151,7 @@ static void test_contacts_that_cannot_be_stored_are_found_again_later(void **sta
     floor_of(w);
     enum { N = 300 };
     rg_body b[N];
-    for (int i = 0; i < N; i++) b[i] = circle(w, RG_BODY_DYNAMIC, 1, i * 1.01 - 150, 1000 + i * 2.0, 0.5);
+    for (int i = 0; i < N; i++) b[i] = circle_body(w, RG_BODY_DYNAMIC, 1, i * 1.01 - 150, 1000 + i * 2.0, 0.5);
     assert_ok(rg_world_step(w, (rg_real)DT)); /* scratch allocated; no contacts yet */
     /* two rows on the floor, the second resting on the first: 300 contacts */
     for (int i = 0; i < N; i++) assert_ok(rg_body_set_position(w, b[i], v2((i % 150) * 1.2 - 90, 0.5 + (i / 150))));
@@ -1197,13 +1173,13 @@ static void test_contacts_that_cannot_be_stored_are_found_again_later(void **sta
 static void test_bodies_far_away_or_thrown_to_infinity_do_no_harm(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     floor_of(w);
-    rg_body ok = circle(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5);
-    rg_body far = circle(w, RG_BODY_DYNAMIC, 1, 3e37, -3e37, 0.5);
-    rg_body fast = box(w, RG_BODY_DYNAMIC, 1e-30, 5, 5, 0.5, 0.5);
+    rg_body ok = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5);
+    rg_body far = circle_body(w, RG_BODY_DYNAMIC, 1, 3e37, -3e37, 0.5);
+    rg_body fast = box_body(w, RG_BODY_DYNAMIC, 1e-30, 5, 5, 0.5, 0.5);
     assert_ok(rg_body_apply_impulse(w, fast, v2(1e8, 0))); /* 1e38 m/s */
-    rg_body huge = box(w, RG_BODY_STATIC, 0, 0, -1e6, (rg_real)RG_MAX_SHAPE_SIZE, 1);
+    rg_body huge = box_body(w, RG_BODY_STATIC, 0, 0, -1e6, (rg_real)RG_MAX_SHAPE_SIZE, 1);
     (void)huge;
     step_n(w, 200);
     assert_near(PY(w, ok), 0.5, 0.006);

@@ -4,34 +4,10 @@
 
 #define DT (1.0 / 60)
 
-static rg_world *new_world(double gy)
-{
-    rg_world *w;
-    assert_ok(rg_world_create(&w));
-    assert_ok(rg_world_set_gravity(w, v2(0, gy)));
-    return w;
-}
-
-static rg_body circle(rg_world *w, int32_t type, double m, double x, double y, double r)
-{
-    rg_body b;
-    assert_ok(rg_body_create(w, type, (rg_real)m, v2(x, y), &b));
-    assert_ok(rg_body_set_circle(w, b, (rg_real)r));
-    return b;
-}
-
-static rg_body box(rg_world *w, int32_t type, double m, double x, double y, double hw, double hh)
-{
-    rg_body b;
-    assert_ok(rg_body_create(w, type, (rg_real)m, v2(x, y), &b));
-    assert_ok(rg_body_set_aabb(w, b, (rg_real)hw, (rg_real)hh));
-    return b;
-}
-
 /* A static floor whose top is y = 0, 200 m wide. */
 static rg_body floor_of(rg_world *w)
 {
-    return box(w, RG_BODY_STATIC, 0, 0, -0.5, 100, 0.5);
+    return box_body(w, RG_BODY_STATIC, 0, 0, -0.5, 100, 0.5);
 }
 
 /* Position and velocity components as doubles. */
@@ -54,17 +30,17 @@ static void step_n(rg_world *w, int n, double dt)
  * One contact row converges in one Gauss-Seidel update, so the only error is rounding. */
 static void collide_1d(int32_t kind1, int32_t kind2, double m1, double m2, double e)
 {
-    rg_world *w = new_world(0);
+    rg_world *w = gravity_world(0);
     double u1 = 4, u2 = -2;
     rg_body a, b;
     if (kind1 == RG_SHAPE_CIRCLE)
-        a = circle(w, RG_BODY_DYNAMIC, m1, -2, 0, 0.5);
+        a = circle_body(w, RG_BODY_DYNAMIC, m1, -2, 0, 0.5);
     else
-        a = box(w, RG_BODY_DYNAMIC, m1, -2, 0, 0.5, 0.5);
+        a = box_body(w, RG_BODY_DYNAMIC, m1, -2, 0, 0.5, 0.5);
     if (kind2 == RG_SHAPE_CIRCLE)
-        b = circle(w, RG_BODY_DYNAMIC, m2, 2, 0, 0.5);
+        b = circle_body(w, RG_BODY_DYNAMIC, m2, 2, 0, 0.5);
     else
-        b = box(w, RG_BODY_DYNAMIC, m2, 2, 0, 0.5, 0.5);
+        b = box_body(w, RG_BODY_DYNAMIC, m2, 2, 0, 0.5, 0.5);
     assert_ok(rg_body_set_restitution(w, a, (rg_real)e));
     assert_ok(rg_body_set_friction(w, a, 0));
     assert_ok(rg_body_set_velocity(w, a, v2(u1, 0)));
@@ -106,8 +82,8 @@ static void test_1d_collisions_of_boxes_and_mixed_pairs_match_theory(void **stat
 static void test_impacts_slower_than_the_threshold_do_not_bounce(void **state)
 {
     (void)state;
-    rg_world *w = new_world(0);
-    rg_body a = circle(w, RG_BODY_DYNAMIC, 1, -1, 0, 0.5), b = circle(w, RG_BODY_DYNAMIC, 1, 1, 0, 0.5);
+    rg_world *w = gravity_world(0);
+    rg_body a = circle_body(w, RG_BODY_DYNAMIC, 1, -1, 0, 0.5), b = circle_body(w, RG_BODY_DYNAMIC, 1, 1, 0, 0.5);
     assert_ok(rg_body_set_restitution(w, a, 1));
     assert_ok(rg_body_set_velocity(w, a, v2(0.8, 0))); /* closing at 0.8 < 1 m/s */
     step_n(w, 120, DT);
@@ -151,9 +127,9 @@ static double energy(double y, double v, double r, double g, double dt)
  * floor, restitution e, at dt; *steps receives the steps it took. */
 static double rebound(double h, double e, double dt, int *steps)
 {
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     floor_of(w);
-    rg_body ball = circle(w, RG_BODY_DYNAMIC, 1, 0, 0.5 + h, 0.5);
+    rg_body ball = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5 + h, 0.5);
     assert_ok(rg_body_set_restitution(w, ball, (rg_real)e));
     int bounced = 0, i;
     double apex = 0;
@@ -224,9 +200,9 @@ static void test_a_bounce_turns_at_the_surface_not_before(void **state)
     const double g = 9.81, r = 0.25, e = 0.25;
     double tmin = 1, tmax = 0;
     for (int k = 0; k < 16; k++) {
-        rg_world *w = new_world(-g);
-        box(w, RG_BODY_STATIC, 0, 0, -0.25, 6, 0.25);
-        rg_body ball = circle(w, RG_BODY_DYNAMIC, 1, 0, 5 + 0.013 * k, r);
+        rg_world *w = gravity_world(-g);
+        box_body(w, RG_BODY_STATIC, 0, 0, -0.25, 6, 0.25);
+        rg_body ball = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 5 + 0.013 * k, r);
         assert_ok(rg_body_set_restitution(w, ball, (rg_real)e));
         landing l = land(w, ball, DT);
         double v1free = l.v0 - g * DT, s0 = l.y0 - r, t = s0 / (-v1free * DT);
@@ -257,10 +233,10 @@ static void test_a_landing_without_bounce_ends_at_rest_on_the_surface(void **sta
     const double g = 9.81;
     for (int shape = 0; shape < 2; shape++)
         for (int k = 0; k < 16; k++) {
-            rg_world *w = new_world(-g);
-            box(w, RG_BODY_STATIC, 0, 0, -0.25, 6, 0.25);
+            rg_world *w = gravity_world(-g);
+            box_body(w, RG_BODY_STATIC, 0, 0, -0.25, 6, 0.25);
             double y = 5 + 0.013 * k, r = 0.25;
-            rg_body b = shape ? box(w, RG_BODY_DYNAMIC, 3, 0.7, y, 0.4, r) : circle(w, RG_BODY_DYNAMIC, 1, 0, y, r);
+            rg_body b = shape ? box_body(w, RG_BODY_DYNAMIC, 3, 0.7, y, 0.4, r) : circle_body(w, RG_BODY_DYNAMIC, 1, 0, y, r);
             landing l = land(w, b, DT);
             assert_true(l.y0 - r > 0);                /* it began the step in the air */
             assert_near(l.v1, 0, 8 * REAL_EPS * (fabs(l.v0) + g * DT));
@@ -290,21 +266,21 @@ static void test_landings_on_seams_in_corners_and_on_stacks(void **state)
     rg_real slop_r, rate, push, thr;
     for (int k = 0; k < 8; k++) {
         /* seam */
-        rg_world *w = new_world(-g);
+        rg_world *w = gravity_world(-g);
         assert_ok(rg_world_get_contact_tuning(w, &slop_r, &rate, &push, &thr));
-        box(w, RG_BODY_STATIC, 0, -1, -0.5, 1, 0.5);
-        box(w, RG_BODY_STATIC, 0, 1, -0.5, 1, 0.5);
-        rg_body b = box(w, RG_BODY_DYNAMIC, 2, 0.1, 3 + 0.013 * k, 0.5, 0.25);
+        box_body(w, RG_BODY_STATIC, 0, -1, -0.5, 1, 0.5);
+        box_body(w, RG_BODY_STATIC, 0, 1, -0.5, 1, 0.5);
+        rg_body b = box_body(w, RG_BODY_DYNAMIC, 2, 0.1, 3 + 0.013 * k, 0.5, 0.25);
         landing l = land(w, b, DT);
         assert_near(l.v1, 0, 8 * REAL_EPS * (fabs(l.v0) + g * DT));
         assert_near(l.y1, 0.25, 16 * REAL_EPS * (fabs(l.y0) + 1));
         rg_world_destroy(w);
         /* corner: floor top y = 0, wall face x = 0; the ball (r 0.25) falls at 45 degrees */
         double slop = (double)slop_r;
-        w = new_world(-g);
-        box(w, RG_BODY_STATIC, 0, 0, -0.5, 10, 0.5);
-        box(w, RG_BODY_STATIC, 0, 0.5, 5, 0.5, 5);
-        b = circle(w, RG_BODY_DYNAMIC, 1, -1.25 - 0.017 * k, 1.25, 0.25);
+        w = gravity_world(-g);
+        box_body(w, RG_BODY_STATIC, 0, 0, -0.5, 10, 0.5);
+        box_body(w, RG_BODY_STATIC, 0, 0.5, 5, 0.5, 5);
+        b = circle_body(w, RG_BODY_DYNAMIC, 1, -1.25 - 0.017 * k, 1.25, 0.25);
         assert_ok(rg_body_set_velocity(w, b, v2(6, -6)));
         assert_ok(rg_body_set_gravity_scale(w, b, 0));
         for (int i = 0; i < 20; i++) {
@@ -317,11 +293,11 @@ static void test_landings_on_seams_in_corners_and_on_stacks(void **state)
         assert_near(VY(w, b), 0, 1e-6);
         rg_world_destroy(w);
         /* stack: a box lands on a box resting (awake) on the floor */
-        w = new_world(-g);
+        w = gravity_world(-g);
         assert_ok(rg_world_set_sleeping(w, 0));
         floor_of(w);
-        rg_body low = box(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
-        rg_body top = box(w, RG_BODY_DYNAMIC, 1, 0.1, 3 + 0.013 * k, 0.5, 0.5);
+        rg_body low = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
+        rg_body top = box_body(w, RG_BODY_DYNAMIC, 1, 0.1, 3 + 0.013 * k, 0.5, 0.5);
         landing s = land(w, top, DT);
         assert_true(s.y1 >= 1.5 - slop && s.y1 <= 1.5 + slop);
         step_n(w, 2, DT);
@@ -333,10 +309,10 @@ static void test_landings_on_seams_in_corners_and_on_stacks(void **state)
         /* a tower of three boxes 1 mm apart dropped as one lands as one: the bottom box's
          * impact is not timed (another movable body is near it), so the speculative rows
          * carry the stop up the tower within the step */
-        w = new_world(-g);
+        w = gravity_world(-g);
         floor_of(w);
         rg_body t3[3];
-        for (int i = 0; i < 3; i++) t3[i] = box(w, RG_BODY_DYNAMIC, 1, 0, 2.5 + 0.01 * k + i * 1.001, 0.5, 0.5);
+        for (int i = 0; i < 3; i++) t3[i] = box_body(w, RG_BODY_DYNAMIC, 1, 0, 2.5 + 0.01 * k + i * 1.001, 0.5, 0.5);
         (void)land(w, t3[0], DT);
         for (int i = 0; i < 3; i++) assert_near(PY(w, t3[i]), 0.5 + i, 0.001 * i + slop);
         step_n(w, 1, DT);
@@ -357,10 +333,10 @@ static void test_elastic_bounces_never_gain_height(void **state)
                                           RG_INTEGRATOR_RK4};
     for (int m = 0; m < 3; m++) {
         int semi = integrators[m] == RG_INTEGRATOR_SEMI_IMPLICIT_EULER;
-        rg_world *w = new_world(-g);
+        rg_world *w = gravity_world(-g);
         assert_ok(rg_world_set_integrator(w, integrators[m]));
         floor_of(w);
-        rg_body ball = circle(w, RG_BODY_DYNAMIC, 1, 0, r + h, r);
+        rg_body ball = circle_body(w, RG_BODY_DYNAMIC, 1, 0, r + h, r);
         assert_ok(rg_body_set_restitution(w, ball, 1));
         double e0 = g * h, emax = e0, emin = e0, apex = 0;
         int bounces = 0, steps = 0;
@@ -393,9 +369,9 @@ static void test_a_bounce_off_a_ceiling_gains_no_energy(void **state)
     (void)state;
     const double g = 10, r = 0.5;
     for (int k = 0; k < 8; k++) {
-        rg_world *w = new_world(-g);
-        box(w, RG_BODY_STATIC, 0, 0, 3.5, 100, 0.5); /* bottom face at y = 3 */
-        rg_body ball = circle(w, RG_BODY_DYNAMIC, 1, 0, 0.5 + 0.011 * k, r);
+        rg_world *w = gravity_world(-g);
+        box_body(w, RG_BODY_STATIC, 0, 0, 3.5, 100, 0.5); /* bottom face at y = 3 */
+        rg_body ball = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5 + 0.011 * k, r);
         assert_ok(rg_body_set_restitution(w, ball, 1));
         assert_ok(rg_body_set_velocity(w, ball, v2(0, 9)));
         double e0 = energy(PY(w, ball), 9, r, g, DT), vprev = 9;
@@ -420,11 +396,11 @@ static void test_a_ball_and_a_box_rest_on_the_floor_for_ten_seconds(void **state
 {
     (void)state;
     for (int sleeping = 0; sleeping < 2; sleeping++) {
-        rg_world *w = new_world(-9.81);
+        rg_world *w = gravity_world(-9.81);
         assert_ok(rg_world_set_sleeping(w, sleeping));
         floor_of(w);
-        rg_body ball = circle(w, RG_BODY_DYNAMIC, 1, -2, 0.5, 0.5);
-        rg_body crate = box(w, RG_BODY_DYNAMIC, 5, 2, 0.25, 0.75, 0.25);
+        rg_body ball = circle_body(w, RG_BODY_DYNAMIC, 1, -2, 0.5, 0.5);
+        rg_body crate = box_body(w, RG_BODY_DYNAMIC, 5, 2, 0.25, 0.75, 0.25);
         rg_real slop_r, rate, push, thr;
         assert_ok(rg_world_get_contact_tuning(w, &slop_r, &rate, &push, &thr));
         double slop = (double)slop_r;
@@ -456,10 +432,10 @@ static void test_friction_stops_a_sliding_box_where_coulomb_says(void **state)
 {
     (void)state;
     const double mu = 0.5, g = 10, v0 = 6;
-    rg_world *w = new_world(-g);
+    rg_world *w = gravity_world(-g);
     rg_body fl = floor_of(w);
     assert_ok(rg_body_set_friction(w, fl, (rg_real)mu));
-    rg_body b = box(w, RG_BODY_DYNAMIC, 2, 0, 0.5, 0.5, 0.5);
+    rg_body b = box_body(w, RG_BODY_DYNAMIC, 2, 0, 0.5, 0.5, 0.5);
     assert_ok(rg_body_set_friction(w, b, (rg_real)mu));
     assert_ok(rg_body_set_velocity(w, b, v2(v0, 0)));
     step_n(w, 180, DT);
@@ -475,10 +451,10 @@ static void test_pairs_mix_friction_by_geometric_mean_and_restitution_by_maximum
 {
     (void)state;
     const double g = 10, v0 = 6;
-    rg_world *w = new_world(-g);
+    rg_world *w = gravity_world(-g);
     rg_body fl = floor_of(w);
     assert_ok(rg_body_set_friction(w, fl, 0.25f));
-    rg_body b = box(w, RG_BODY_DYNAMIC, 2, 0, 0.5, 0.5, 0.5);
+    rg_body b = box_body(w, RG_BODY_DYNAMIC, 2, 0, 0.5, 0.5, 0.5);
     assert_ok(rg_body_set_friction(w, b, 1));
     assert_ok(rg_body_set_velocity(w, b, v2(v0, 0)));
     step_n(w, 180, DT);
@@ -491,9 +467,9 @@ static void test_pairs_mix_friction_by_geometric_mean_and_restitution_by_maximum
     rg_world_destroy(w);
 
     const double h = 2, e = 0.8, V = sqrt(2 * g * h), bound = (1 + e) * (V + g * DT) * DT + g * DT * DT;
-    w = new_world(-g);
+    w = gravity_world(-g);
     floor_of(w);
-    rg_body ball = circle(w, RG_BODY_DYNAMIC, 1, 0, 0.5 + h, 0.5);
+    rg_body ball = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5 + h, 0.5);
     assert_ok(rg_body_set_restitution(w, ball, (rg_real)e));
     double apex = 0;
     int up = 0;
@@ -510,10 +486,10 @@ static void test_pairs_mix_friction_by_geometric_mean_and_restitution_by_maximum
 static void test_without_friction_a_box_keeps_sliding(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     rg_body fl = floor_of(w);
     assert_ok(rg_body_set_friction(w, fl, 0));
-    rg_body b = box(w, RG_BODY_DYNAMIC, 2, 0, 0.5, 0.5, 0.5);
+    rg_body b = box_body(w, RG_BODY_DYNAMIC, 2, 0, 0.5, 0.5, 0.5);
     assert_ok(rg_body_set_velocity(w, b, v2(3, 0)));
     step_n(w, 60, DT);
     assert_near(VX(w, b), 3, 1e-5);
@@ -528,10 +504,10 @@ static void test_friction_holds_a_circle_on_a_circle_within_the_cone(void **stat
     (void)state;
     for (int k = 0; k < 2; k++) {
         double theta = k == 0 ? 0.4 : 0.7; /* tan: 0.42 and 0.84 against mu 0.6 */
-        rg_world *w = new_world(-10);
+        rg_world *w = gravity_world(-10);
         assert_ok(rg_world_set_sleeping(w, 0));
-        rg_body base = circle(w, RG_BODY_STATIC, 0, 0, 0, 0.5);
-        rg_body top = circle(w, RG_BODY_DYNAMIC, 1, sin(theta), cos(theta), 0.5);
+        rg_body base = circle_body(w, RG_BODY_STATIC, 0, 0, 0, 0.5);
+        rg_body top = circle_body(w, RG_BODY_DYNAMIC, 1, sin(theta), cos(theta), 0.5);
         (void)base;
         step_n(w, 60, DT);
         double moved = fabs(PX(w, top) - sin(theta));
@@ -552,12 +528,12 @@ static void test_bodies_slide_across_tile_seams_and_off_the_end(void **state)
 {
     (void)state;
     for (int shape = 0; shape < 2; shape++) {
-        rg_world *w = new_world(-10);
+        rg_world *w = gravity_world(-10);
         for (int i = 0; i < 60; i++) {
-            rg_body t = box(w, RG_BODY_STATIC, 0, i, -0.5, 0.5, 0.5);
+            rg_body t = box_body(w, RG_BODY_STATIC, 0, i, -0.5, 0.5, 0.5);
             assert_ok(rg_body_set_friction(w, t, 0));
         }
-        rg_body b = shape ? circle(w, RG_BODY_DYNAMIC, 1, 1, 0.4, 0.4) : box(w, RG_BODY_DYNAMIC, 1, 1, 0.4, 0.4, 0.4);
+        rg_body b = shape ? circle_body(w, RG_BODY_DYNAMIC, 1, 1, 0.4, 0.4) : box_body(w, RG_BODY_DYNAMIC, 1, 1, 0.4, 0.4, 0.4);
         assert_ok(rg_body_set_friction(w, b, 0));
         assert_ok(rg_body_set_velocity(w, b, v2(8, 0)));
         for (int i = 0; i < 420; i++) { /* 56 m, all on the tiles */
@@ -569,12 +545,12 @@ static void test_bodies_slide_across_tile_seams_and_off_the_end(void **state)
         assert_true(PY(w, b) < -1);
         rg_world_destroy(w);
     }
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     for (int i = 0; i < 40; i++) {
-        rg_body t = box(w, RG_BODY_STATIC, 0, 0, i, 0.5, 0.5);
+        rg_body t = box_body(w, RG_BODY_STATIC, 0, 0, i, 0.5, 0.5);
         assert_ok(rg_body_set_friction(w, t, 0));
     }
-    rg_body b = box(w, RG_BODY_DYNAMIC, 1, 0.9, 38, 0.4, 0.4);
+    rg_body b = box_body(w, RG_BODY_DYNAMIC, 1, 0.9, 38, 0.4, 0.4);
     assert_ok(rg_body_set_friction(w, b, 0));
     assert_ok(rg_body_apply_force(w, b, v2(-20, 0)));
     step_n(w, 60, DT);
@@ -596,11 +572,11 @@ typedef struct pile_stats {
  * `seconds`. */
 static pile_stats pile(int boxes, int n, double W, double seconds, int sleeping)
 {
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     assert_ok(rg_world_set_sleeping(w, sleeping));
-    box(w, RG_BODY_STATIC, 0, 0, -0.5, W / 2 + 1, 0.5);
-    box(w, RG_BODY_STATIC, 0, -W / 2 - 0.5, 20, 0.5, 20);
-    box(w, RG_BODY_STATIC, 0, W / 2 + 0.5, 20, 0.5, 20);
+    box_body(w, RG_BODY_STATIC, 0, 0, -0.5, W / 2 + 1, 0.5);
+    box_body(w, RG_BODY_STATIC, 0, -W / 2 - 0.5, 20, 0.5, 20);
+    box_body(w, RG_BODY_STATIC, 0, W / 2 + 0.5, 20, 0.5, 20);
     rg_body *b = malloc((size_t)n * sizeof *b);
     int cols = (int)(W / 1.1);
     uint32_t seed = 7;
@@ -608,8 +584,8 @@ static pile_stats pile(int boxes, int n, double W, double seconds, int sleeping)
         seed = seed * 1103515245u + 12345u;
         double jit = ((seed >> 16) % 1000) / 1000.0 * 0.08 - 0.04;
         double x = -W / 2 + 0.55 + (i % cols) * 1.1 + jit, y = 1.5 + (i / cols) * 1.1;
-        b[i] = boxes ? box(w, RG_BODY_DYNAMIC, 1, x, y, 0.5, 0.5)
-                     : circle(w, RG_BODY_DYNAMIC, 0.785, x, y, 0.5);
+        b[i] = boxes ? box_body(w, RG_BODY_DYNAMIC, 1, x, y, 0.5, 0.5)
+                     : circle_body(w, RG_BODY_DYNAMIC, 0.785, x, y, 0.5);
     }
     step_n(w, (int)(seconds / DT), DT);
     pile_stats st = {0, 0, 0, rg_world_awake_body_count(w)};
@@ -664,11 +640,11 @@ static void test_a_pile_of_boxes_comes_to_rest_in_its_container(void **state)
 static void test_a_light_box_holds_a_box_a_hundred_times_heavier(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     assert_ok(rg_world_set_sleeping(w, 0));
     floor_of(w);
-    rg_body light = box(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
-    rg_body heavy = box(w, RG_BODY_DYNAMIC, 100, 0, 1.5, 0.5, 0.5);
+    rg_body light = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
+    rg_body heavy = box_body(w, RG_BODY_DYNAMIC, 100, 0, 1.5, 0.5, 0.5);
     rg_real slop_r, rate, push, thr;
     assert_ok(rg_world_get_contact_tuning(w, &slop_r, &rate, &push, &thr));
         double slop = (double)slop_r;
@@ -678,11 +654,11 @@ static void test_a_light_box_holds_a_box_a_hundred_times_heavier(void **state)
         assert_true(fabs(PY(w, heavy) - 1.5) <= 2 * slop);
     }
     /* a tower of ten, masses 1 .. 100 kg bottom up */
-    rg_world *t = new_world(-10);
+    rg_world *t = gravity_world(-10);
     assert_ok(rg_world_set_sleeping(t, 0));
     floor_of(t);
     rg_body tower[10];
-    for (int i = 0; i < 10; i++) tower[i] = box(t, RG_BODY_DYNAMIC, pow(100.0, i / 9.0), 0, 0.5 + i, 0.5, 0.5);
+    for (int i = 0; i < 10; i++) tower[i] = box_body(t, RG_BODY_DYNAMIC, pow(100.0, i / 9.0), 0, 0.5 + i, 0.5, 0.5);
     for (int s = 0; s < 600; s++) {
         assert_ok(rg_world_step(t, (rg_real)DT));
         for (int i = 0; i < 10; i++) assert_true(fabs(PY(t, tower[i]) - (0.5 + i)) <= (i + 1) * slop);
@@ -696,12 +672,12 @@ static void test_a_light_box_holds_a_box_a_hundred_times_heavier(void **state)
 static void test_a_body_in_more_rows_than_colours_still_holds_its_load(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     assert_ok(rg_world_set_sleeping(w, 0));
     floor_of(w);
-    rg_body plank = box(w, RG_BODY_DYNAMIC, 10, 0, 0.25, 31, 0.25);
+    rg_body plank = box_body(w, RG_BODY_DYNAMIC, 10, 0, 0.25, 31, 0.25);
     rg_body ball[60];
-    for (int i = 0; i < 60; i++) ball[i] = circle(w, RG_BODY_DYNAMIC, 1, -29.5 + i, 0.75, 0.25);
+    for (int i = 0; i < 60; i++) ball[i] = circle_body(w, RG_BODY_DYNAMIC, 1, -29.5 + i, 0.75, 0.25);
     step_n(w, 300, DT);
     assert_near(PY(w, plank), 0.25, 0.006);
     for (int i = 0; i < 60; i++) {
@@ -716,9 +692,9 @@ static void test_a_body_in_more_rows_than_colours_still_holds_its_load(void **st
 static void test_kinematic_bodies_push_and_are_not_pushed(void **state)
 {
     (void)state;
-    rg_world *w = new_world(0);
-    rg_body k = box(w, RG_BODY_KINEMATIC, 0, -2, 0, 0.5, 0.5);
-    rg_body d = circle(w, RG_BODY_DYNAMIC, 1, 0, 0, 0.5);
+    rg_world *w = gravity_world(0);
+    rg_body k = box_body(w, RG_BODY_KINEMATIC, 0, -2, 0, 0.5, 0.5);
+    rg_body d = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 0, 0.5);
     assert_ok(rg_body_set_velocity(w, k, v2(2, 0)));
     step_n(w, 60, DT);
     /* the kinematic body keeps its velocity and path exactly */
@@ -733,9 +709,9 @@ static void test_kinematic_bodies_push_and_are_not_pushed(void **state)
 static void test_static_bodies_never_move(void **state)
 {
     (void)state;
-    rg_world *w = new_world(-10);
-    rg_body s = box(w, RG_BODY_STATIC, 0, 0, 0, 1, 1);
-    rg_body d = circle(w, RG_BODY_DYNAMIC, 1000, 0.3, 3, 0.5);
+    rg_world *w = gravity_world(-10);
+    rg_body s = box_body(w, RG_BODY_STATIC, 0, 0, 0, 1, 1);
+    rg_body d = circle_body(w, RG_BODY_DYNAMIC, 1000, 0.3, 3, 0.5);
     assert_ok(rg_body_set_velocity(w, d, v2(0, -50)));
     step_n(w, 120, DT);
     assert_near(PX(w, s), 0, 0);
@@ -750,9 +726,9 @@ static void test_static_bodies_never_move(void **state)
 static void test_position_correction_adds_no_energy(void **state)
 {
     (void)state;
-    rg_world *w = new_world(0);
+    rg_world *w = gravity_world(0);
     assert_ok(rg_world_set_sleeping(w, 0)); /* at rest, they would sleep before the end */
-    rg_body a = circle(w, RG_BODY_DYNAMIC, 1, 0, 0, 0.5), b = circle(w, RG_BODY_DYNAMIC, 2, 0.7, 0, 0.5);
+    rg_body a = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 0, 0.5), b = circle_body(w, RG_BODY_DYNAMIC, 2, 0.7, 0, 0.5);
     rg_real slop_r, rate, push, thr;
     assert_ok(rg_world_get_contact_tuning(w, &slop_r, &rate, &push, &thr));
         double slop = (double)slop_r;
@@ -785,12 +761,12 @@ static uint64_t hash_positions(rg_world *w, const rg_body *b, int n)
 
 static uint64_t run_pile_hash(void)
 {
-    rg_world *w = new_world(-10);
+    rg_world *w = gravity_world(-10);
     floor_of(w);
     rg_body b[100];
     for (int i = 0; i < 100; i++) {
         double x = (i % 10) * 1.05 + 0.01 * (i % 7), y = 1 + (i / 10) * 1.05;
-        b[i] = i % 2 ? circle(w, RG_BODY_DYNAMIC, 1, x, y, 0.5) : box(w, RG_BODY_DYNAMIC, 2, x, y, 0.5, 0.5);
+        b[i] = i % 2 ? circle_body(w, RG_BODY_DYNAMIC, 1, x, y, 0.5) : box_body(w, RG_BODY_DYNAMIC, 2, x, y, 0.5, 0.5);
     }
     step_n(w, 200, DT);
     uint64_t h = hash_positions(w, b, 100);

@@ -63,6 +63,34 @@ static inline rg_vec2 vel_of(rg_world *w, rg_body b)
     return v;
 }
 
+/* A world with gravity (0, gy) m/s^2. */
+static inline rg_world *gravity_world(double gy)
+{
+    rg_world *w;
+    assert_ok(rg_world_create(&w));
+    assert_ok(rg_world_set_gravity(w, v2(0, gy)));
+    return w;
+}
+
+/* A body of type `type` and mass m at (x, y) with a circle of radius r. */
+static inline rg_body circle_body(rg_world *w, int32_t type, double m, double x, double y, double r)
+{
+    rg_body b;
+    assert_ok(rg_body_create(w, type, (rg_real)m, v2(x, y), &b));
+    assert_ok(rg_body_set_circle(w, b, (rg_real)r));
+    return b;
+}
+
+/* A body of type `type` and mass m at (x, y) with a box of half extents hw, hh. */
+static inline rg_body box_body(rg_world *w, int32_t type, double m, double x, double y, double hw,
+                               double hh)
+{
+    rg_body b;
+    assert_ok(rg_body_create(w, type, (rg_real)m, v2(x, y), &b));
+    assert_ok(rg_body_set_aabb(w, b, (rg_real)hw, (rg_real)hh));
+    return b;
+}
+
 /* ---- an allocator that counts, checks sizes, and fails from its Nth allocation on */
 typedef struct test_alloc {
     long calls;        /* allocations attempted */
