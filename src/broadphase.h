@@ -31,6 +31,7 @@ typedef struct bp_entry {
     int16_t level;          /* 0..BP_LEVELS-1, or BP_HUGE */
     int16_t moved;          /* 1 while in the move buffer */
     int32_t apos;           /* index in active[], -1 when not awake */
+    uint32_t mark;          /* scratch for the pair search: == broadphase.mark when marked */
 } bp_entry;
 
 typedef struct broadphase {
@@ -44,6 +45,7 @@ typedef struct broadphase {
     int32_t n_huge;
     int32_t n_moved;
     int32_t n_active;
+    uint32_t mark;          /* the current mark (bp_entry.mark), never 0 */
     int32_t *head;          /* bucket heads, 2^bucket_bits of them */
     int32_t bucket_bits;
     int32_t level_count[BP_LEVELS + 1];
@@ -75,6 +77,16 @@ static inline int broadphase_overlap(const broadphase *bp, int32_t s, int32_t t)
 {
     const bp_entry *a = &bp->e[s], *b = &bp->e[t];
     return a->lx <= b->ux && b->lx <= a->ux && a->ly <= b->uy && b->ly <= a->uy;
+}
+
+/* A fresh mark for bp_entry.mark: no member carries it. */
+static inline uint32_t broadphase_new_mark(broadphase *bp)
+{
+    if (++bp->mark == 0) {
+        for (int32_t s = 0; s < bp->cap; s++) bp->e[s].mark = 0;
+        bp->mark = 1;
+    }
+    return bp->mark;
 }
 
 /* Calls visit(ctx, slot) once for every member whose fat box overlaps [lx, ux] x [ly, uy]. */

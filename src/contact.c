@@ -7,7 +7,18 @@
 #include "world.h"
 
 #define DEFAULT_FRICTION RG_R(0.6)
-#define FAT_MARGIN       RG_R(0.1)  /* m, at most the shape's larger half extent */
+/* Fat boxes grow by a margin of FAT_FRACTION of the shape's larger half extent, at least the
+ * slop (so that two touching shapes held apart by up to the slop keep their contact) and at
+ * most FAT_MARGIN.  A small margin keeps pairs few: neighbours a tenth of their size apart
+ * (a settled pile, a spawn grid) are no contact until the look-ahead of their motion brings
+ * them closer; it costs more refreshes only for bodies that drift without moving, which
+ * sleep. */
+#ifndef FAT_MARGIN
+#define FAT_MARGIN       RG_R(0.1)  /* m */
+#endif
+#ifndef FAT_FRACTION
+#define FAT_FRACTION     RG_R(0.02)
+#endif
 #ifndef LOOKAHEAD
 #define LOOKAHEAD        RG_R(4)    /* fat boxes reach this many steps of motion ahead */
 #endif
@@ -490,15 +501,15 @@ static void sleep_islands(rg_world *w, rg_real dt, int united)
 
 /* ---------------------------------------------------------------- broadphase upkeep */
 
-static inline rg_real fat_margin(const body_store *b, int32_t i)
+static inline rg_real fat_margin(const contact_world *cw, const body_store *b, int32_t i)
 {
-    return rg_min(FAT_MARGIN, RG_R(0.1) * rg_max(b->hx[i], b->hy[i]));
+    return rg_min(FAT_MARGIN, rg_max(cw->slop, FAT_FRACTION * rg_max(b->hx[i], b->hy[i])));
 }
 
 /* The fat box of a body at rest: its box grown by the margin. */
-static void rest_box(const body_store *b, int32_t i, rg_real box[4])
+static void rest_box(const contact_world *cw, const body_store *b, int32_t i, rg_real box[4])
 {
-    rg_real m = fat_margin(b, i);
+    rg_real m = fat_margin(cw, b, i);
     box[0] = b->x[i] - b->hx[i] - m;
     box[1] = b->y[i] - b->hy[i] - m;
     box[2] = b->x[i] + b->hx[i] + m;
@@ -518,7 +529,7 @@ static void refresh_fat(rg_world *w, int32_t i, rg_real lx, rg_real ly, rg_real 
     broadphase *bp = &w->coll.bp;
     int32_t slot = w->b.slot[i];
     if (box_inside(&bp->e[slot], lx, ly, ux, uy)) return;
-    rg_real m = fat_margin(&w->b, i);
+    rg_real m = fat_margin(&w->coll, &w->b, i);
     mx *= LOOKAHEAD;
     my *= LOOKAHEAD;
     rg_real flx = rg_min(lx, lx + mx) - m, fly = rg_min(ly, ly + my) - m;
@@ -532,6 +543,7 @@ static void refresh_fat(rg_world *w, int32_t i, rg_real lx, rg_real ly, rg_real 
 typedef struct pair_ctx {
     rg_world *w;
     int32_t s, is;
+    uint32_t mark;    /* the bodies s has a contact with carry it */
     int teleported;
     int failed;
     int woke;
@@ -554,16 +566,17 @@ static void pair_visit(void *p, int32_t t)
     contact_world *cw = &w->coll;
     int32_t s = q->s;
     if (t == s) return;
-    if (cw->bp.e[t].moved && t < s) return; /* t's own query finds the pair */
+    bp_entry *et = &cw->bp.e[t];
+    if (et->moved && t < s) return;     /* t's own query finds the pair */
+    if (et->mark == q->mark) return;    /* s has a contact with t */
     const body_store *b = &w->b;
     int32_t it = dense_of(w, t);
     if (!pair_admitted(b, q->is, it)) return;
-    for (int32_t id = b->chead[q->is] - 1; id >= 0; id = next_of(&cw->c[id], s))
-        if (other_of(&cw->c[id], s) == t) return;
     if (contact_create(w, s, t) < 0) {
         q->failed = 1;
         return;
     }
+    et->mark = q->mark;
     /* a teleported body landing on a sleeping one wakes it */
     if (q->teleported && body_partition(w, it) == BODY_PART_ASLEEP) {
         wake_island(w, it);
@@ -582,15 +595,21 @@ static int find_pairs(rg_world *w)
     for (int32_t k = 0; k < n; k++) {
         int32_t s = bp->moved[k];
         const bp_entry *e = &bp->e[s];
-        /* contacts whose fat boxes no longer overlap end */
+        /* contacts whose fat boxes no longer overlap end; the others' bodies are marked,
+         * so the query knows its existing pairs in O(1) */
+        uint32_t mark = broadphase_new_mark(bp);
         for (int32_t id = w->b.chead[dense_of(w, s)] - 1; id >= 0;) {
-            int32_t next = next_of(&cw->c[id], s);
-            if (!broadphase_overlap(bp, s, other_of(&cw->c[id], s))) contact_destroy(w, id);
+            int32_t next = next_of(&cw->c[id], s), t = other_of(&cw->c[id], s);
+            if (!broadphase_overlap(bp, s, t))
+                contact_destroy(w, id);
+            else
+                bp->e[t].mark = mark;
             id = next;
         }
         pair_ctx q;
         q.w = w;
         q.s = s;
+        q.mark = mark;
         q.is = dense_of(w, s);
         q.teleported = (w->b.cflags[q.is] & CF_TELEPORTED) != 0;
         q.failed = 0;
@@ -678,6 +697,28 @@ static inline void body_view(const rg_world *w, int32_t i, int32_t n, cbody *o)
     o->kind = b->shape[i];
 }
 
+/* Whether a pair that is not touching is too far apart for the narrowphase below to solve
+ * it or find it touching, so it can be skipped with the same result.  The gap G between the
+ * two boxes at the start bounds every separation that test takes from below: the manifold's
+ * (a circle lies in its box) unless a box grazes (then the separation is the gap along one
+ * axis, within slop of zero: excluded), and a time of impact needs |r| >= G.  The test solves
+ * when s0 - reach < SPECULATIVE * slop with reach <= |dA| + |dB| (1-norms bound both), and
+ * finds touching only when s0 <= |r|.  The margin covers the rounding of the exact tests:
+ * slop, and a few ulps of the coordinates. */
+static inline int far_apart(const cbody *A, const cbody *B, int32_t ka, int32_t kb, rg_real slop)
+{
+    rg_real gx = rg_fabs(B->sx - A->sx) - (A->hx + B->hx);
+    rg_real gy = rg_fabs(B->sy - A->sy) - (A->hy + B->hy);
+    rg_real reach = rg_fabs(A->dx) + rg_fabs(A->dy) + rg_fabs(B->dx) + rg_fabs(B->dy);
+    rg_real ulps = (rg_fabs(A->sx) + rg_fabs(A->sy) + rg_fabs(B->sx) + rg_fabs(B->sy) + reach +
+                    A->hx + A->hy + B->hx + B->hy) * (64 * RG_EPSILON);
+    rg_real need = reach + (SPECULATIVE + 1) * slop + ulps;
+    if (!(rg_max(gx, gy) >= need)) return 0; /* also NaN */
+    /* a box may graze along an axis whose gap is within slop of zero */
+    if (ka == RG_SHAPE_CIRCLE && kb == RG_SHAPE_CIRCLE) return 1;
+    return rg_fabs(gx) > slop && rg_fabs(gy) > slop;
+}
+
 /* Updates contact id from the step's motion (the broadphase keeps only pairs whose fat
  * boxes overlap): manifold at the start of the step or at the time of impact, touching
  * state and events, grounded flags, islands, waking, and the solver row. */
@@ -693,6 +734,12 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
     int32_t ka = A.kind, kb = B.kind;
     rg_vec2 ha = rg_v2(A.hx, A.hy), hb = rg_v2(B.hx, B.hy);
     rg_vec2 r = rg_v2(B.dx - A.dx, B.dy - A.dy); /* b's motion relative to a over the step */
+    if (cw->continuous && !(c->flags & CT_TOUCHING) && far_apart(&A, &B, ka, kb, cw->slop)) {
+        /* what the full test below would conclude: not solved, not touching */
+        c->flags &= ~(CT_SOLVE | CT_CLOSING);
+        c->pn = c->pt = 0;
+        return;
+    }
     coll_manifold m;
     rg_real s0 = RG_HUGE;
     int active = 1;
@@ -1184,7 +1231,8 @@ static void solve(rg_world *w, narrow_ctx *x)
 #ifdef RG_CONTACT_PROFILE
 #include <stdio.h>
 #include <time.h>
-static double prof_acc[8], prof_last;
+static double prof_acc[8], prof_last, prof_moved;
+#define PROF_MOVED(n) (prof_moved += (n))
 static double prof_now(void)
 {
     struct timespec t;
@@ -1194,17 +1242,18 @@ static double prof_now(void)
 #define PROF(k) do { double t_ = prof_now(); if ((k) >= 0) prof_acc[(k)] += t_ - prof_last; prof_last = t_; } while (0)
 #define PROF_REPORT(w)                                                                         \
     do {                                                                                       \
-        if ((w)->step_count % 60 == 59) {                                                      \
+        if ((w)->step_count % 10 == 9) {                                                      \
             fprintf(stderr, "contacts %d rows %d active %d | ms/step:", (w)->coll.n_awake,     \
                     nx.nc, (w)->coll.bp.n_active);                                             \
             const char *names[] = {"bodies", "pairs", "narrow", "solve", "fast+fat", "sleep"}; \
-            for (int q_ = 0; q_ < 6; q_++) fprintf(stderr, " %s %.3f", names[q_], prof_acc[q_] * 1e3 / 60); \
-            fprintf(stderr, "\n");                                                             \
+            for (int q_ = 0; q_ < 6; q_++) fprintf(stderr, " %s %.3f", names[q_], prof_acc[q_] * 1e3 / 10); \
+            fprintf(stderr, " moved/step %.0f\n", prof_moved / 10); prof_moved = 0;             \
             memset(prof_acc, 0, sizeof prof_acc);                                              \
         }                                                                                      \
     } while (0)
 #else
 #define PROF(k) ((void)0)
+#define PROF_MOVED(n) ((void)0)
 #define PROF_REPORT(w) ((void)0)
 #endif
 
@@ -1278,6 +1327,7 @@ void contact_step(rg_world *w, rg_real dt)
         if (nx.unite)
             for (int32_t k = 0; k < na; k++) cw->uf[k] = k;
         PROF(0);
+        PROF_MOVED(bp->n_moved);
         nx.woke = find_pairs(w);
         PROF(1);
         for (int32_t k = 0; k < cw->n_awake; k++) {
@@ -1341,7 +1391,7 @@ static void teleported(rg_world *w, int32_t i)
     body_store *b = &w->b;
     int32_t s = b->slot[i];
     rg_real box[4];
-    rest_box(b, i, box);
+    rest_box(&w->coll, b, i, box);
     broadphase_move(&w->coll.bp, s, box[0], box[1], box[2], box[3]);
     broadphase_mark_moved(&w->coll.bp, s);
     b->cflags[i] |= CF_TELEPORTED;
@@ -1413,7 +1463,7 @@ static rg_status set_shape(rg_world *w, int32_t i, int32_t kind, rg_real hx, rg_
     b->hy[i] = hy;
     if (fresh) {
         rg_real box[4];
-        rest_box(b, i, box);
+        rest_box(cw, b, i, box);
         broadphase_insert(&cw->bp, s, box[0], box[1], box[2], box[3]);
         if (b->type[i] != RG_BODY_STATIC) broadphase_activate(&cw->bp, s);
         cw->shape_count++;
