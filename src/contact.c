@@ -524,7 +524,7 @@ static inline int box_inside(const bp_entry *e, rg_real lx, rg_real ly, rg_real 
 /* Refreshes the fat box of active body i from its box [l, u] and a displacement (mx, my)
  * to look ahead by, when the box [l, u] left the fat box; marks it moved. */
 static void refresh_fat(rg_world *w, int32_t i, rg_real lx, rg_real ly, rg_real ux, rg_real uy,
-                        rg_real mx, rg_real my)
+                        rg_real mx, rg_real my, rg_real ax, rg_real ay)
 {
     broadphase *bp = &w->coll.bp;
     int32_t slot = w->b.slot[i];
@@ -532,8 +532,10 @@ static void refresh_fat(rg_world *w, int32_t i, rg_real lx, rg_real ly, rg_real 
     rg_real m = fat_margin(&w->coll, &w->b, i);
     mx *= LOOKAHEAD;
     my *= LOOKAHEAD;
-    rg_real flx = rg_min(lx, lx + mx) - m, fly = rg_min(ly, ly + my) - m;
-    rg_real fux = rg_max(ux, ux + mx) + m, fuy = rg_max(uy, uy + my) + m;
+    ax = mx + ax * (LOOKAHEAD * (LOOKAHEAD + 1) / 2);
+    ay = my + ay * (LOOKAHEAD * (LOOKAHEAD + 1) / 2);
+    rg_real flx = rg_min(lx, rg_min(lx + mx, lx + ax)) - m, fly = rg_min(ly, rg_min(ly + my, ly + ay)) - m;
+    rg_real fux = rg_max(ux, rg_max(ux + mx, ux + ax)) + m, fuy = rg_max(uy, rg_max(uy + my, uy + ay)) + m;
     broadphase_move(bp, slot, flx, fly, fux, fuy);
     broadphase_mark_moved(bp, slot);
 }
@@ -681,12 +683,9 @@ static inline int32_t solver_index(contact_world *cw, int32_t i, int32_t n, narr
 
 /* The step's view of body i: start position, displacement, velocity, half extents.  Awake
  * bodies come from the per-step cache, the others rest: no displacement, no velocity. */
-static inline void body_view(const rg_world *w, int32_t i, int32_t n, cbody *o)
+static inline const cbody *body_view(const rg_world *w, int32_t i, int32_t n, cbody *o)
 {
-    if (i < n) {
-        *o = w->coll.cb[i];
-        return;
-    }
+    if (i < n) return &w->coll.cb[i];
     const body_store *b = &w->b;
     o->sx = b->x[i];
     o->sy = b->y[i];
@@ -695,6 +694,7 @@ static inline void body_view(const rg_world *w, int32_t i, int32_t n, cbody *o)
     o->hy = b->hy[i];
     o->gs = o->im = 0;
     o->kind = b->shape[i];
+    return o;
 }
 
 /* Whether a pair that is not touching is too far apart for the narrowphase below to solve
@@ -728,13 +728,12 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
     body_store *b = &w->b;
     contact *c = &cw->c[id];
     int32_t ia = dense_of(w, c->sa), ib = dense_of(w, c->sb);
-    cbody A, B;
-    body_view(w, ia, x->n, &A);
-    body_view(w, ib, x->n, &B);
-    int32_t ka = A.kind, kb = B.kind;
-    rg_vec2 ha = rg_v2(A.hx, A.hy), hb = rg_v2(B.hx, B.hy);
-    rg_vec2 r = rg_v2(B.dx - A.dx, B.dy - A.dy); /* b's motion relative to a over the step */
-    if (cw->continuous && !(c->flags & CT_TOUCHING) && far_apart(&A, &B, ka, kb, cw->slop)) {
+    cbody rest_a, rest_b;
+    const cbody *A = body_view(w, ia, x->n, &rest_a), *B = body_view(w, ib, x->n, &rest_b);
+    int32_t ka = A->kind, kb = B->kind;
+    rg_vec2 ha = rg_v2(A->hx, A->hy), hb = rg_v2(B->hx, B->hy);
+    rg_vec2 r = rg_v2(B->dx - A->dx, B->dy - A->dy); /* b's motion relative to a over the step */
+    if (cw->continuous && !(c->flags & CT_TOUCHING) && far_apart(A, B, ka, kb, cw->slop)) {
         /* what the full test below would conclude: not solved, not touching */
         c->flags &= ~(CT_SOLVE | CT_CLOSING);
         c->pn = c->pt = 0;
@@ -747,12 +746,12 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
     int slow = r.x * r.x + r.y * r.y <= RG_R(0.25) * size * size;
     if (!cw->continuous) {
         /* discrete: the shapes where the step left them, extrapolated back */
-        coll_manifold_of(ka, rg_v2(A.sx + A.dx, A.sy + A.dy), ha, kb, rg_v2(B.sx + B.dx, B.sy + B.dy), hb, &m);
+        coll_manifold_of(ka, rg_v2(A->sx + A->dx, A->sy + A->dy), ha, kb, rg_v2(B->sx + B->dx, B->sy + B->dy), hb, &m);
         s0 = -m.depth - rg_v2_dot(r, m.normal);
     } else {
         if (ka == RG_SHAPE_CIRCLE && kb == RG_SHAPE_CIRCLE) {
             /* the common case inline: two circles at the start of the step */
-            rg_real ex = B.sx - A.sx, ey = B.sy - A.sy;
+            rg_real ex = B->sx - A->sx, ey = B->sy - A->sy;
             rg_real dist = rg_sqrt(ex * ex + ey * ey);
             rg_real nx = 0, ny = 1;
             if (dist > 0) {
@@ -763,15 +762,15 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
             m.normal = rg_v2(nx, ny);
             s0 = dist - ha.x - hb.x;
             rg_real f = ha.x + RG_R(0.5) * s0; /* halfway between the surfaces, from a */
-            m.point = rg_v2(A.sx + nx * f, A.sy + ny * f);
+            m.point = rg_v2(A->sx + nx * f, A->sy + ny * f);
         } else {
-            coll_contact(ka, rg_v2(A.sx, A.sy), ha, kb, rg_v2(B.sx, B.sy), hb, r, cw->slop, &m);
+            coll_contact(ka, rg_v2(A->sx, A->sy), ha, kb, rg_v2(B->sx, B->sy), hb, r, cw->slop, &m);
             s0 = -m.depth;
         }
         /* apart at the start and fast: the time of impact instead */
         if (!slow && s0 > cw->slop) {
             rg_real t;
-            if (coll_sweep(ka, rg_v2(A.sx, A.sy), ha, kb, rg_v2(B.sx, B.sy), hb, r, &t, &m))
+            if (coll_sweep(ka, rg_v2(A->sx, A->sy), ha, kb, rg_v2(B->sx, B->sy), hb, r, &t, &m))
                 s0 = t > 0 ? -t * rg_v2_dot(r, m.normal) : -m.depth;
             else
                 active = 0;
@@ -781,7 +780,7 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
     c->flags &= ~(CT_SOLVE | CT_CLOSING);
     if (active) {
         rg_real nx = m.normal.x, ny = m.normal.y;
-        rg_real vn0 = (B.vx - A.vx) * nx + (B.vy - A.vy) * ny;
+        rg_real vn0 = (B->vx - A->vx) * nx + (B->vy - A->vy) * ny;
         rg_real d = s0 + r.x * nx + r.y * ny; /* predicted separation */
         /* touching: the step ends with the pair in contact (the free motion closes the gap,
          * which the solver then holds); a slop of hysteresis keeps resting pairs steady */
@@ -796,11 +795,11 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
         /* solved when the pair could close within the step: not only by the free motion
          * (d), but also when the solver stops either body (an impact below it) while the
          * other moves on, so each body's own motion toward the other counts */
-        rg_real reach = rg_fabs(A.dx * nx + A.dy * ny) + rg_fabs(B.dx * nx + B.dy * ny);
+        rg_real reach = rg_fabs(A->dx * nx + A->dy * ny) + rg_fabs(B->dx * nx + B->dy * ny);
         if (!(c->flags & CT_SENSOR) && s0 - reach < SPECULATIVE * cw->slop && rg_finite(s0) &&
             rg_finite(vn0)) {
             int32_t n = x->n;
-            rg_real ima = A.im, imb = B.im;
+            rg_real ima = A->im, imb = B->im;
             if (ima + imb > 0) {
                 c->flags |= CT_SOLVE;
                 solver_constraint *q = &cw->stage[x->nc];
@@ -847,9 +846,9 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
     }
     if (c->flags & CT_SENSOR) return;
     if (now) {
-        if (A.gs != 0 && is_ground(w->gravity.x, w->gravity.y, A.gs, -c->nx, -c->ny))
+        if (A->gs != 0 && is_ground(w->gravity.x, w->gravity.y, A->gs, -c->nx, -c->ny))
             b->cflags[ia] |= CF_GROUNDED;
-        if (B.gs != 0 && is_ground(w->gravity.x, w->gravity.y, B.gs, c->nx, c->ny))
+        if (B->gs != 0 && is_ground(w->gravity.x, w->gravity.y, B->gs, c->nx, c->ny))
             b->cflags[ib] |= CF_GROUNDED;
         if (x->unite) {
             int32_t pa = cw->bp.e[c->sa].apos, pb = cw->bp.e[c->sb].apos;
@@ -1322,7 +1321,7 @@ void contact_step(rg_world *w, rg_real dt)
                 ux = rg_max(ux, ux - mx);
                 uy = rg_max(uy, uy - my);
             }
-            refresh_fat(w, i, lx, ly, ux, uy, mx, my);
+            refresh_fat(w, i, lx, ly, ux, uy, mx, my, (b->vx[i] - cw->svx0[k]) * dt, (b->vy[i] - cw->svy0[k]) * dt);
         }
         if (nx.unite)
             for (int32_t k = 0; k < na; k++) cw->uf[k] = k;
@@ -1351,7 +1350,9 @@ void contact_step(rg_world *w, rg_real dt)
         for (int32_t k = 0; k < bp->n_active; k++) {
             int32_t i = dense_of(w, bp->active[k]);
             rg_real x1 = b->x[i], y1 = b->y[i], hx = b->hx[i], hy = b->hy[i];
-            refresh_fat(w, i, x1 - hx, y1 - hy, x1 + hx, y1 + hy, b->vx[i] * dt, b->vy[i] * dt);
+            /* bodies woken during the step (k >= na) have no start velocity: no trend */
+            rg_real ax = k < na ? (b->vx[i] - cw->svx0[k]) * dt : 0, ay = k < na ? (b->vy[i] - cw->svy0[k]) * dt : 0;
+            refresh_fat(w, i, x1 - hx, y1 - hy, x1 + hx, y1 + hy, b->vx[i] * dt, b->vy[i] * dt, ax, ay);
         }
         PROF(4);
         if (cw->sleeping) sleep_islands(w, dt, nx.unite && !nx.woke);

@@ -204,9 +204,18 @@ void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, in
     out->nrows = rows;
     out->nover = 0;
     solver_wide *w = out->rows;
-    memset(w, 0, (size_t)rows * sizeof *w);
-    for (int32_t r = 0; r < rows; r++)
-        for (int l = 0; l < SOLVER_LANES; l++) w[r].a[l] = w[r].b[l] = ground;
+    /* padding: the lanes after the last row of each colour (every other lane is filled below;
+     * pmin and pp are set by solver_pack_position) */
+    for (int col = 0; col < 32; col++) {
+        int used = count[col] % SOLVER_LANES;
+        if (used == 0) continue;
+        solver_wide *q = &w[start[col] + count[col] / SOLVER_LANES];
+        for (int l = used; l < SOLVER_LANES; l++) {
+            q->a[l] = q->b[l] = ground;
+            q->nx[l] = q->ny[l] = q->m[l] = q->mu[l] = q->ima[l] = q->imb[l] = 0;
+            q->vmin[l] = q->pn[l] = q->pt[l] = q->pmin[l] = q->pp[l] = 0;
+        }
+    }
     for (int32_t j = 0; j < n; j++) {
         int32_t k = order[j];
         int col = color[k];
