@@ -62,6 +62,29 @@ static int level_of(rg_real lx, rg_real ly, rg_real ux, rg_real uy)
     return li < BP_LEVELS ? li : BP_HUGE;
 }
 
+/* The member lists of the levels: slot joins or leaves the list of its level (not huge). */
+static void level_link(broadphase *bp, int32_t slot)
+{
+    bp_entry *e = &bp->e[slot];
+    if (e->level == BP_HUGE) return;
+    e->lprev = -1;
+    e->lnext = bp->level_head[e->level];
+    if (e->lnext >= 0) bp->e[e->lnext].lprev = slot;
+    bp->level_head[e->level] = slot;
+}
+
+static void level_unlink(broadphase *bp, int32_t slot)
+{
+    bp_entry *e = &bp->e[slot];
+    if (e->level == BP_HUGE) return;
+    if (e->lprev >= 0)
+        bp->e[e->lprev].lnext = e->lnext;
+    else
+        bp->level_head[e->level] = e->lnext;
+    if (e->lnext >= 0) bp->e[e->lnext].lprev = e->lprev;
+    e->lnext = e->lprev = -1;
+}
+
 static void chain_link(broadphase *bp, int32_t slot)
 {
     bp_entry *e = &bp->e[slot];
@@ -143,6 +166,8 @@ rg_status broadphase_reserve(broadphase *bp, const rg_mem *m, int32_t slots, int
         return RG_ERR_OUT_OF_MEMORY;
     }
     if (cap != bp->cap) {
+        if (bp->cap == 0)
+            for (int li = 0; li < BP_LEVELS; li++) bp->level_head[li] = -1;
         if (bp->cap > 0) {
             memcpy(e, bp->e, (size_t)bp->cap * sizeof *e);
             memcpy(mem_, bp->members, (size_t)bp->count * sizeof *mem_);
@@ -154,6 +179,7 @@ rg_status broadphase_reserve(broadphase *bp, const rg_mem *m, int32_t slots, int
             memset(&e[s], 0, sizeof e[s]);
             e[s].member = -1;
             e[s].next = e[s].prev = -1;
+            e[s].lnext = e[s].lprev = -1;
             e[s].apos = -1;
         }
         mem_free(m, bp->e, (size_t)bp->cap * sizeof *bp->e);
@@ -203,6 +229,7 @@ void broadphase_insert(broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_
     bp->members[bp->count++] = slot;
     bp->level_count[e->level]++;
     chain_link(bp, slot);
+    level_link(bp, slot);
 }
 
 void broadphase_move(broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_real ux, rg_real uy)
@@ -225,11 +252,13 @@ void broadphase_move(broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_re
     e->level = (int16_t)old_level;
     e->key = old_key;
     chain_unlink(bp, slot);
+    if (li != old_level) level_unlink(bp, slot);
     bp->level_count[old_level]--;
     e->level = (int16_t)li;
     e->key = key;
     bp->level_count[li]++;
     chain_link(bp, slot);
+    if (li != old_level) level_link(bp, slot);
 }
 
 void broadphase_activate(broadphase *bp, int32_t slot)
@@ -255,6 +284,7 @@ void broadphase_remove(broadphase *bp, int32_t slot)
     bp_entry *e = &bp->e[slot];
     broadphase_deactivate(bp, slot);
     chain_unlink(bp, slot);
+    level_unlink(bp, slot);
     bp->level_count[e->level]--;
     int32_t i = e->member, last = bp->members[--bp->count];
     bp->members[i] = last;
@@ -286,8 +316,8 @@ static inline int box_overlap(const bp_entry *e, rg_real lx, rg_real ly, rg_real
     return e->lx <= ux && lx <= e->ux && e->ly <= uy && ly <= e->uy;
 }
 
-/* Members of level li overlapping the box: visit the candidate cells, or scan the members
- * when the box spans more cells than the level has members. */
+/* Members of level li overlapping the box: visit the candidate cells, or walk the level's
+ * list when the box spans at least as many cells as the level has members. */
 static void query_level(const broadphase *bp, int li, rg_real lx, rg_real ly, rg_real ux, rg_real uy,
                         bp_visit_fn visit, void *ctx)
 {
@@ -297,11 +327,12 @@ static void query_level(const broadphase *bp, int li, rg_real lx, rg_real ly, rg
     if (x0 < -BP_LIM) x0 = -BP_LIM;
     if (y0 < -BP_LIM) y0 = -BP_LIM;
     int64_t cells = (x1 - x0 + 1) * (y1 - y0 + 1);
-    if (cells > (int64_t)bp->level_count[li] + 8) {
-        for (int32_t i = 0; i < bp->count; i++) {
-            int32_t s = bp->members[i];
+    if (cells >= (int64_t)bp->level_count[li]) {
+        for (int32_t s = bp->level_head[li]; s >= 0;) {
             const bp_entry *e = &bp->e[s];
-            if (e->level == li && box_overlap(e, lx, ly, ux, uy)) visit(ctx, s);
+            int32_t next = e->lnext;
+            if (box_overlap(e, lx, ly, ux, uy)) visit(ctx, s);
+            s = next;
         }
         return;
     }
@@ -358,9 +389,10 @@ void broadphase_raycast(const broadphase *bp, rg_vec2 o, rg_vec2 d, bp_ray_fn vi
         rg_real nchunks = span > c ? r.max_t / step + 1 : 1;
         if (nchunks * 4 > (rg_real)bp->level_count[li] + 8) {
             /* long ray over a sparse level: test each member of the level once */
-            for (int32_t k = 0; k < bp->count; k++) {
-                int32_t s = bp->members[k];
-                if (bp->e[s].level == li) ray_visit(&r, s);
+            for (int32_t s = bp->level_head[li]; s >= 0;) {
+                int32_t next = bp->e[s].lnext;
+                ray_visit(&r, s);
+                s = next;
             }
             continue;
         }

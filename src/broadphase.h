@@ -4,7 +4,8 @@
  * the finest level whose cell is larger than the box, in the one cell holding its lower
  * corner.  So a box overlapping a query box Q has its corner cell within one cell below Q's
  * and at most Q's upper cell: a query visits 2x2 to 3x3 cells per occupied level, whatever
- * the mix of sizes.  Cells hash (level, x, y) into one bucket table of chains, so memory
+ * the mix of sizes; a level with fewer members than the query has cells is walked as a list
+ * instead (a few large platforms, a container's walls).  Cells hash (level, x, y) into one bucket table of chains, so memory
  * follows the member count, not the world's extent; the hash is of integer cell
  * coordinates, so iteration order never depends on addresses.  Members are updated in O(1)
  * (unlink, relink); boxes too big for the coarsest level, or not finite (a body thrown to
@@ -27,6 +28,7 @@ typedef struct bp_entry {
     rg_real lx, ly, ux, uy; /* fat box, m */
     uint64_t key;           /* packed level and lower-corner cell */
     int32_t next, prev;     /* bucket chain (slots; -1 ends); huge: next = index in huge[] */
+    int32_t lnext, lprev;   /* the members of its level (slots; -1 ends); not for huge */
     int32_t member;         /* index in members[], -1 when not in the grid */
     int16_t level;          /* 0..BP_LEVELS-1, or BP_HUGE */
     int16_t moved;          /* 1 while in the move buffer */
@@ -49,6 +51,7 @@ typedef struct broadphase {
     int32_t *head;          /* bucket heads, 2^bucket_bits of them */
     int32_t bucket_bits;
     int32_t level_count[BP_LEVELS + 1];
+    int32_t level_head[BP_LEVELS]; /* first member of each level, -1 when none */
 } broadphase;
 
 /* Makes room for slots [0, slots) and for `members` members; all-or-nothing. */
