@@ -33,7 +33,10 @@ static inline int64_t cell_coord(rg_real v, rg_real inv)
     rg_real s = v * inv;
     if (!(s > -(rg_real)BP_LIM)) return -BP_LIM; /* also NaN */
     if (s >= (rg_real)BP_LIM) return BP_LIM - 1;
-    return (int64_t)rg_floor(s);
+    /* floor without a library call: truncation, less one below zero off an integer (exact:
+     * |s| < 2^28, and a real that large is an integer, so i converts back exactly) */
+    int64_t i = (int64_t)s;
+    return i - (s < (rg_real)i);
 }
 
 static inline uint64_t cell_key(int li, int64_t cx, int64_t cy)
@@ -60,6 +63,19 @@ static int level_of(rg_real lx, rg_real ly, rg_real ux, rg_real uy)
     if (li < 0) return 0;
     if (!(ext <= level_cell(li) * RG_R(0.99609375))) li++;
     return li < BP_LEVELS ? li : BP_HUGE;
+}
+
+typedef char bp_levels_fit_a_mask[BP_LEVELS <= 32 ? 1 : -1];
+
+/* Counts a member more or less at level li, keeping the mask of occupied levels. */
+static void level_count_add(broadphase *bp, int li, int32_t d)
+{
+    bp->level_count[li] += d;
+    if (li == BP_HUGE) return;
+    if (bp->level_count[li] > 0)
+        bp->levels |= 1u << li;
+    else
+        bp->levels &= ~(1u << li);
 }
 
 /* The member lists of the levels: slot joins or leaves the list of its level (not huge). */
@@ -227,7 +243,7 @@ void broadphase_insert(broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_
     e->moved = 0;
     e->apos = -1;
     bp->members[bp->count++] = slot;
-    bp->level_count[e->level]++;
+    level_count_add(bp, e->level, 1);
     chain_link(bp, slot);
     level_link(bp, slot);
 }
@@ -253,10 +269,10 @@ void broadphase_move(broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_re
     e->key = old_key;
     chain_unlink(bp, slot);
     if (li != old_level) level_unlink(bp, slot);
-    bp->level_count[old_level]--;
+    level_count_add(bp, old_level, -1);
     e->level = (int16_t)li;
     e->key = key;
-    bp->level_count[li]++;
+    level_count_add(bp, li, 1);
     chain_link(bp, slot);
     if (li != old_level) level_link(bp, slot);
 }
@@ -285,7 +301,7 @@ void broadphase_remove(broadphase *bp, int32_t slot)
     broadphase_deactivate(bp, slot);
     chain_unlink(bp, slot);
     level_unlink(bp, slot);
-    bp->level_count[e->level]--;
+    level_count_add(bp, e->level, -1);
     int32_t i = e->member, last = bp->members[--bp->count];
     bp->members[i] = last;
     bp->e[last].member = i;
@@ -313,7 +329,7 @@ void broadphase_mark_moved(broadphase *bp, int32_t slot)
 
 static inline int box_overlap(const bp_entry *e, rg_real lx, rg_real ly, rg_real ux, rg_real uy)
 {
-    return e->lx <= ux && lx <= e->ux && e->ly <= uy && ly <= e->uy;
+    return (e->lx <= ux) & (lx <= e->ux) & (e->ly <= uy) & (ly <= e->uy);
 }
 
 /* Members of level li overlapping the box: visit the candidate cells, or walk the level's
@@ -342,7 +358,7 @@ static void query_level(const broadphase *bp, int li, rg_real lx, rg_real ly, rg
             for (int32_t s = bp->head[bucket_of(bp, key)]; s >= 0;) {
                 const bp_entry *e = &bp->e[s];
                 int32_t next = e->next;
-                if (e->key == key && box_overlap(e, lx, ly, ux, uy)) visit(ctx, s);
+                if ((e->key == key) & box_overlap(e, lx, ly, ux, uy)) visit(ctx, s);
                 s = next;
             }
         }
@@ -353,8 +369,15 @@ void broadphase_query(const broadphase *bp, rg_real lx, rg_real ly, rg_real ux, 
                       bp_visit_fn visit, void *ctx)
 {
     if (bp->count == 0) return;
-    for (int li = 0; li < BP_LEVELS; li++)
-        if (bp->level_count[li] > 0) query_level(bp, li, lx, ly, ux, uy, visit, ctx);
+    for (uint32_t occ = bp->levels; occ != 0; occ &= occ - 1) {
+#ifdef __GNUC__
+        int li = __builtin_ctz(occ);
+#else
+        int li = 0;
+        while (!(occ & (1u << li))) li++;
+#endif
+        query_level(bp, li, lx, ly, ux, uy, visit, ctx);
+    }
     for (int32_t i = 0; i < bp->n_huge; i++) {
         int32_t s = bp->huge[i];
         if (box_overlap(&bp->e[s], lx, ly, ux, uy)) visit(ctx, s);

@@ -52,6 +52,7 @@ typedef struct broadphase {
     int32_t bucket_bits;
     int32_t level_count[BP_LEVELS + 1];
     int32_t level_head[BP_LEVELS]; /* first member of each level, -1 when none */
+    uint32_t levels;        /* bit li: level li has members */
 } broadphase;
 
 /* Makes room for slots [0, slots) and for `members` members; all-or-nothing. */
