@@ -1330,16 +1330,6 @@ void contact_step(rg_world *w, rg_real dt)
         nx.woke = find_pairs(w);
         PROF(1);
         for (int32_t k = 0; k < cw->n_awake; k++) {
-#ifdef __GNUC__
-            /* the contacts ahead, then the bodies of those a little less far ahead */
-            if (k + 8 < cw->n_awake) __builtin_prefetch(&cw->c[cw->awake[k + 8]]);
-            if (k + 4 < cw->n_awake) {
-                const contact *f = &cw->c[cw->awake[k + 4]];
-                int32_t fa = dense_of(w, f->sa), fb = dense_of(w, f->sb);
-                if (fa < n) __builtin_prefetch(&cb[fa]);
-                if (fb < n) __builtin_prefetch(&cb[fb]);
-            }
-#endif
             narrow_one(w, cw->awake[k], &nx);
         }
         PROF(2);
