@@ -103,7 +103,7 @@ typedef struct contact_world {
     uint16_t *key, *tkey;     /* [0, cap): their sort keys, radix scratch */
     int32_t *color;           /* [0, cap): colouring scratch */
     int32_t *imp;             /* [0, cap): staged rows that are impacts (toi > 0) */
-    solver_batch batch;       /* the rows four at a time (rows: SOLVER_WIDE_ROWS(cap)) */
+    solver_batch batch;       /* the rows eight at a time (rows: SOLVER_WIDE_ROWS(cap)) */
 
     rg_contact_event *ev;     /* events of the last step, or of every step of the last advance */
     int32_t n_ev, ev_cap;     /* held, room (>= ev_base + 3 * cap during a step) */

@@ -167,7 +167,7 @@ void solver_iterate_position(solver_constraint *c, const int32_t *list, int32_t 
     }
 }
 
-/* ---------------------------------------------------------------- four lanes */
+/* ---------------------------------------------------------------- eight lanes */
 
 void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, int32_t nbodies,
                  uint32_t *mask, int32_t *color, solver_batch *out)
@@ -270,6 +270,16 @@ void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t n
 }
 
 #if defined(__SSE2__) && !defined(RG_DOUBLE)
+/* On x86-64 with GCC or Clang the velocity sweep, the hot loop, also has an AVX2 version,
+ * picked per call from the CPU (so the library stays portable x86-64); RG_NO_DISPATCH builds
+ * SSE2 only. */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(RG_NO_DISPATCH)
+#define SOLVER_AVX2 1
+#include <immintrin.h>
+#else
+#define SOLVER_AVX2 0
+#endif
+
 /* The lanes in SSE registers.  Velocities are pairs (x, y): two lanes' pairs load into one
  * register and shuffle into x and y vectors; the stores undo it.  Lanes of one row never
  * share a movable body, so the scattered stores never collide; lanes on the ground or a
@@ -293,69 +303,150 @@ static inline void scatter(float *v, const int32_t *idx, __m128 x, __m128 y)
     _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[3]), p23);
 }
 
+/* Four lanes of a row, from lane h: the loads, the arithmetic and the stores of a row are
+ * those of one lane at a time, so any grouping of a row's lanes gives the same results. */
+static inline void warm_start4(const solver_wide *q, int h, float *v)
+{
+    __m128 vax, vay, vbx, vby;
+    gather(v, q->a + h, &vax, &vay);
+    __m128 nx = _mm_loadu_ps(q->nx + h), ny = _mm_loadu_ps(q->ny + h);
+    __m128 pn = _mm_loadu_ps(q->pn + h), pt = _mm_loadu_ps(q->pt + h);
+    __m128 px = _mm_sub_ps(_mm_mul_ps(pn, nx), _mm_mul_ps(pt, ny));
+    __m128 py = _mm_add_ps(_mm_mul_ps(pn, ny), _mm_mul_ps(pt, nx));
+    __m128 ima = _mm_loadu_ps(q->ima + h), imb = _mm_loadu_ps(q->imb + h);
+    scatter(v, q->a + h, _mm_sub_ps(vax, _mm_mul_ps(px, ima)), _mm_sub_ps(vay, _mm_mul_ps(py, ima)));
+    gather(v, q->b + h, &vbx, &vby);
+    scatter(v, q->b + h, _mm_add_ps(vbx, _mm_mul_ps(px, imb)), _mm_add_ps(vby, _mm_mul_ps(py, imb)));
+}
+
+static inline void iterate4(solver_wide *q, int h, float *v)
+{
+    const __m128 zero = _mm_setzero_ps();
+    __m128 vax, vay, vbx, vby;
+    gather(v, q->a + h, &vax, &vay);
+    gather(v, q->b + h, &vbx, &vby);
+    __m128 nx = _mm_loadu_ps(q->nx + h), ny = _mm_loadu_ps(q->ny + h), m = _mm_loadu_ps(q->m + h);
+    __m128 pn0 = _mm_loadu_ps(q->pn + h), pt0 = _mm_loadu_ps(q->pt + h);
+    __m128 dvx = _mm_sub_ps(vbx, vax), dvy = _mm_sub_ps(vby, vay);
+    __m128 vn = _mm_add_ps(_mm_mul_ps(dvx, nx), _mm_mul_ps(dvy, ny));
+    __m128 vt = _mm_sub_ps(_mm_mul_ps(dvy, nx), _mm_mul_ps(dvx, ny));
+    __m128 pn = _mm_max_ps(_mm_add_ps(pn0, _mm_mul_ps(m, _mm_sub_ps(_mm_loadu_ps(q->vmin + h), vn))), zero);
+    __m128 maxf = _mm_mul_ps(_mm_loadu_ps(q->mu + h), pn);
+    __m128 pt = _mm_min_ps(_mm_max_ps(_mm_sub_ps(pt0, _mm_mul_ps(m, vt)), _mm_sub_ps(zero, maxf)), maxf);
+    _mm_storeu_ps(q->pn + h, pn);
+    _mm_storeu_ps(q->pt + h, pt);
+    __m128 ln = _mm_sub_ps(pn, pn0), lt = _mm_sub_ps(pt, pt0);
+    __m128 px = _mm_sub_ps(_mm_mul_ps(ln, nx), _mm_mul_ps(lt, ny));
+    __m128 py = _mm_add_ps(_mm_mul_ps(ln, ny), _mm_mul_ps(lt, nx));
+    __m128 ima = _mm_loadu_ps(q->ima + h), imb = _mm_loadu_ps(q->imb + h);
+    scatter(v, q->a + h, _mm_sub_ps(vax, _mm_mul_ps(px, ima)), _mm_sub_ps(vay, _mm_mul_ps(py, ima)));
+    scatter(v, q->b + h, _mm_add_ps(vbx, _mm_mul_ps(px, imb)), _mm_add_ps(vby, _mm_mul_ps(py, imb)));
+}
+
+static inline void iterate_position4(solver_wide *q, int h, float *pv)
+{
+    const __m128 zero = _mm_setzero_ps();
+    __m128 vax, vay, vbx, vby;
+    gather(pv, q->a + h, &vax, &vay);
+    gather(pv, q->b + h, &vbx, &vby);
+    __m128 nx = _mm_loadu_ps(q->nx + h), ny = _mm_loadu_ps(q->ny + h), m = _mm_loadu_ps(q->m + h);
+    __m128 pp0 = _mm_loadu_ps(q->pp + h);
+    __m128 vn = _mm_add_ps(_mm_mul_ps(_mm_sub_ps(vbx, vax), nx), _mm_mul_ps(_mm_sub_ps(vby, vay), ny));
+    __m128 pp = _mm_max_ps(_mm_add_ps(pp0, _mm_mul_ps(m, _mm_sub_ps(_mm_loadu_ps(q->pmin + h), vn))), zero);
+    _mm_storeu_ps(q->pp + h, pp);
+    __m128 l = _mm_sub_ps(pp, pp0);
+    __m128 px = _mm_mul_ps(l, nx), py = _mm_mul_ps(l, ny);
+    __m128 ima = _mm_loadu_ps(q->ima + h), imb = _mm_loadu_ps(q->imb + h);
+    scatter(pv, q->a + h, _mm_sub_ps(vax, _mm_mul_ps(px, ima)), _mm_sub_ps(vay, _mm_mul_ps(py, ima)));
+    scatter(pv, q->b + h, _mm_add_ps(vbx, _mm_mul_ps(px, imb)), _mm_add_ps(vby, _mm_mul_ps(py, imb)));
+}
+
+#if SOLVER_AVX2
+/* All eight lanes in AVX registers: the same operations on each lane as iterate4, so the same
+ * results. */
+__attribute__((target("avx2"))) static inline void gather8(const float *v, const int32_t *idx, __m256 *x,
+                                                            __m256 *y)
+{
+    __m128 p01 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[0]));
+    p01 = _mm_loadh_pi(p01, (const __m64 *)(const void *)(v + 2 * idx[1]));
+    __m128 p23 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[2]));
+    p23 = _mm_loadh_pi(p23, (const __m64 *)(const void *)(v + 2 * idx[3]));
+    __m128 p45 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[4]));
+    p45 = _mm_loadh_pi(p45, (const __m64 *)(const void *)(v + 2 * idx[5]));
+    __m128 p67 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[6]));
+    p67 = _mm_loadh_pi(p67, (const __m64 *)(const void *)(v + 2 * idx[7]));
+    /* (x0 y0 x1 y1 | x4 y4 x5 y5) and (x2 y2 x3 y3 | x6 y6 x7 y7) */
+    __m256 lo = _mm256_insertf128_ps(_mm256_castps128_ps256(p01), p45, 1);
+    __m256 hi = _mm256_insertf128_ps(_mm256_castps128_ps256(p23), p67, 1);
+    *x = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0));
+    *y = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1));
+}
+
+__attribute__((target("avx2"))) static inline void scatter8(float *v, const int32_t *idx, __m256 x, __m256 y)
+{
+    __m256 lo = _mm256_unpacklo_ps(x, y), hi = _mm256_unpackhi_ps(x, y);
+    __m128 p01 = _mm256_castps256_ps128(lo), p45 = _mm256_extractf128_ps(lo, 1);
+    __m128 p23 = _mm256_castps256_ps128(hi), p67 = _mm256_extractf128_ps(hi, 1);
+    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[0]), p01);
+    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[1]), p01);
+    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[2]), p23);
+    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[3]), p23);
+    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[4]), p45);
+    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[5]), p45);
+    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[6]), p67);
+    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[7]), p67);
+}
+
+__attribute__((target("avx2"))) static void wide_iterate_avx2(solver_batch *s, float *v)
+{
+    const __m256 zero = _mm256_setzero_ps();
+    for (int32_t r = 0; r < s->nrows; r++) {
+        solver_wide *q = &s->rows[r];
+        __m256 vax, vay, vbx, vby;
+        gather8(v, q->a, &vax, &vay);
+        gather8(v, q->b, &vbx, &vby);
+        __m256 nx = _mm256_loadu_ps(q->nx), ny = _mm256_loadu_ps(q->ny), m = _mm256_loadu_ps(q->m);
+        __m256 pn0 = _mm256_loadu_ps(q->pn), pt0 = _mm256_loadu_ps(q->pt);
+        __m256 dvx = _mm256_sub_ps(vbx, vax), dvy = _mm256_sub_ps(vby, vay);
+        __m256 vn = _mm256_add_ps(_mm256_mul_ps(dvx, nx), _mm256_mul_ps(dvy, ny));
+        __m256 vt = _mm256_sub_ps(_mm256_mul_ps(dvy, nx), _mm256_mul_ps(dvx, ny));
+        __m256 pn = _mm256_max_ps(_mm256_add_ps(pn0, _mm256_mul_ps(m, _mm256_sub_ps(_mm256_loadu_ps(q->vmin), vn))), zero);
+        __m256 maxf = _mm256_mul_ps(_mm256_loadu_ps(q->mu), pn);
+        __m256 pt = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(pt0, _mm256_mul_ps(m, vt)), _mm256_sub_ps(zero, maxf)), maxf);
+        _mm256_storeu_ps(q->pn, pn);
+        _mm256_storeu_ps(q->pt, pt);
+        __m256 ln = _mm256_sub_ps(pn, pn0), lt = _mm256_sub_ps(pt, pt0);
+        __m256 px = _mm256_sub_ps(_mm256_mul_ps(ln, nx), _mm256_mul_ps(lt, ny));
+        __m256 py = _mm256_add_ps(_mm256_mul_ps(ln, ny), _mm256_mul_ps(lt, nx));
+        __m256 ima = _mm256_loadu_ps(q->ima), imb = _mm256_loadu_ps(q->imb);
+        scatter8(v, q->a, _mm256_sub_ps(vax, _mm256_mul_ps(px, ima)), _mm256_sub_ps(vay, _mm256_mul_ps(py, ima)));
+        scatter8(v, q->b, _mm256_add_ps(vbx, _mm256_mul_ps(px, imb)), _mm256_add_ps(vby, _mm256_mul_ps(py, imb)));
+    }
+}
+#endif
+
 void solver_wide_warm_start(const solver_batch *s, rg_real *v)
 {
-    for (int32_t r = 0; r < s->nrows; r++) {
-        const solver_wide *q = &s->rows[r];
-        __m128 vax, vay, vbx, vby;
-        gather(v, q->a, &vax, &vay);
-        __m128 nx = _mm_loadu_ps(q->nx), ny = _mm_loadu_ps(q->ny);
-        __m128 pn = _mm_loadu_ps(q->pn), pt = _mm_loadu_ps(q->pt);
-        __m128 px = _mm_sub_ps(_mm_mul_ps(pn, nx), _mm_mul_ps(pt, ny));
-        __m128 py = _mm_add_ps(_mm_mul_ps(pn, ny), _mm_mul_ps(pt, nx));
-        __m128 ima = _mm_loadu_ps(q->ima), imb = _mm_loadu_ps(q->imb);
-        scatter(v, q->a, _mm_sub_ps(vax, _mm_mul_ps(px, ima)), _mm_sub_ps(vay, _mm_mul_ps(py, ima)));
-        gather(v, q->b, &vbx, &vby);
-        scatter(v, q->b, _mm_add_ps(vbx, _mm_mul_ps(px, imb)), _mm_add_ps(vby, _mm_mul_ps(py, imb)));
-    }
+    for (int32_t r = 0; r < s->nrows; r++)
+        for (int h = 0; h < SOLVER_LANES; h += 4) warm_start4(&s->rows[r], h, v);
 }
 
 void solver_wide_iterate(solver_batch *s, rg_real *v)
 {
-    const __m128 zero = _mm_setzero_ps();
-    for (int32_t r = 0; r < s->nrows; r++) {
-        solver_wide *q = &s->rows[r];
-        __m128 vax, vay, vbx, vby;
-        gather(v, q->a, &vax, &vay);
-        gather(v, q->b, &vbx, &vby);
-        __m128 nx = _mm_loadu_ps(q->nx), ny = _mm_loadu_ps(q->ny), m = _mm_loadu_ps(q->m);
-        __m128 pn0 = _mm_loadu_ps(q->pn), pt0 = _mm_loadu_ps(q->pt);
-        __m128 dvx = _mm_sub_ps(vbx, vax), dvy = _mm_sub_ps(vby, vay);
-        __m128 vn = _mm_add_ps(_mm_mul_ps(dvx, nx), _mm_mul_ps(dvy, ny));
-        __m128 vt = _mm_sub_ps(_mm_mul_ps(dvy, nx), _mm_mul_ps(dvx, ny));
-        __m128 pn = _mm_max_ps(_mm_add_ps(pn0, _mm_mul_ps(m, _mm_sub_ps(_mm_loadu_ps(q->vmin), vn))), zero);
-        __m128 maxf = _mm_mul_ps(_mm_loadu_ps(q->mu), pn);
-        __m128 pt = _mm_min_ps(_mm_max_ps(_mm_sub_ps(pt0, _mm_mul_ps(m, vt)), _mm_sub_ps(zero, maxf)), maxf);
-        _mm_storeu_ps(q->pn, pn);
-        _mm_storeu_ps(q->pt, pt);
-        __m128 ln = _mm_sub_ps(pn, pn0), lt = _mm_sub_ps(pt, pt0);
-        __m128 px = _mm_sub_ps(_mm_mul_ps(ln, nx), _mm_mul_ps(lt, ny));
-        __m128 py = _mm_add_ps(_mm_mul_ps(ln, ny), _mm_mul_ps(lt, nx));
-        __m128 ima = _mm_loadu_ps(q->ima), imb = _mm_loadu_ps(q->imb);
-        scatter(v, q->a, _mm_sub_ps(vax, _mm_mul_ps(px, ima)), _mm_sub_ps(vay, _mm_mul_ps(py, ima)));
-        scatter(v, q->b, _mm_add_ps(vbx, _mm_mul_ps(px, imb)), _mm_add_ps(vby, _mm_mul_ps(py, imb)));
+#if SOLVER_AVX2
+    if (__builtin_cpu_supports("avx2")) {
+        wide_iterate_avx2(s, v);
+        return;
     }
+#endif
+    for (int32_t r = 0; r < s->nrows; r++)
+        for (int h = 0; h < SOLVER_LANES; h += 4) iterate4(&s->rows[r], h, v);
 }
 
 void solver_wide_iterate_position(solver_batch *s, rg_real *pv)
 {
-    const __m128 zero = _mm_setzero_ps();
-    for (int32_t r = 0; r < s->nrows; r++) {
-        solver_wide *q = &s->rows[r];
-        __m128 vax, vay, vbx, vby;
-        gather(pv, q->a, &vax, &vay);
-        gather(pv, q->b, &vbx, &vby);
-        __m128 nx = _mm_loadu_ps(q->nx), ny = _mm_loadu_ps(q->ny), m = _mm_loadu_ps(q->m);
-        __m128 pp0 = _mm_loadu_ps(q->pp);
-        __m128 vn = _mm_add_ps(_mm_mul_ps(_mm_sub_ps(vbx, vax), nx), _mm_mul_ps(_mm_sub_ps(vby, vay), ny));
-        __m128 pp = _mm_max_ps(_mm_add_ps(pp0, _mm_mul_ps(m, _mm_sub_ps(_mm_loadu_ps(q->pmin), vn))), zero);
-        _mm_storeu_ps(q->pp, pp);
-        __m128 l = _mm_sub_ps(pp, pp0);
-        __m128 px = _mm_mul_ps(l, nx), py = _mm_mul_ps(l, ny);
-        __m128 ima = _mm_loadu_ps(q->ima), imb = _mm_loadu_ps(q->imb);
-        scatter(pv, q->a, _mm_sub_ps(vax, _mm_mul_ps(px, ima)), _mm_sub_ps(vay, _mm_mul_ps(py, ima)));
-        scatter(pv, q->b, _mm_add_ps(vbx, _mm_mul_ps(px, imb)), _mm_add_ps(vby, _mm_mul_ps(py, imb)));
-    }
+    for (int32_t r = 0; r < s->nrows; r++)
+        for (int h = 0; h < SOLVER_LANES; h += 4) iterate_position4(&s->rows[r], h, pv);
 }
 #else
 /* The same arithmetic lane by lane: all loads of a row before its stores, as in SSE. */

@@ -124,14 +124,16 @@ int32_t solver_prepare_position(solver_constraint *c, int32_t n, const rg_real *
 /* One Gauss-Seidel sweep over the position rows on pseudo-velocities pv. */
 void solver_iterate_position(solver_constraint *c, const int32_t *list, int32_t k, rg_real *pv);
 
-/* ---- rows four at a time.  A greedy graph colouring splits the rows into colours whose
+/* ---- rows eight at a time.  A greedy graph colouring splits the rows into colours whose
  * rows share no movable body (inverse mass > 0; the ground and kinematic bodies, which no
- * row changes, may be shared); each colour is packed into groups of four lanes solved
- * together (SSE2 in the float build on x86, a plain loop over the lanes elsewhere: the
- * same arithmetic, so the same results).  Rows keep their bottom-up order within a colour.
- * Rows of bodies already in 32 colours overflow to a list solved one at a time. */
+ * row changes, may be shared); each colour is packed into groups of eight lanes solved
+ * together (the velocity sweep in AVX2 where the CPU has it, else two halves in SSE2 in the
+ * float build on x86, a plain loop over the lanes elsewhere: lanes of a colour touch
+ * disjoint bodies and each lane does the same arithmetic, so every grouping gives the same
+ * results).  Rows keep their bottom-up order within a colour.  Rows of bodies already in 32
+ * colours overflow to a list solved one at a time. */
 
-#define SOLVER_LANES 4
+#define SOLVER_LANES 8
 
 typedef struct solver_wide {
     int32_t a[SOLVER_LANES], b[SOLVER_LANES];

@@ -385,7 +385,7 @@ static int cmp_double(const void *a, const void *b)
 /* Median and nearest-rank percentile of v[0..n) (sorts v). */
 static double quantile(double *v, int32_t n, double q)
 {
-    if (n <= 0) return NAN;
+    if (n <= 0) return (double)NAN;
     qsort(v, (size_t)n, sizeof *v, cmp_double);
     if (q == 0.5) return (n & 1) ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
     int32_t k = (int32_t)ceil(q * n) - 1;
@@ -451,8 +451,8 @@ static void measure_overlaps(const bench_scene *s, const float *x, const float *
     qitem *it = malloc((size_t)n * sizeof *it);
     int32_t *big = malloc((size_t)n * sizeof *big);
     double maxhalf = 0;
-    q->overlap = -INFINITY;
-    q->wall = -INFINITY;
+    q->overlap = -(double)INFINITY;
+    q->wall = -(double)INFINITY;
     if (it == NULL || big == NULL) goto done;
     int32_t k = 0;
     for (int32_t i = 0; i < n; i++) {
@@ -633,7 +633,7 @@ static run_result run_once(const bench_engine *e, const bench_scene *s, const sc
     size_t heap1 = heap_in_use();
     r.bytes = own > 0 ? own : (heap1 > heap0 ? heap1 - heap0 : 0);
     r.q.vmax = max_speed(s, st->vx, st->vy, 0);
-    r.q.overlap = r.q.wall = NAN;
+    r.q.overlap = r.q.wall = (double)NAN;
     if (d->shaped) measure_overlaps(s, st->x, st->y, &r.q);
     r.q.lost = count_lost(s, st->x, st->y);
     r.q.rest = (double)NAN;
