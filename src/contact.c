@@ -521,14 +521,17 @@ static inline int box_inside(const bp_entry *e, rg_real lx, rg_real ly, rg_real 
     return lx >= e->lx && ly >= e->ly && ux <= e->ux && uy <= e->uy;
 }
 
-/* Refreshes the fat box of active body i from its box [l, u] and a displacement (mx, my)
- * to look ahead by, when the box [l, u] left the fat box; marks it moved. */
+/* Refreshes the fat box of active body i from its box [l, u], a displacement (mx, my) and
+ * its change over the last step (ax, ay) to look ahead by, when the box [l, u] left the fat
+ * box, or when the body's pairs are to be searched anyway (new, teleported: its fat box is
+ * then the box at rest, which has no look-ahead yet); marks it moved. */
 static void refresh_fat(rg_world *w, int32_t i, rg_real lx, rg_real ly, rg_real ux, rg_real uy,
                         rg_real mx, rg_real my, rg_real ax, rg_real ay)
 {
     broadphase *bp = &w->coll.bp;
     int32_t slot = w->b.slot[i];
-    if (box_inside(&bp->e[slot], lx, ly, ux, uy)) return;
+    const bp_entry *e = &bp->e[slot];
+    if (!e->moved && box_inside(e, lx, ly, ux, uy)) return;
     rg_real m = fat_margin(&w->coll, &w->b, i);
     mx *= LOOKAHEAD;
     my *= LOOKAHEAD;
