@@ -184,8 +184,12 @@ void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, in
         uint32_t used = (ma ? mask[q->a] : 0) | (mb ? mask[q->b] : 0);
         int col = 32;
         if (used != 0xFFFFFFFFu) {
+#ifdef __GNUC__
+            col = __builtin_ctz(~used);
+#else
             col = 0;
             while (used & (1u << col)) col++;
+#endif
             if (ma) mask[q->a] |= 1u << col;
             if (mb) mask[q->b] |= 1u << col;
         }
