@@ -5,12 +5,12 @@
  * corner.  So a box overlapping a query box Q has its corner cell within one cell below Q's
  * and at most Q's upper cell: a query visits 2x2 to 3x3 cells per occupied level, whatever
  * the mix of sizes; a level with fewer members than the query has cells is walked as a list
- * instead (a few large platforms, a container's walls).  Cells hash (level, x, y) into one bucket table of chains, so memory
- * follows the member count, not the world's extent; the hash is of integer cell
- * coordinates, so iteration order never depends on addresses.  Members are updated in O(1)
- * (unlink, relink); boxes too big for the coarsest level, or not finite (a body thrown to
- * infinity by an unstable scene), go into a short `huge` list every query scans, and
- * coordinates are clamped before any float-to-int conversion. */
+ * instead (a few large platforms, a container's walls).  Cells hash (level, x, y) into one
+ * bucket table of chains, so memory follows the member count, not the world's extent; the
+ * hash is of integer cell coordinates, so iteration order never depends on addresses.
+ * Members are updated in O(1) (unlink, relink); boxes too big for the coarsest level, or not
+ * finite (a body thrown to infinity by an unstable scene), go into a short `huge` list every
+ * query scans, and coordinates are clamped before any float-to-int conversion. */
 #ifndef RG_BROADPHASE_H
 #define RG_BROADPHASE_H
 
