@@ -525,13 +525,11 @@ static inline int box_inside(const bp_entry *e, rg_real lx, rg_real ly, rg_real 
  * its change over the last step (ax, ay) to look ahead by, when the box [l, u] left the fat
  * box, or when the body's pairs are to be searched anyway (new, teleported: its fat box is
  * then the box at rest, which has no look-ahead yet); marks it moved. */
-static void refresh_fat(rg_world *w, int32_t i, rg_real lx, rg_real ly, rg_real ux, rg_real uy,
-                        rg_real mx, rg_real my, rg_real ax, rg_real ay)
+static void refresh_fat_now(rg_world *w, int32_t i, rg_real lx, rg_real ly, rg_real ux, rg_real uy,
+                            rg_real mx, rg_real my, rg_real ax, rg_real ay)
 {
     broadphase *bp = &w->coll.bp;
     int32_t slot = w->b.slot[i];
-    const bp_entry *e = &bp->e[slot];
-    if (!e->moved && box_inside(e, lx, ly, ux, uy)) return;
     rg_real m = fat_margin(&w->coll, &w->b, i);
     mx *= LOOKAHEAD;
     my *= LOOKAHEAD;
@@ -541,6 +539,15 @@ static void refresh_fat(rg_world *w, int32_t i, rg_real lx, rg_real ly, rg_real 
     rg_real fux = rg_max(ux, rg_max(ux + mx, ux + ax)) + m, fuy = rg_max(uy, rg_max(uy + my, uy + ay)) + m;
     broadphase_move(bp, slot, flx, fly, fux, fuy);
     broadphase_mark_moved(bp, slot);
+}
+
+/* The test inline, the refresh out of line: most bodies stay inside their fat box. */
+static inline void refresh_fat(rg_world *w, int32_t i, rg_real lx, rg_real ly, rg_real ux, rg_real uy,
+                               rg_real mx, rg_real my, rg_real ax, rg_real ay)
+{
+    const bp_entry *e = &w->coll.bp.e[w->b.slot[i]];
+    if (!e->moved && box_inside(e, lx, ly, ux, uy)) return;
+    refresh_fat_now(w, i, lx, ly, ux, uy, mx, my, ax, ay);
 }
 
 /* ---------------------------------------------------------------- pairs */
@@ -745,8 +752,6 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
     coll_manifold m;
     rg_real s0 = RG_HUGE;
     int active = 1;
-    rg_real size = rg_min(rg_min(ha.x, ha.y), rg_min(hb.x, hb.y));
-    int slow = r.x * r.x + r.y * r.y <= RG_R(0.25) * size * size;
     if (!cw->continuous) {
         /* discrete: the shapes where the step left them, extrapolated back */
         coll_manifold_of(ka, rg_v2(A->sx + A->dx, A->sy + A->dy), ha, kb, rg_v2(B->sx + B->dx, B->sy + B->dy), hb, &m);
@@ -770,8 +775,10 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
             coll_contact(ka, rg_v2(A->sx, A->sy), ha, kb, rg_v2(B->sx, B->sy), hb, r, cw->slop, &m);
             s0 = -m.depth;
         }
-        /* apart at the start and fast: the time of impact instead */
-        if (!slow && s0 > cw->slop) {
+        /* apart at the start and fast (moving more than half the smaller shape): the time
+         * of impact instead */
+        rg_real size = rg_min(rg_min(ha.x, ha.y), rg_min(hb.x, hb.y));
+        if (s0 > cw->slop && !(r.x * r.x + r.y * r.y <= RG_R(0.25) * size * size)) {
             rg_real t;
             if (coll_sweep(ka, rg_v2(A->sx, A->sy), ha, kb, rg_v2(B->sx, B->sy), hb, r, &t, &m))
                 s0 = t > 0 ? -t * rg_v2_dot(r, m.normal) : -m.depth;
@@ -860,7 +867,8 @@ static void narrow_one(rg_world *w, int32_t id, narrow_ctx *x)
                 unite(cw->uf, pa, pb);
         }
     }
-    if (now | was) {
+    /* a sleeping body (dense index past the awake ones) touched by a pusher wakes */
+    if ((now | was) && (ia >= b->n_active || ib >= b->n_active)) {
         int pa_ = body_partition(w, ia), pb_ = body_partition(w, ib);
         if (pa_ == BODY_PART_ASLEEP && pb_ == BODY_PART_ACTIVE && pusher(b, ib, now != 0)) {
             wake_island(w, ia);
