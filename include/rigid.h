@@ -385,6 +385,45 @@ RG_API int32_t rg_world_raycast(const rg_world *world, rg_vec2 origin, rg_vec2 t
 RG_API int32_t rg_world_query_aabb(const rg_world *world, rg_vec2 lower, rg_vec2 upper,
                                    uint32_t mask, rg_body *out, int32_t capacity);
 
+/* ---------------------------------------------------------------- debug draw
+ *
+ * rg_world_draw calls back for what draw->flags ask, layer by layer (shapes, bounds, springs,
+ * velocities, contacts), each layer in a fixed order: bodies by slot (creation order, a
+ * destroyed body's slot reused in place), springs by creation, contacts by id.  The same
+ * world gives the same calls.  A NULL callback is skipped.  It changes nothing. */
+
+#define RG_DRAW_SHAPES     1u   /* circles and boxes; a body without a shape as a point */
+#define RG_DRAW_CONTACTS   2u   /* touching contacts: the point and the normal from a toward b */
+#define RG_DRAW_VELOCITIES 4u   /* a segment from the centre to centre + v * RG_DRAW_VELOCITY_SCALE */
+#define RG_DRAW_BOUNDS     8u   /* the broadphase's fat boxes */
+#define RG_DRAW_SPRINGS    16u  /* a segment between the two ends, or to the anchor */
+
+/* The palette, 0xRRGGBBAA.  A shape takes the colour of its body's state. */
+#define RG_COLOR_STATIC    0x8C8C8CFFu  /* grey */
+#define RG_COLOR_KINEMATIC 0x3C78DCFFu  /* blue */
+#define RG_COLOR_AWAKE     0xE6782DFFu  /* orange: an awake dynamic body */
+#define RG_COLOR_SLEEPING  0x8C64B4FFu  /* violet: a sleeping dynamic body */
+#define RG_COLOR_SENSOR    0xDCB41E80u  /* translucent gold (any type); its contacts too */
+#define RG_COLOR_CONTACT   0xDC2828FFu  /* red */
+#define RG_COLOR_VELOCITY  0x28A03CFFu  /* green */
+#define RG_COLOR_BOUNDS    0x32B4B4FFu  /* teal */
+#define RG_COLOR_SPRING    0xB43CB4FFu  /* magenta */
+/* Seconds of motion a velocity segment shows, and the length of a contact normal in m. */
+#define RG_DRAW_VELOCITY_SCALE 0.1
+#define RG_DRAW_NORMAL_LENGTH  0.25
+
+typedef struct rg_debug_draw {
+    void (*circle)(rg_body body, rg_vec2 center, rg_real radius, uint32_t rgba, void *user);
+    void (*box)(rg_body body, rg_vec2 lower, rg_vec2 upper, uint32_t rgba, void *user);
+    void (*segment)(rg_vec2 a, rg_vec2 b, uint32_t rgba, void *user);
+    void (*point)(rg_vec2 p, uint32_t rgba, void *user);
+    uint32_t flags;     /* RG_DRAW_* */
+    void *user;
+} rg_debug_draw;
+
+/* RG_ERR_INVALID_ARGUMENT for a NULL world or draw, or a flag outside RG_DRAW_*. */
+RG_API rg_status rg_world_draw(const rg_world *world, const rg_debug_draw *draw);
+
 #ifdef __cplusplus
 }
 #endif
