@@ -131,7 +131,8 @@ static void events_sort(rg_contact_event *e, int32_t n)
 
 void events_end_step(event_store *es)
 {
-    events_sort(es->ev + es->base, es->n - es->base);
+    /* before the first contact there is no buffer: NULL + 0 is undefined in C */
+    if (es->n > es->base) events_sort(es->ev + es->base, es->n - es->base);
     es->base = es->n;
     es->in_step = 0;
 }
