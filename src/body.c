@@ -8,11 +8,6 @@ int32_t body_lookup(const rg_world *w, rg_body body)
     return pool_lookup(&w->body_pool, body);
 }
 
-int32_t body_dense(const rg_world *w, int32_t slot)
-{
-    return pool_dense(&w->body_pool, slot);
-}
-
 /* Every field array of a store of capacity cap, in one layout. */
 static void body_layout(mem_layout *l, body_store *b, int32_t cap)
 {

@@ -88,10 +88,10 @@ struct rg_world;
 
 /* Dense index of a live body of this world, or -1: the one place handles are checked. */
 int32_t body_lookup(const struct rg_world *w, rg_body body);
-/* Dense index of the live body in pool slot `slot`.  Slots never move; dense indices move
- * whenever a body changes partition (falls asleep, wakes, is created or destroyed), so code
- * that keeps a body across such a change keeps its slot. */
-int32_t body_dense(const struct rg_world *w, int32_t slot);
+/* body_dense(w, slot) (world.h, inline): the dense index of the live body in pool slot
+ * `slot`.  Slots never move; dense indices move whenever a body changes partition (falls
+ * asleep, wakes, is created or destroyed), so code that keeps a body across such a change
+ * keeps its slot. */
 
 /* Looks up `body` at the top of an API call: declares the dense index `i`, or returns
  * RG_ERR_INVALID_ARGUMENT (NULL world) or RG_ERR_STALE_HANDLE. */

@@ -62,23 +62,6 @@ void island_wake_touching(rg_world *w, int32_t slot)
     }
 }
 
-int32_t island_root(int32_t *uf, int32_t i)
-{
-    while (uf[i] != i) {
-        uf[i] = uf[uf[i]];
-        i = uf[i];
-    }
-    return i;
-}
-
-void island_unite(int32_t *uf, int32_t a, int32_t b)
-{
-    a = island_root(uf, a);
-    b = island_root(uf, b);
-    /* the lower index becomes the root: deterministic */
-    if (a < b) uf[b] = a; else if (b < a) uf[a] = b;
-}
-
 /* The union-find runs over the awake shaped bodies (their places in the broadphase's active
  * list), so bodies without shapes, static and sleeping ones cost nothing here. */
 void island_sleep(rg_world *w, rg_real dt, int united)

@@ -26,9 +26,24 @@ void island_touch(struct rg_world *w, int32_t slot);
 void island_wake_touching(struct rg_world *w, int32_t slot);
 void island_wake_all(struct rg_world *w);
 
-/* Union-find over places in the broadphase's active list. */
-int32_t island_root(int32_t *uf, int32_t i);
-void island_unite(int32_t *uf, int32_t a, int32_t b);
+/* Union-find over places in the broadphase's active list (inline: the narrowphase unites
+ * every touching pair while sleep is near). */
+static inline int32_t island_root(int32_t *uf, int32_t i)
+{
+    while (uf[i] != i) {
+        uf[i] = uf[uf[i]];
+        i = uf[i];
+    }
+    return i;
+}
+
+static inline void island_unite(int32_t *uf, int32_t a, int32_t b)
+{
+    a = island_root(uf, a);
+    b = island_root(uf, b);
+    /* the lower index becomes the root: deterministic */
+    if (a < b) uf[b] = a; else if (b < a) uf[a] = b;
+}
 
 /* The sleep stage: rest timers, and the islands that rested long enough fall asleep.
  * `united`: the narrowphase already joined this step's islands in island.uf. */

@@ -51,17 +51,6 @@ void pairs_refresh_now(rg_world *w, int32_t i, rg_real lx, rg_real ly, rg_real u
     broadphase_mark_moved(bp, slot);
 }
 
-int pairs_admitted(const rg_world *w, int32_t i, int32_t j)
-{
-    const body_store *b = &w->b;
-    int32_t ti = b->type[i], tj = b->type[j];
-    int sensor = ((b->cflags[i] | b->cflags[j]) & CF_SENSOR) != 0;
-    if (ti != RG_BODY_DYNAMIC && tj != RG_BODY_DYNAMIC) {
-        if (!sensor || (ti == RG_BODY_STATIC && tj == RG_BODY_STATIC)) return 0;
-    }
-    return (b->cat[i] & b->mask[j]) != 0 && (b->cat[j] & b->mask[i]) != 0;
-}
-
 typedef struct pairs_query {
     rg_world *w;
     int32_t s, is;

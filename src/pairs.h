@@ -12,12 +12,20 @@
 #include <stdint.h>
 
 #include "collide.h"
-
-struct rg_world;
+#include "world.h"
 
 /* Whether dense bodies i and j may collide: the filter both ways, and at least one dynamic
  * body unless a sensor meets a kinematic body. */
-int pairs_admitted(const struct rg_world *w, int32_t i, int32_t j);
+static inline int pairs_admitted(const rg_world *w, int32_t i, int32_t j)
+{
+    const body_store *b = &w->b;
+    int32_t ti = b->type[i], tj = b->type[j];
+    int sensor = ((b->cflags[i] | b->cflags[j]) & CF_SENSOR) != 0;
+    if (ti != RG_BODY_DYNAMIC && tj != RG_BODY_DYNAMIC) {
+        if (!sensor || (ti == RG_BODY_STATIC && tj == RG_BODY_STATIC)) return 0;
+    }
+    return (b->cat[i] & b->mask[j]) != 0 && (b->cat[j] & b->mask[i]) != 0;
+}
 
 /* Refreshes the fat box of active body i (slot s, broadphase entry e) from its box [l, u],
  * its displacement (mx, my) and that displacement's change over the last step (ax, ay) to

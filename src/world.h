@@ -39,4 +39,10 @@ struct rg_world {
     collide_world coll;
 };
 
+/* See body.h. */
+static inline int32_t body_dense(const struct rg_world *w, int32_t slot)
+{
+    return pool_dense(&w->body_pool, slot);
+}
+
 #endif
