@@ -8,10 +8,11 @@ int32_t body_lookup(const rg_world *w, rg_body body)
     return pool_lookup(&w->body_pool, body);
 }
 
-/* Every field array of a store of capacity cap, in one layout. */
-static void body_layout(mem_layout *l, body_store *b, int32_t cap)
+/* Every field array of a store of b->capacity bodies. */
+static void body_layout(mem_layout *l, void *ctx)
 {
-#define RG_FIELD_TAKE(T, name) b->name = (T *)mem_take(l, (size_t)cap, sizeof(T));
+    body_store *b = ctx;
+#define RG_FIELD_TAKE(T, name) b->name = (T *)mem_take(l, (size_t)b->capacity, sizeof(T));
     RG_BODY_FIELDS(RG_FIELD_TAKE)
 #undef RG_FIELD_TAKE
 }
@@ -22,32 +23,25 @@ rg_status body_reserve(rg_world *w)
     rg_status st = pool_reserve(&w->body_pool, &w->mem);
     if (st != RG_OK) return st;
     if (b->count < b->capacity) return RG_OK;
-    int32_t cap = b->capacity < 64 ? 64 : b->capacity * 2;
-    if (cap > RG_MAX_BODIES) cap = RG_MAX_BODIES;
     body_store grown = *b;
-    mem_layout l = mem_layout_measure();
-    body_layout(&l, &grown, cap);
-    size_t size = l.size;
-    void *block = mem_alloc(&w->mem, size);
-    if (block == NULL) return RG_ERR_OUT_OF_MEMORY;
-    l = mem_layout_at(block);
-    body_layout(&l, &grown, cap);
+    grown.capacity = b->capacity < 64 ? 64 : b->capacity * 2;
+    if (grown.capacity > RG_MAX_BODIES) grown.capacity = RG_MAX_BODIES;
+    grown.block = mem_block(&w->mem, body_layout, &grown, &grown.block_size);
+    if (grown.block == NULL) return RG_ERR_OUT_OF_MEMORY;
     if (b->count > 0) {
 #define RG_FIELD_COPY(T, name) memcpy(grown.name, b->name, (size_t)b->count * sizeof(T));
         RG_BODY_FIELDS(RG_FIELD_COPY)
 #undef RG_FIELD_COPY
     }
     mem_free(&w->mem, b->block, b->block_size);
-    grown.block = block;
-    grown.block_size = size;
-    grown.capacity = cap;
     *b = grown;
     return RG_OK;
 }
 
-static void body_scratch_layout(mem_layout *l, scratch_store *s, int32_t cap)
+static void body_scratch_layout(mem_layout *l, void *ctx)
 {
-#define RG_FIELD_TAKE(T, name) s->name = (T *)mem_take(l, (size_t)cap, sizeof(T));
+    scratch_store *s = ctx;
+#define RG_FIELD_TAKE(T, name) s->name = (T *)mem_take(l, (size_t)s->capacity, sizeof(T));
     RG_SCRATCH_FIELDS(RG_FIELD_TAKE)
 #undef RG_FIELD_TAKE
 }
@@ -55,20 +49,12 @@ static void body_scratch_layout(mem_layout *l, scratch_store *s, int32_t cap)
 rg_status body_scratch_reserve(rg_world *w)
 {
     scratch_store *s = &w->scratch;
-    int32_t cap = w->b.capacity;
-    if (s->capacity >= cap) return RG_OK;
+    if (s->capacity >= w->b.capacity) return RG_OK;
     scratch_store grown = *s;
-    mem_layout l = mem_layout_measure();
-    body_scratch_layout(&l, &grown, cap);
-    size_t size = l.size;
-    void *block = mem_alloc(&w->mem, size);
-    if (block == NULL) return RG_ERR_OUT_OF_MEMORY;
+    grown.capacity = w->b.capacity;
+    grown.block = mem_block(&w->mem, body_scratch_layout, &grown, &grown.block_size);
+    if (grown.block == NULL) return RG_ERR_OUT_OF_MEMORY;
     mem_free(&w->mem, s->block, s->block_size);
-    l = mem_layout_at(block);
-    body_scratch_layout(&l, &grown, cap);
-    grown.block = block;
-    grown.block_size = size;
-    grown.capacity = cap;
     *s = grown;
     return RG_OK;
 }

@@ -25,12 +25,13 @@ void collide_init(rg_world *w)
     cw->restitution_threshold = RG_R(1);
 }
 
-/* The per-body scratch of the stages, for n bodies. */
-static void collide_layout(mem_layout *l, collide_world *cw, int32_t n)
+/* The per-body scratch of the stages, for cw->scap bodies. */
+static void collide_layout(mem_layout *l, void *ctx)
 {
-    narrow_layout(l, &cw->narrow, n);
-    island_layout(l, &cw->island, n);
-    resolve_layout(l, &cw->resolve, n);
+    collide_world *cw = ctx;
+    narrow_layout(l, &cw->narrow, cw->scap);
+    island_layout(l, &cw->island, cw->scap);
+    resolve_layout(l, &cw->resolve, cw->scap);
 }
 
 void collide_release(rg_world *w)
@@ -51,19 +52,22 @@ rg_status collide_prepare(rg_world *w)
     int32_t n = w->b.capacity + 1;
     if (cw->scap >= n) return RG_OK;
     collide_world grown = *cw;
-    mem_layout l = mem_layout_measure();
-    collide_layout(&l, &grown, n);
-    size_t size = l.size;
-    void *block = mem_alloc(&w->mem, size);
-    if (block == NULL) return RG_ERR_OUT_OF_MEMORY;
+    grown.scap = n;
+    grown.scratch = mem_block(&w->mem, collide_layout, &grown, &grown.scratch_size);
+    if (grown.scratch == NULL) return RG_ERR_OUT_OF_MEMORY;
     mem_free(&w->mem, cw->scratch, cw->scratch_size);
-    l = mem_layout_at(block);
-    collide_layout(&l, cw, n);
-    cw->scratch = block;
-    cw->scratch_size = size;
+    cw->narrow = grown.narrow;
+    cw->island.umin = grown.island.umin;
+    cw->island.uf = grown.island.uf;
+    cw->island.ihead = grown.island.ihead;
+    cw->island.itail = grown.island.itail;
+    cw->island.list = grown.island.list;
+    cw->resolve = grown.resolve;
+    cw->scratch = grown.scratch;
+    cw->scratch_size = grown.scratch_size;
+    cw->scap = n;
     memset(cw->resolve.sstamp, 0, (size_t)n * sizeof *cw->resolve.sstamp);
     cw->resolve.gen = 0;
-    cw->scap = n;
     return RG_OK;
 }
 

@@ -551,11 +551,12 @@ void solver_wide_iterate_position(solver_batch *s, rg_real *pv)
 
 /* ---------------------------------------------------------------- row storage */
 
-static void solver_rows_layout(mem_layout *l, solver_rows *r, int32_t cap)
+static void solver_rows_layout(mem_layout *l, void *ctx)
 {
-    size_t n = (size_t)cap;
+    solver_rows *r = ctx;
+    size_t n = (size_t)r->cap;
     /* the wide rows first: the block's own alignment */
-    r->batch.rows = mem_take(l, (size_t)SOLVER_WIDE_ROWS(cap), sizeof(solver_wide));
+    r->batch.rows = mem_take(l, (size_t)SOLVER_WIDE_ROWS(r->cap), sizeof(solver_wide));
     r->stage = mem_take(l, n, sizeof(solver_constraint));
     r->hgt = mem_take(l, n, sizeof(rg_real));
     r->hgx = mem_take(l, n, sizeof(rg_real));
@@ -572,16 +573,9 @@ static void solver_rows_layout(mem_layout *l, solver_rows *r, int32_t cap)
 rg_status solver_rows_alloc(solver_rows *fresh, const rg_mem *m, int32_t cap)
 {
     memset(fresh, 0, sizeof *fresh);
-    mem_layout l = mem_layout_measure();
-    solver_rows_layout(&l, fresh, cap);
-    void *block = mem_alloc(m, l.size);
-    if (block == NULL) return RG_ERR_OUT_OF_MEMORY;
-    fresh->block_size = l.size;
-    l = mem_layout_at(block);
-    solver_rows_layout(&l, fresh, cap);
-    fresh->block = block;
     fresh->cap = cap;
-    return RG_OK;
+    fresh->block = mem_block(m, solver_rows_layout, fresh, &fresh->block_size);
+    return fresh->block != NULL ? RG_OK : RG_ERR_OUT_OF_MEMORY;
 }
 
 void solver_rows_release(solver_rows *r, const rg_mem *m)
