@@ -1,7 +1,8 @@
 /* body.c: body storage: the structure of arrays in one block, partitions, lookup. */
 #include <string.h>
 
-#include "world.h"
+#include "body.h"
+#include "state.h"
 
 int32_t body_lookup(const rg_world *w, rg_body body)
 {

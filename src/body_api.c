@@ -1,9 +1,11 @@
 /* body_api.c: the rg_body_* API of body lifetime, state and forces. */
+#include "body.h"
 #include "island.h"
 #include "pairs.h"
 #include "shape.h"
+#include "spring.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 RG_API rg_status rg_body_create(rg_world *world, int32_t type, rg_real mass, rg_vec2 position,
                                 rg_body *out_body)

@@ -2,11 +2,13 @@
  * API (solver iterations, contact tuning, continuous collision). */
 #include <string.h>
 
+#include "collide.h"
+#include "contact.h"
 #include "island.h"
 #include "narrow.h"
 #include "resolve.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 void collide_init(rg_world *w)
 {

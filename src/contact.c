@@ -1,8 +1,11 @@
 /* contact.c: contact storage: creation, destruction, body lists and the awake set. */
 #include <string.h>
 
+#include "body.h"
+#include "contact.h"
+#include "events.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 static inline void contact_set_next(contact *c, int32_t slot, int32_t v)
 {

@@ -1,10 +1,12 @@
 /* continuous.c: timed impacts and the post-solve sweep (see continuous.h). */
 #include <string.h>
 
+#include "body.h"
 #include "collision.h"
+#include "contact.h"
 #include "continuous.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 /* Impacts of one body within this fraction of the step of each other count as one (a box
  * across a tile seam meets both tiles at once, to rounding). */

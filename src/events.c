@@ -1,8 +1,9 @@
 /* events.c: the contact event buffer and rg_world_get_contact_events. */
 #include <string.h>
 
+#include "events.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 rg_status events_alloc(event_store *fresh, const event_store *cur, const rg_mem *m, int32_t contacts)
 {

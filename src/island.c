@@ -1,7 +1,9 @@
 /* island.c: islands, the sleep stage, waking, and the sleeping API. */
+#include "body.h"
+#include "contact.h"
 #include "island.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 void island_layout(mem_layout *l, island_state *s, int32_t n)
 {

@@ -1,11 +1,13 @@
 /* narrow.c: the narrowphase (see narrow.h). */
+#include "body.h"
 #include "collision.h"
+#include "events.h"
 #include "island.h"
 #include "narrow.h"
 #include "pairs.h"
 #include "resolve.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 #define SPECULATIVE      RG_R(4)    /* solve pairs predicted within SPECULATIVE * slop */
 #define COS45            RG_R(0.70710678)

@@ -1,9 +1,11 @@
 /* shape.c: the shape, material, sensor, filter and grounded API of bodies. */
+#include "body.h"
+#include "contact.h"
 #include "island.h"
 #include "pairs.h"
 #include "shape.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 /* Ends every contact of slot s (end events reported with the next step), waking the
  * sleeping bodies on the other side. */

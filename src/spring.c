@@ -1,8 +1,10 @@
 /* spring.c: spring storage and the spring API. */
 #include <string.h>
 
+#include "body.h"
+#include "spring.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 static void spring_remove_dense(rg_world *w, int32_t s)
 {

@@ -2,16 +2,19 @@
 #include <math.h>
 #include <string.h>
 
+#include "collide.h"
 #include "continuous.h"
+#include "events.h"
+#include "force.h"
 #include "integrator.h"
 #include "island.h"
-#include "speed_limits.h"
 #include "narrow.h"
 #include "pairs.h"
 #include "resolve.h"
+#include "speed_limits.h"
+#include "state.h"
 #include "step.h"
 #include "vec2.h"
-#include "world.h"
 
 /* The collide stage, in order: views and fat boxes, pairs, narrowphase, solve, the
  * continuous sweep, fat boxes refit, sleep.  Only with shapes. */

@@ -2,8 +2,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "body.h"
+#include "collide.h"
+#include "spring.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 void *mem_default_alloc(void *user, void *ptr, size_t old_size, size_t new_size)
 {
