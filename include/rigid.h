@@ -404,6 +404,103 @@ RG_API int32_t rg_world_raycast(const rg_world *world, rg_vec2 origin, rg_vec2 t
 RG_API int32_t rg_world_query_aabb(const rg_world *world, rg_vec2 lower, rg_vec2 upper,
                                    uint32_t mask, rg_body *out, int32_t capacity);
 
+/* ---------------------------------------------------------------- gameplay collision */
+
+/* One-way shapes: the body blocks only motion that goes against `normal` (unit; (0,1) is a
+   platform stood on from above and passed from below). (0,0) makes it two-way (the default).
+   A body that overlaps it when the contact would begin, or moves along it, is not pushed.
+   In detail: when a contact with a one-way body would begin (the pair is about to touch or
+   be solved), it blocks only if the contact normal from the one-way body toward the other
+   points into the half-space of `normal` (dot > 0) and the shapes do not overlap by more
+   than the slop at the start of the step; otherwise the pair passes (no solve, no touching,
+   no events) until a step ends with the shapes apart.  A blocking contact keeps blocking
+   while it touches.  normal must be finite and of length 1 within 1e-3, or (0, 0); it is
+   stored normalised.  Raycasts and queries see one-way shapes as any other; the mover
+   (rg_body_move) and the post-solve sweep respect them. */
+RG_API rg_status rg_body_set_one_way(rg_world *world, rg_body body, rg_vec2 normal);
+RG_API rg_status rg_body_get_one_way(const rg_world *world, rg_body body, rg_vec2 *out_normal);
+
+/* The pair stops colliding now, and collides again from the first step that ends with their
+   shapes apart (dropping down through a platform).  Until then it is neither solved nor
+   touching (a touching pair reports its end with the next step).  RG_ERR_INVALID_ARGUMENT
+   when body == other or either has no shape; RG_OK and no effect when the shapes are
+   apart (beyond the slop) already. */
+RG_API rg_status rg_body_pass_through(rg_world *world, rg_body body, rg_body other);
+
+/* Called inside the step for every touching, non-sensor pair before it is solved; return 0
+   to skip the pair for this step. While it runs, calls that change the world return
+   RG_ERR_LOCKED and change nothing; getters and queries work. NULL removes the hook.
+   "Touching" here: the narrowphase would solve the pair or find it touching this step.  A
+   skipped pair is neither solved nor touching in this step (no begin event, no grounded
+   flag), exactly as if it were apart.  The calls come in a fixed order (the order of the
+   awake contacts, which the same history always gives), a < b as in events, separation
+   at the start of the step (< 0 when overlapping).  rg_world_destroy from inside is a
+   no-op. */
+typedef int32_t rg_pre_solve_fn(rg_body a, rg_body b, rg_vec2 normal, rg_real separation,
+                                void *user);   /* normal from a toward b, m */
+RG_API rg_status rg_world_set_pre_solve(rg_world *world, rg_pre_solve_fn *fn, void *user);
+
+/* The contacts a body has after the last step: its touching pairs (sensor overlaps
+   included, sensor = 1), in ascending order of the other body's handle.  Returns the count
+   and copies min(count, capacity); out may be NULL with capacity 0; -1
+   (RG_ERR_INVALID_ARGUMENT) or RG_ERR_STALE_HANDLE on bad input.  normal, point and
+   separation describe the shapes as they are now; the impulses are what the last step's
+   solve applied to the pair (0 for sensors). */
+typedef struct rg_contact {
+    rg_body other;
+    rg_vec2 normal;          /* unit, from body toward other */
+    rg_vec2 point;           /* m */
+    rg_real separation;      /* m, < 0 when overlapping */
+    rg_real normal_impulse;  /* N s, what the last step's solve applied along the normal */
+    rg_real tangent_impulse; /* N s, friction (signed along the tangent (-normal.y, normal.x)) */
+    int32_t sensor;
+} rg_contact;
+RG_API int32_t rg_body_get_contacts(const rg_world *world, rg_body body, rg_contact *out,
+                                    int32_t capacity);   /* count, copies min(count, capacity) */
+
+/* More queries (see bodies as they are now; sensors included; -1 on bad input).
+   Every shape the segment origin + t * translation, t in [0, 1], enters, among bodies with
+   (category & mask) != 0 (shapes containing the origin are not entered, as for
+   rg_world_raycast), sorted by fraction then handle; returns the count and copies
+   min(count, capacity) (the first ones in that order). */
+RG_API int32_t rg_world_raycast_all(const rg_world *world, rg_vec2 origin, rg_vec2 translation,
+                                    uint32_t mask, rg_ray_hit *out, int32_t capacity);
+/* The bodies whose shape contains point (its boundary included), in ascending handle
+   order; returns the count and copies min(count, capacity). */
+RG_API int32_t rg_world_query_point(const rg_world *world, rg_vec2 point, uint32_t mask,
+                                    rg_body *out, int32_t capacity);
+/* Sweeps a circle (shape RG_SHAPE_CIRCLE, size = (radius, 0)) or a box (RG_SHAPE_AABB,
+   size = half extents) from origin along translation: 1 and the first hit, 0 none.  The
+   hit's fraction is the time of impact in [0, 1], point the contact point then, normal the
+   hit surface's, facing the cast shape; ties go to the lower handle.  A shape the cast
+   shape overlaps at the start is hit at fraction 0 when the translation goes into it
+   (against the normal of least penetration) and ignored otherwise, so a shape resting on a
+   surface can cast along it.  Sizes as for rg_body_set_circle / rg_body_set_aabb. */
+RG_API int32_t rg_world_cast_shape(const rg_world *world, int32_t shape, rg_vec2 size,
+                                   rg_vec2 origin, rg_vec2 translation, uint32_t mask,
+                                   rg_ray_hit *out_hit);
+
+/* Character mover: moves a body's shape from where it is toward target at once (no step,
+   velocity unchanged), against shapes of bodies other than itself and sensors whose
+   category & mask != 0, and sets its position to where it stops. */
+#define RG_MOVE_SLIDE 0   /* stop at a surface, go on along it (as bump.lua's "slide") */
+#define RG_MOVE_TOUCH 1   /* stop at the first surface */
+#define RG_MOVE_CROSS 2   /* reach the target, report what was crossed */
+/* out_hits: the surfaces met, in order (may be NULL with capacity 0); one-way shapes block
+   only against their normal.  In detail: sensors never block; CROSS reports every shape the
+   path enters, sensors included, SLIDE and TOUCH the solid surfaces that stopped the body.
+   A hit's fraction is the part of the whole requested path (|target - start|) travelled
+   when it was met, normal the surface's, facing the body.  The body ends flush against what
+   stopped it (within rounding; never overlapping it by more than the slop), and a box or
+   circle sliding over a row of flush boxes (a tile floor) does not catch on their seams;
+   SLIDE takes at most 8 legs.  *out_count (may be NULL) gets the number of hits, of which
+   min(count, capacity) are copied.  The body must have a shape (else
+   RG_ERR_INVALID_ARGUMENT); it is woken, and rendering interpolates from where it was at
+   the last step (the previous position is kept). */
+RG_API rg_status rg_body_move(rg_world *world, rg_body body, rg_vec2 target, uint32_t mask,
+                              int32_t response, rg_vec2 *out_position, rg_ray_hit *out_hits,
+                              int32_t capacity, int32_t *out_count);
+
 /* ---------------------------------------------------------------- debug draw
  *
  * rg_world_draw calls back for what draw->flags ask, layer by layer (shapes, bounds, springs,

@@ -23,6 +23,11 @@ int32_t body_lookup(const struct rg_world *w, rg_body body);
     int32_t i = body_lookup((world), (body));                  \
     if (i < 0) return RG_ERR_STALE_HANDLE
 
+/* BODY_GET for a call that changes the world: RG_ERR_LOCKED inside a step's callback. */
+#define BODY_SET(world, body, i) \
+    WORLD_WRITABLE(world);       \
+    BODY_GET(world, body, i)
+
 /* Grows storage so one more body fits; all-or-nothing. */
 rg_status body_reserve(struct rg_world *w);
 /* A new body (after a successful body_reserve) of a valid type, mass and position, placed in

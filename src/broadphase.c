@@ -388,20 +388,27 @@ typedef struct ray_ctx {
     bp_ray_fn fn;
     void *ctx;
     rg_real max_t;
+    const broadphase *bp;
+    int once, has_prev;     /* once: skip the members the previous chunk's box overlaps */
+    rg_real plx, ply, pux, puy;
 } ray_ctx;
 
 static void ray_visit(void *p, int32_t slot)
 {
     ray_ctx *r = p;
+    if (r->has_prev && box_overlap(&r->bp->e[slot], r->plx, r->ply, r->pux, r->puy)) return;
     r->max_t = r->fn(r->ctx, slot, r->max_t);
 }
 
-/* The ray walks each level in chunks no longer than one cell per axis, each chunk a box
- * query; chunks beyond the closest hit so far are never visited. */
-void broadphase_raycast(const broadphase *bp, rg_vec2 o, rg_vec2 d, bp_ray_fn visit, void *ctx)
+/* The path walks each level in chunks no longer than one cell per axis, each chunk a box
+ * query (the chunk's segment grown by the half extents); chunks beyond the closest hit so
+ * far are never visited.  A member meets a run of consecutive chunks (the chunk boxes follow
+ * a straight path), so skipping those the previous chunk met visits each once. */
+void broadphase_sweep(const broadphase *bp, rg_vec2 o, rg_vec2 d, rg_real hx, rg_real hy, int once,
+                      bp_ray_fn visit, void *ctx)
 {
     if (bp->count == 0) return;
-    ray_ctx r = {visit, ctx, 1};
+    ray_ctx r = {visit, ctx, 1, bp, once, 0, 0, 0, 0, 0};
     rg_real span = rg_max(rg_fabs(d.x), rg_fabs(d.y));
     for (int i = 0; i < bp->n_huge; i++) ray_visit(&r, bp->huge[i]);
     for (int li = BP_LEVELS - 1; li >= 0; li--) {
@@ -410,6 +417,7 @@ void broadphase_raycast(const broadphase *bp, rg_vec2 o, rg_vec2 d, bp_ray_fn vi
         /* chunk length in t; a whole-ray chunk when the ray is shorter than a cell */
         rg_real step = span > c ? c / span : 1;
         rg_real nchunks = span > c ? r.max_t / step + 1 : 1;
+        r.has_prev = 0;
         if (nchunks * 4 > (rg_real)bp->level_count[li] + 8) {
             /* long ray over a sparse level: test each member of the level once */
             for (int32_t s = bp->level_head[li]; s >= 0;) {
@@ -423,9 +431,22 @@ void broadphase_raycast(const broadphase *bp, rg_vec2 o, rg_vec2 d, bp_ray_fn vi
             rg_real t1 = rg_min(t0 + step, r.max_t);
             rg_real ax = o.x + d.x * t0, ay = o.y + d.y * t0;
             rg_real bx = o.x + d.x * t1, by = o.y + d.y * t1;
-            query_level(bp, li, rg_min(ax, bx), rg_min(ay, by), rg_max(ax, bx), rg_max(ay, by),
-                        ray_visit, &r);
+            rg_real lx = rg_min(ax, bx) - hx, ly = rg_min(ay, by) - hy;
+            rg_real ux = rg_max(ax, bx) + hx, uy = rg_max(ay, by) + hy;
+            query_level(bp, li, lx, ly, ux, uy, ray_visit, &r);
             if (step >= 1) break;
+            if (once) {
+                r.has_prev = 1;
+                r.plx = lx;
+                r.ply = ly;
+                r.pux = ux;
+                r.puy = uy;
+            }
         }
     }
+}
+
+void broadphase_raycast(const broadphase *bp, rg_vec2 o, rg_vec2 d, bp_ray_fn visit, void *ctx)
+{
+    broadphase_sweep(bp, o, d, 0, 0, 0, visit, ctx);
 }

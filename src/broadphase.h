@@ -103,5 +103,9 @@ void broadphase_query(const broadphase *bp, rg_real lx, rg_real ly, rg_real ux, 
  * visited more than once. */
 typedef rg_real (*bp_ray_fn)(void *ctx, int32_t slot, rg_real max_t);
 void broadphase_raycast(const broadphase *bp, rg_vec2 origin, rg_vec2 d, bp_ray_fn visit, void *ctx);
+/* The same for a box of half extents (hx, hy) swept along the segment (a shape cast); with
+ * `once`, every member is visited at most once. */
+void broadphase_sweep(const broadphase *bp, rg_vec2 origin, rg_vec2 d, rg_real hx, rg_real hy, int once,
+                      bp_ray_fn visit, void *ctx);
 
 #endif

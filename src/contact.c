@@ -128,6 +128,11 @@ static inline void contact_mix(contact *c, const body_store *b, int32_t ia, int3
     c->e = rg_max(b->rest[ia], b->rest[ib]);
 }
 
+static inline uint32_t contact_one_way(const body_store *b, int32_t ia, int32_t ib)
+{
+    return (b->owx[ia] != 0 || b->owy[ia] != 0 || b->owx[ib] != 0 || b->owy[ib] != 0) ? CT_ONEWAY : 0;
+}
+
 int32_t contact_create(rg_world *w, int32_t s, int32_t t)
 {
     contact_store *cs = &w->coll.contacts;
@@ -148,6 +153,7 @@ int32_t contact_create(rg_world *w, int32_t s, int32_t t)
     c->sb = t;
     c->awake = -1;
     c->flags = ((b->cflags[ia] | b->cflags[ib]) & CF_SENSOR) ? CT_SENSOR : 0;
+    c->flags |= contact_one_way(b, ia, ib);
     contact_mix(c, b, ia, ib);
     contact_link(w, id, s);
     contact_link(w, id, t);
@@ -180,4 +186,22 @@ void contact_refresh_materials(rg_world *w, int32_t s)
         contact *c = &cs->c[id];
         contact_mix(c, b, body_dense(w, c->sa), body_dense(w, c->sb));
     }
+}
+
+void contact_refresh_flags(rg_world *w, int32_t s)
+{
+    contact_store *cs = &w->coll.contacts;
+    const body_store *b = &w->b;
+    for (int32_t id = b->chead[body_dense(w, s)] - 1; id >= 0; id = contact_next(&cs->c[id], s)) {
+        contact *c = &cs->c[id];
+        c->flags = (c->flags & ~CT_ONEWAY) | contact_one_way(b, body_dense(w, c->sa), body_dense(w, c->sb));
+    }
+}
+
+int32_t contact_find(const rg_world *w, int32_t s, int32_t t)
+{
+    const contact_store *cs = &w->coll.contacts;
+    for (int32_t id = w->b.chead[body_dense(w, s)] - 1; id >= 0; id = contact_next(&cs->c[id], s))
+        if (contact_other(&cs->c[id], s) == t) return id;
+    return -1;
 }

@@ -22,6 +22,7 @@ RG_API rg_status rg_spring_create(rg_world *world, rg_body a, rg_body b, rg_vec2
                                   rg_real rest_length, rg_real stiffness, rg_real damping,
                                   uint64_t *out_spring)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL || out_spring == NULL) return RG_ERR_INVALID_ARGUMENT;
     if (!rg_finite(rest_length) || !rg_finite(stiffness) || !rg_finite(damping) ||
         rest_length < 0 || stiffness < 0 || damping < 0)
@@ -68,6 +69,7 @@ RG_API rg_status rg_spring_create(rg_world *world, rg_body a, rg_body b, rg_vec2
 
 RG_API rg_status rg_spring_destroy(rg_world *world, uint64_t spring_handle)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL) return RG_ERR_INVALID_ARGUMENT;
     int32_t s = pool_lookup(&world->springs.pool, spring_handle);
     if (s < 0) return RG_ERR_STALE_HANDLE;
