@@ -188,7 +188,7 @@ static void test_bad_input_is_rejected_and_changes_nothing(void **state)
     assert_status(rg_body_move(w, 4242, v2(1, 1), ALL, RG_MOVE_SLIDE, &end, &h, 1, &n), RG_ERR_STALE_HANDLE);
     assert_status(rg_body_move(NULL, b, v2(1, 1), ALL, RG_MOVE_SLIDE, &end, &h, 1, &n), RG_ERR_INVALID_ARGUMENT);
     /* a target so far that the path's length overflows */
-    assert_status(rg_body_move(w, b, v2(0.9 * REAL_MAX, -0.9 * REAL_MAX), ALL, RG_MOVE_SLIDE, &end, &h, 1, &n), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_body_move(w, b, v2(0.9 * (double)REAL_MAX, -0.9 * (double)REAL_MAX), ALL, RG_MOVE_SLIDE, &end, &h, 1, &n), RG_ERR_INVALID_ARGUMENT);
     assert_true(PX(w, b) == 0 && PY(w, b) == 1);
     assert_true(n == 7 && end.x == -1);
     rg_world_destroy(w);
