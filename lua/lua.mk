@@ -3,6 +3,8 @@
 LUA_PKG_CFLAGS := $(shell pkg-config --cflags lua5.4 2>/dev/null || echo -I/usr/include/lua5.4)
 LUA_PKG_LIBS := $(shell pkg-config --libs lua5.4 2>/dev/null || echo -llua5.4)
 LUA_BIN ?= lua5.4
+LUAJIT_BIN ?= luajit
+LOVE_BIN ?= love
 
 LUA_MOD := $(B)/rigid.so
 LUA_HOST := $(B)/rigid
@@ -14,9 +16,9 @@ LUA_BIND_OBJ := $(patsubst lua/%.c,$(B)/lua/%.o,$(LUA_BIND_SRC))
 LUA_PATFUZZ := $(B)/lua/pattern_fuzz
 
 ALL_TARGETS += $(LUA_MOD) $(LUA_HOST)
-TEST_RUNS += check-lua
+TEST_RUNS += check-lua check-ffi-cdef
 # The Makefile expands `all:` and .PHONY before it includes the fragments.
-.PHONY: check-lua bench-lua
+.PHONY: check-lua bench-lua check-ffi-cdef ffi-cdef
 
 $(B)/lua/%.o: lua/%.c
 	@mkdir -p $(@D)
@@ -35,26 +37,41 @@ $(LUA_PATFUZZ): tests/lua/pattern_fuzz.c $(B)/lua/lpattern.o
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(LUA_PKG_CFLAGS) -Ilua $(LDFLAGS) -o $@ $< $(B)/lua/lpattern.o $(LUA_PKG_LIBS) $(LDLIBS)
 
-# Every Lua test: the API tests through the host and through stock lua5.4, the hostile
-# scripts, every example (with its picture) and the pattern matcher against stock Lua.
-check-lua: $(LUA_MOD) $(LUA_HOST) $(LUA_PATFUZZ)
+# Every Lua test: the API tests through the host, through stock lua5.4 and through the
+# LuaJIT binding, the hostile scripts, every example (with its picture), the LOVE game and
+# the pattern matcher against stock Lua.
+check-lua: $(LUA_MOD) $(LUA_HOST) $(LUA_PATFUZZ) $(LIB_SO)
 	@echo "== tests/lua"
 	$(LUA_BIN) tests/lua/run.lua --host $(LUA_HOST) --module-dir $(B) --lua $(LUA_BIN) \
-	  --out $(B)/lua-tests --fuzz $(LUA_PATFUZZ) --lua-env "$(FFI_ENV)"
+	  --out $(B)/lua-tests --fuzz $(LUA_PATFUZZ) --lua-env "$(FFI_ENV)" \
+	  --library $(LIB_SO) --luajit "$(LUAJIT_BIN)" --love "$(LOVE_BIN)"
+
+# The LuaJIT binding declares the header as the preprocessor reads it; `make ffi-cdef`
+# rewrites that block after a change of include/rigid.h, and the test fails until then.
+check-ffi-cdef:
+	@echo "== lua/rigid_jit/ffi.lua against include/rigid.h"
+	@CC="$(CC)" $(LUA_BIN) tools/ffi_cdef.lua --check lua/rigid_jit/ffi.lua
+
+ffi-cdef:
+	CC="$(CC)" $(LUA_BIN) tools/ffi_cdef.lua --update lua/rigid_jit/ffi.lua
 
 # The main job (make run): the platformer, a line per second, its picture in $(B)/run.svg.
 run-main: $(LUA_HOST)
 	@$(LUA_HOST) lua/examples/platformer.lua --svg $(B)/run.svg
 
-# Cost of one Lua call into the binding, in stock lua5.4 and in the host.
+# Cost of one Lua call into the binding, in stock lua5.4, in the host and in LuaJIT.
 bench: bench-lua
-bench-lua: $(LUA_MOD) $(LUA_HOST)
+bench-lua: $(LUA_MOD) $(LUA_HOST) $(LIB_SO)
 	@echo "== Lua call cost (stock $(LUA_BIN) + $(LUA_MOD))"
 	@LUA_CPATH="$(B)/?.so" $(FFI_ENV) $(LUA_BIN) lua/bench_calls.lua
 	@echo "== Lua call cost (host $(LUA_HOST), sandboxed, --budget 0)"
 	@$(LUA_HOST) lua/bench_calls.lua --budget 0
 	@echo "== Lua call cost (host $(LUA_HOST), sandboxed, budget hooks on)"
 	@$(LUA_HOST) lua/bench_calls.lua --budget 100000000000
+	@if command -v $(LUAJIT_BIN) >/dev/null; then \
+	  echo "== Lua call cost ($(LUAJIT_BIN) + lua/rigid_jit.lua + $(LIB_SO))"; \
+	  LUA_PATH="lua/?.lua;;" RIGID_LIBRARY=$(LIB_SO) $(FFI_ENV) $(LUAJIT_BIN) lua/bench_calls.lua; \
+	else echo "== no $(LUAJIT_BIN): the LuaJIT call cost is not measured"; fi
 
 -include $(LUA_HOST_OBJ:.o=.d) $(LUA_BIND_OBJ:.o=.d)
 
@@ -69,3 +86,4 @@ $(B)/readme_example.lua: README.md
 check-readme-lua: $(LUA_HOST) $(B)/readme_example.lua
 	@echo "== README Lua example"
 	$(LUA_HOST) $(B)/readme_example.lua --seconds 4 --svg $(B)/readme_example.svg
+
