@@ -87,3 +87,50 @@ check-readme-lua: $(LUA_HOST) $(B)/readme_example.lua
 	@echo "== README Lua example"
 	$(LUA_HOST) $(B)/readme_example.lua --seconds 4 --svg $(B)/readme_example.svg
 
+# ---------------------------------------------------------------- install, luarocks
+# make install adds the Lua 5.4 module, the LuaJIT binding and the host.  Only the float
+# build installs them: they have one name each, and the float build is the usual one (the
+# LuaJIT binding loads the double library too, by RIGID_LIBRARY).
+LUA_CMOD_DIR ?= $(PREFIX)/lib/lua/5.4
+LUA_LMOD_DIR ?= $(PREFIX)/share/lua/5.1
+LUA_JIT_FILES := rigid_jit.lua rigid_jit/ffi.lua rigid_jit/check.lua
+.PHONY: install-lua uninstall-lua rock-build rock-install check-rock
+ifeq ($(REAL),float)
+install: install-lua
+uninstall: uninstall-lua
+endif
+
+install-lua: $(LUA_MOD) $(LUA_HOST)
+	install -d $(DESTDIR)$(LUA_CMOD_DIR) $(DESTDIR)$(LUA_LMOD_DIR)/rigid_jit $(DESTDIR)$(PREFIX)/bin
+	install -m 755 $(LUA_MOD) $(DESTDIR)$(LUA_CMOD_DIR)/rigid.so
+	for f in $(LUA_JIT_FILES); do install -m 644 lua/$$f $(DESTDIR)$(LUA_LMOD_DIR)/$$f || exit 1; done
+	install -m 755 $(LUA_HOST) $(DESTDIR)$(PREFIX)/bin/rigid
+
+uninstall-lua:
+	rm -f $(DESTDIR)$(LUA_CMOD_DIR)/rigid.so $(addprefix $(DESTDIR)$(LUA_LMOD_DIR)/,$(LUA_JIT_FILES)) \
+	  $(DESTDIR)$(PREFIX)/bin/rigid
+	rmdir $(DESTDIR)$(LUA_LMOD_DIR)/rigid_jit $(DESTDIR)$(LUA_LMOD_DIR) $(DESTDIR)$(PREFIX)/share/lua \
+	  $(DESTDIR)$(PREFIX)/share $(DESTDIR)$(LUA_CMOD_DIR) $(DESTDIR)$(PREFIX)/lib/lua \
+	  $(DESTDIR)$(PREFIX)/bin 2>/dev/null || true
+
+# luarocks make lua/rigid-$(VERSION)-1.rockspec: the rock builds with `make rock-build` (in
+# build/rock, against the rock's Lua headers) and installs with `make rock-install`.
+rock-build: $(LUA_MOD)
+rock-install: $(LUA_MOD)
+	install -d $(ROCK_LIBDIR)
+	install -m 755 $(LUA_MOD) $(ROCK_LIBDIR)/rigid.so
+
+# The rock into a temporary tree, and the module required from there.  The rock's make
+# must not inherit this make's variables (a sanitizer build's flags, its B).
+ifeq ($(REAL),float)
+TEST_RUNS += check-rock
+endif
+check-rock:
+	@echo "== luarocks make lua/rigid-$(VERSION)-1.rockspec"
+	@if ! command -v luarocks >/dev/null; then \
+	  echo "skip  the rock: no luarocks (tools/install-deps.sh installs it)"; exit 0; fi; \
+	 tree=$(B)/rock-tree; rm -rf $$tree; \
+	 env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL luarocks --lua-version 5.4 --tree $$tree \
+	   make lua/rigid-$(VERSION)-1.rockspec > $(B)/rock.log 2>&1 \
+	   || { cat $(B)/rock.log; echo "FAIL  luarocks make"; exit 1; }; \
+	 LUA_CPATH="$$tree/lib/lua/5.4/?.so" $(FFI_ENV) $(LUA_BIN) tests/lua/installed.lua rigid $$tree
