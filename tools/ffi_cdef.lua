@@ -7,6 +7,8 @@
 -- The block sits between the lines `local RIGID_H = [[` and `]]`.  rg_real is left out: the
 -- binding declares it float or double by the size of the library it loads.  The system
 -- headers (stddef.h, stdint.h) are replaced by empty ones: LuaJIT knows their types.
+-- Integer constants the header keeps as macros (the preprocessor drops them) follow as
+-- static const declarations, which ffi.cdef takes.
 -- Environment: CC (default cc).
 local mode, file = arg[1], arg[2]
 local HEADER = "include/rigid.h"
@@ -49,6 +51,18 @@ local function declarations()
     local opens = select(2, out[#out]:gsub("{", "")) - select(2, out[#out]:gsub("}", ""))
     open = opens > 0
   end
+  -- #define RG_NAME <integer literal>[u]: as static const uint32_t or int32_t
+  local f = assert(io.open(HEADER, "rb"))
+  for line in f:read("a"):gmatch("[^\n]+") do
+    local name, value = line:match("^#define%s+(RG_[%w_]+)%s+(%S+)")
+    local digits, u = (value or ""):match("^(%-?%d+)(u?)$")
+    if not digits then digits, u = (value or ""):match("^(0[xX]%x+)(u?)$") end
+    if digits then
+      out[#out + 1] = ("static const %s %s = %s%s;"):format(u == "u" and "uint32_t" or "int32_t",
+                                                          name, digits, u)
+    end
+  end
+  f:close()
   return table.concat(out, "\n") .. "\n"
 end
 

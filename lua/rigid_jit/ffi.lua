@@ -145,6 +145,32 @@ typedef struct rg_ray_hit {
 } rg_ray_hit;
 int32_t rg_world_raycast(const rg_world *world, rg_vec2 origin, rg_vec2 translation, uint32_t mask, rg_ray_hit *out_hit);
 int32_t rg_world_query_aabb(const rg_world *world, rg_vec2 lower, rg_vec2 upper, uint32_t mask, rg_body *out, int32_t capacity);
+typedef struct rg_debug_draw {
+  void (*circle)(rg_body body, rg_vec2 center, rg_real radius, uint32_t rgba, void *user);
+  void (*box)(rg_body body, rg_vec2 lower, rg_vec2 upper, uint32_t rgba, void *user);
+  void (*segment)(rg_vec2 a, rg_vec2 b, uint32_t rgba, void *user);
+  void (*point)(rg_vec2 p, uint32_t rgba, void *user);
+  uint32_t flags;
+  void *user;
+} rg_debug_draw;
+rg_status rg_world_draw(const rg_world *world, const rg_debug_draw *draw);
+static const int32_t RG_VERSION_MAJOR = 0;
+static const int32_t RG_VERSION_MINOR = 1;
+static const int32_t RG_VERSION_PATCH = 0;
+static const uint32_t RG_DRAW_SHAPES = 1u;
+static const uint32_t RG_DRAW_CONTACTS = 2u;
+static const uint32_t RG_DRAW_VELOCITIES = 4u;
+static const uint32_t RG_DRAW_BOUNDS = 8u;
+static const uint32_t RG_DRAW_SPRINGS = 16u;
+static const uint32_t RG_COLOR_STATIC = 0x8C8C8CFFu;
+static const uint32_t RG_COLOR_KINEMATIC = 0x3C78DCFFu;
+static const uint32_t RG_COLOR_AWAKE = 0xE6782DFFu;
+static const uint32_t RG_COLOR_SLEEPING = 0x8C64B4FFu;
+static const uint32_t RG_COLOR_SENSOR = 0xDCB41E80u;
+static const uint32_t RG_COLOR_CONTACT = 0xDC2828FFu;
+static const uint32_t RG_COLOR_VELOCITY = 0x28A03CFFu;
+static const uint32_t RG_COLOR_BOUNDS = 0x32B4B4FFu;
+static const uint32_t RG_COLOR_SPRING = 0xB43CB4FFu;
 ]]
 
 local C
