@@ -152,13 +152,12 @@ install: $(LIB_A) $(LIB_SO) $(PC)
 	ln -sf $(SONAME) $(DESTDIR)$(PREFIX)/lib/lib$(LIB_NAME).so
 	install -m 644 $(PC) $(DESTDIR)$(PREFIX)/lib/pkgconfig/
 
-# The header stays while the other build's library is installed; directories go when empty.
+# The header stays while the other build's library is installed.  The directories are
+# the usual ones of a prefix (bin, include, lib...), which other packages share: they stay.
 uninstall:
 	rm -f $(addprefix $(DESTDIR)$(PREFIX)/lib/,lib$(LIB_NAME).a lib$(LIB_NAME).so.$(VERSION) \
 	  $(SONAME) lib$(LIB_NAME).so pkgconfig/$(LIB_NAME).pc)
 	[ -e $(DESTDIR)$(PREFIX)/lib/lib$(OTHER_LIB).so.$(VERSION) ] || rm -f $(DESTDIR)$(PREFIX)/include/rigid.h
-	rmdir $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include \
-	  2>/dev/null || true
 
 # Install and uninstall into a temporary DESTDIR, programs built against the installed pc.
 check-install: $(LIB_A) $(LIB_SO) $(ALL_TARGETS)

@@ -1,5 +1,6 @@
-# The Lua binding (build/rigid.so), the sandboxed host (build/rigid), their tests, the
-# call-cost bench and the main job (make run: the platformer example).
+# The Lua binding (build/rigid.so), the sandboxed host (build/rigid), the LuaJIT binding
+# (lua/rigid_jit.lua, nothing to build), their tests, the call-cost bench, the main job
+# (make run: the platformer example), their part of make install and the rock.
 LUA_PKG_CFLAGS := $(shell pkg-config --cflags lua5.4 2>/dev/null || echo -I/usr/include/lua5.4)
 LUA_PKG_LIBS := $(shell pkg-config --libs lua5.4 2>/dev/null || echo -llua5.4)
 LUA_BIN ?= lua5.4
@@ -106,12 +107,11 @@ install-lua: $(LUA_MOD) $(LUA_HOST)
 	for f in $(LUA_JIT_FILES); do install -m 644 lua/$$f $(DESTDIR)$(LUA_LMOD_DIR)/$$f || exit 1; done
 	install -m 755 $(LUA_HOST) $(DESTDIR)$(PREFIX)/bin/rigid
 
+# The directory rigid_jit/ is the binding's own; the others are shared (see uninstall).
 uninstall-lua:
 	rm -f $(DESTDIR)$(LUA_CMOD_DIR)/rigid.so $(addprefix $(DESTDIR)$(LUA_LMOD_DIR)/,$(LUA_JIT_FILES)) \
 	  $(DESTDIR)$(PREFIX)/bin/rigid
-	rmdir $(DESTDIR)$(LUA_LMOD_DIR)/rigid_jit $(DESTDIR)$(LUA_LMOD_DIR) $(DESTDIR)$(PREFIX)/share/lua \
-	  $(DESTDIR)$(PREFIX)/share $(DESTDIR)$(LUA_CMOD_DIR) $(DESTDIR)$(PREFIX)/lib/lua \
-	  $(DESTDIR)$(PREFIX)/bin 2>/dev/null || true
+	rmdir $(DESTDIR)$(LUA_LMOD_DIR)/rigid_jit 2>/dev/null || true
 
 # luarocks make lua/rigid-$(VERSION)-1.rockspec: the rock builds with `make rock-build` (in
 # build/rock, against the rock's Lua headers) and installs with `make rock-install`.

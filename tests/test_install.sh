@@ -3,8 +3,8 @@
 # DESTDIR, for the float or the double build (B is its build directory).  Checks the files
 # installed, the SONAME, that a program built with the installed pc file runs (and that one
 # built for the other rg_real stops with an error), the installed Lua module, LuaJIT
-# binding and host, that the pc file follows PREFIX, and that uninstall leaves only what was
-# there before.  RUN_ENV is put before every program run (the sanitizer build preloads
+# binding and host, that the pc file follows PREFIX, and that uninstall leaves no file but
+# what was there before (of the directories, only those a prefix shares).  RUN_ENV is put before every program run (the sanitizer build preloads
 # its runtime).  Closes with "N passed, N failed".
 set -u
 MAKE=$1 REAL=$2 B=$3 CC=$4
@@ -123,10 +123,14 @@ check "the pc file follows PREFIX: install PREFIX=/opt/other says prefix=/opt/ot
 
 check "make uninstall" \
       "$MAKE --no-print-directory uninstall REAL=$REAL B=$B DESTDIR='$dest' PREFIX=$prefix"
-(cd "$dest" && find . | LC_ALL=C sort) > "$tmp/left"
-printf '.\n./opt\n./opt/rigid\n./opt/rigid/lib\n./opt/rigid/lib/pkgconfig\n./opt/rigid/lib/pkgconfig/other.pc\n' \
-    > "$tmp/want_left"
-check "uninstall leaves what was there before, and nothing else" "diff '$tmp/want_left' '$tmp/left'"
+(cd "$root" && find . ! -type d | LC_ALL=C sort) > "$tmp/left"
+printf './lib/pkgconfig/other.pc\n' > "$tmp/want_left"
+check "uninstall leaves no file but what was there before" "diff '$tmp/want_left' '$tmp/left'"
+(cd "$root" && find . -type d | LC_ALL=C sort) > "$tmp/dirs"
+printf '.\n./bin\n./include\n./lib\n./lib/lua\n./lib/lua/5.4\n./lib/pkgconfig\n./share\n./share/lua\n./share/lua/5.1\n' \
+    | LC_ALL=C sort > "$tmp/shared_dirs"
+check "uninstall leaves only the shared directories of a prefix (bin, include, lib, share/lua/5.1...)" \
+      "LC_ALL=C comm -23 '$tmp/dirs' '$tmp/shared_dirs' | { ! grep .; }"
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
