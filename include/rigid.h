@@ -67,27 +67,34 @@ typedef struct rg_world rg_world;   /* opaque; created and destroyed by the libr
  * body; a destroyed body's handle never becomes valid again in that world. */
 typedef uint64_t rg_body;
 
+/* The integer constants are enumerators, so that FFI hosts which read the preprocessed
+ * header (LuaJIT's ffi.cdef, cffi) see them too; the values are fixed. */
 typedef int32_t rg_status;
-#define RG_OK                    0
-#define RG_ERR_INVALID_ARGUMENT (-1) /* NULL, NaN/inf, negative mass or size, dt <= 0, bad enum */
-#define RG_ERR_STALE_HANDLE     (-2) /* destroyed, forged, zero or another world's handle */
-#define RG_ERR_OUT_OF_MEMORY    (-3)
-#define RG_ERR_CAPACITY         (-4) /* more bodies or springs than a world can hold */
-#define RG_ERR_LOCKED           (-5) /* not allowed at this moment: a call that would change
-                                        the world, made from a callback inside its step */
+enum {
+    RG_OK                   =  0,
+    RG_ERR_INVALID_ARGUMENT = -1,  /* NULL, NaN/inf, negative mass or size, dt <= 0, bad enum */
+    RG_ERR_STALE_HANDLE     = -2,  /* destroyed, forged, zero or another world's handle */
+    RG_ERR_OUT_OF_MEMORY    = -3,
+    RG_ERR_CAPACITY         = -4,  /* more bodies or springs than a world can hold */
+    RG_ERR_LOCKED           = -5   /* not allowed at this moment: a call that would change
+                                      the world, made from a callback inside its step */
+};
 
-#define RG_INTEGRATOR_EXPLICIT_EULER      0
-#define RG_INTEGRATOR_SEMI_IMPLICIT_EULER 1   /* the default */
-#define RG_INTEGRATOR_VELOCITY_VERLET     2
-#define RG_INTEGRATOR_RK4                 3
+enum {
+    RG_INTEGRATOR_EXPLICIT_EULER      = 0,
+    RG_INTEGRATOR_SEMI_IMPLICIT_EULER = 1,   /* the default */
+    RG_INTEGRATOR_VELOCITY_VERLET     = 2,
+    RG_INTEGRATOR_RK4                 = 3
+};
 
-#define RG_BODY_STATIC    0   /* never moves; infinite mass */
-#define RG_BODY_KINEMATIC 1   /* moves by its velocity only; pushes, is never pushed */
-#define RG_BODY_DYNAMIC   2   /* moved by forces, impulses and contacts */
+enum {
+    RG_BODY_STATIC    = 0,   /* never moves; infinite mass */
+    RG_BODY_KINEMATIC = 1,   /* moves by its velocity only; pushes, is never pushed */
+    RG_BODY_DYNAMIC   = 2    /* moved by forces, impulses and contacts */
+};
 
 /* Most bodies and most springs one world holds (slot indices are 24 bits). */
-#define RG_MAX_BODIES  16777215
-#define RG_MAX_SPRINGS 16777215
+enum { RG_MAX_BODIES = 16777215, RG_MAX_SPRINGS = 16777215 };
 
 /* Human-readable text for a status; never NULL. */
 RG_API const char *rg_status_string(rg_status s);
@@ -95,6 +102,9 @@ RG_API const char *rg_status_string(rg_status s);
 RG_API int32_t rg_version(void);
 /* sizeof(rg_real) of the loaded library: 4 (float build) or 8 (double build). */
 RG_API int32_t rg_real_size(void);
+/* 1 when the loaded library's rg_real is this program's (a float program linked against
+ * the double library reads garbage); check it once at start. */
+#define RG_REAL_MATCHES() (rg_real_size() == (int32_t)sizeof(rg_real))
 
 /* ---------------------------------------------------------------- world */
 
@@ -252,9 +262,7 @@ RG_API int32_t rg_spring_is_valid(const rg_world *world, uint64_t spring);
  * touching, its velocity into the surface reads until the next step, and a bounce turns it
  * up to one step's travel short of the surface. */
 
-#define RG_SHAPE_NONE   0
-#define RG_SHAPE_CIRCLE 1
-#define RG_SHAPE_AABB   2
+enum { RG_SHAPE_NONE = 0, RG_SHAPE_CIRCLE = 1, RG_SHAPE_AABB = 2 };
 
 /* Largest radius or half extent a shape may have, in m. */
 #define RG_MAX_SHAPE_SIZE 1.0e7
@@ -355,8 +363,7 @@ RG_API int32_t rg_world_touching_count(const rg_world *world);
 
 /* ---- contact events of the last step or advance, read after it */
 
-#define RG_CONTACT_BEGIN 0
-#define RG_CONTACT_END   1
+enum { RG_CONTACT_BEGIN = 0, RG_CONTACT_END = 1 };
 
 typedef struct rg_contact_event {
     rg_body a, b;       /* a < b */

@@ -39,7 +39,8 @@ uint32_t lcheck_optmask(lua_State *L, int i);
 /* An integer in [lo, hi]; msg says what is wrong when it is outside. */
 int32_t lcheck_int32(lua_State *L, int i, int32_t lo, int32_t hi, const char *msg);
 int lcheck_boolean(lua_State *L, int i);
-/* One of names (a NULL-terminated list); returns its index.  what names the kind. */
+/* One of names (a NULL-terminated list); returns its index.  what names the kind; the
+ * error lists the names. */
 int lcheck_enum(lua_State *L, int i, const char *const names[], const char *what);
 
 void lcheck_pushreal(lua_State *L, rg_real v);
