@@ -145,6 +145,25 @@ typedef struct rg_ray_hit {
 } rg_ray_hit;
 int32_t rg_world_raycast(const rg_world *world, rg_vec2 origin, rg_vec2 translation, uint32_t mask, rg_ray_hit *out_hit);
 int32_t rg_world_query_aabb(const rg_world *world, rg_vec2 lower, rg_vec2 upper, uint32_t mask, rg_body *out, int32_t capacity);
+rg_status rg_body_set_one_way(rg_world *world, rg_body body, rg_vec2 normal);
+rg_status rg_body_get_one_way(const rg_world *world, rg_body body, rg_vec2 *out_normal);
+rg_status rg_body_pass_through(rg_world *world, rg_body body, rg_body other);
+typedef int32_t rg_pre_solve_fn(rg_body a, rg_body b, rg_vec2 normal, rg_real separation, void *user);
+rg_status rg_world_set_pre_solve(rg_world *world, rg_pre_solve_fn *fn, void *user);
+typedef struct rg_contact {
+  rg_body other;
+  rg_vec2 normal;
+  rg_vec2 point;
+  rg_real separation;
+  rg_real normal_impulse;
+  rg_real tangent_impulse;
+  int32_t sensor;
+} rg_contact;
+int32_t rg_body_get_contacts(const rg_world *world, rg_body body, rg_contact *out, int32_t capacity);
+int32_t rg_world_raycast_all(const rg_world *world, rg_vec2 origin, rg_vec2 translation, uint32_t mask, rg_ray_hit *out, int32_t capacity);
+int32_t rg_world_query_point(const rg_world *world, rg_vec2 point, uint32_t mask, rg_body *out, int32_t capacity);
+int32_t rg_world_cast_shape(const rg_world *world, int32_t shape, rg_vec2 size, rg_vec2 origin, rg_vec2 translation, uint32_t mask, rg_ray_hit *out_hit);
+rg_status rg_body_move(rg_world *world, rg_body body, rg_vec2 target, uint32_t mask, int32_t response, rg_vec2 *out_position, rg_ray_hit *out_hits, int32_t capacity, int32_t *out_count);
 typedef struct rg_debug_draw {
   void (*circle)(rg_body body, rg_vec2 center, rg_real radius, uint32_t rgba, void *user);
   void (*box)(rg_body body, rg_vec2 lower, rg_vec2 upper, uint32_t rgba, void *user);
@@ -157,6 +176,9 @@ rg_status rg_world_draw(const rg_world *world, const rg_debug_draw *draw);
 static const int32_t RG_VERSION_MAJOR = 0;
 static const int32_t RG_VERSION_MINOR = 1;
 static const int32_t RG_VERSION_PATCH = 0;
+static const int32_t RG_MOVE_SLIDE = 0;
+static const int32_t RG_MOVE_TOUCH = 1;
+static const int32_t RG_MOVE_CROSS = 2;
 static const uint32_t RG_DRAW_SHAPES = 1u;
 static const uint32_t RG_DRAW_CONTACTS = 2u;
 static const uint32_t RG_DRAW_VELOCITIES = 4u;
