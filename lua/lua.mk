@@ -12,7 +12,7 @@ LUA_HOST := $(B)/rigid
 LUA_HOST_SRC := lua/host.c lua/lsandbox.c lua/lpattern.c lua/lsvg.c
 LUA_HOST_OBJ := $(patsubst lua/%.c,$(B)/lua/%.o,$(LUA_HOST_SRC))
 # The binding: checks, world, body, springs, events and queries, registration.
-LUA_BIND_SRC := lua/lcheck.c lua/lworld.c lua/lbody.c lua/lspring.c lua/lquery.c lua/lrigid.c
+LUA_BIND_SRC := lua/lcheck.c lua/lworld.c lua/lbody.c lua/lspring.c lua/lquery.c lua/lcontact.c lua/lrigid.c
 LUA_BIND_OBJ := $(patsubst lua/%.c,$(B)/lua/%.o,$(LUA_BIND_SRC))
 LUA_PATFUZZ := $(B)/lua/pattern_fuzz
 
