@@ -77,6 +77,7 @@ static rg_status contact_grow(rg_world *w)
     /* new ids on the free list, lowest first */
     for (int32_t id = cap - 1; id >= old; id--) {
         memset(&c[id], 0, sizeof c[id]);
+        c[id].sa = c[id].sb = -1; /* free */
         c[id].na = cs->free_head;
         c[id].awake = -1;
         cs->free_head = id;
@@ -173,6 +174,7 @@ void contact_destroy(rg_world *w, int32_t id)
     contact_unlink(w, id, c->sb);
     if (c->awake >= 0) contact_awake_remove(cs, id);
     c->flags = 0;
+    c->sa = c->sb = -1; /* free */
     c->na = cs->free_head;
     cs->free_head = id;
     cs->live--;
