@@ -1,5 +1,6 @@
 /* arg.c: argument checks of the entry points and their messages. */
 #include <inttypes.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "arg.h"
@@ -7,6 +8,14 @@
 
 /* A bound's text: a constant of the header with its value, or a number as spelled. */
 static int arg_named(const char *name) { return strchr(name, '_') != NULL; }
+
+int arg_digits(double v, double bound)
+{
+    char a[32], b[32];
+    snprintf(a, sizeof a, "%g", v);
+    snprintf(b, sizeof b, "%g", bound);
+    return strcmp(a, b) != 0 ? 6 : (int)sizeof(rg_real) == 4 ? 9 : 17;
+}
 
 int arg_real(const rg_world *w, const char *func, const char *name, const char *part, rg_real v,
              const arg_rule *r)
@@ -18,18 +27,20 @@ int arg_real(const rg_world *w, const char *func, const char *name, const char *
     if (r == NULL) return 1;
     rg_real lo = (rg_real)r->lo, hi = (rg_real)r->hi;
     if (r->lo_open ? !(v > lo) : !(v >= lo)) {
+        int g = arg_digits((double)v, r->lo);
         if (arg_named(r->lo_name))
-            error_set(w, 0, func, "%s%s %g is below %s (%g)", name, part, (double)v, r->lo_name, r->lo);
+            error_set(w, 0, func, "%s%s %.*g is below %s (%g)", name, part, g, (double)v, r->lo_name, r->lo);
         else
-            error_set(w, 0, func, "%s%s %g is not %s %s", name, part, (double)v, r->lo_open ? ">" : ">=",
+            error_set(w, 0, func, "%s%s %.*g is not %s %s", name, part, g, (double)v, r->lo_open ? ">" : ">=",
                       r->lo_name);
         return 0;
     }
     if (!(v <= hi)) {
+        int g = arg_digits((double)v, r->hi);
         if (arg_named(r->hi_name))
-            error_set(w, 0, func, "%s%s %g is above %s (%g)", name, part, (double)v, r->hi_name, r->hi);
+            error_set(w, 0, func, "%s%s %.*g is above %s (%g)", name, part, g, (double)v, r->hi_name, r->hi);
         else
-            error_set(w, 0, func, "%s%s %g is above %s", name, part, (double)v, r->hi_name);
+            error_set(w, 0, func, "%s%s %.*g is above %s", name, part, g, (double)v, r->hi_name);
         return 0;
     }
     return 1;

@@ -26,6 +26,9 @@ typedef struct arg_rule {
  * not NULL, within it; else 0 and the error set. */
 int arg_real(const rg_world *w, const char *func, const char *name, const char *part, rg_real v,
              const arg_rule *rule);
+/* Significant digits that print v (%.*g) apart from a bound it is beyond: %g's 6, or all
+ * of an rg_real's when 6 would print the two alike (1.0000001e6 against 1e6). */
+int arg_digits(double v, double bound);
 /* Both components. */
 int arg_vec(const rg_world *w, const char *func, const char *name, rg_vec2 v, const arg_rule *rule);
 /* 1 when lo <= v <= hi; else 0 and the error "NAME V is not WHAT" set. */
