@@ -151,7 +151,7 @@ RG_API rg_status rg_body_apply_force(rg_world *world, rg_body body, rg_vec2 forc
     if (b->type[i] != RG_BODY_DYNAMIC) return RG_OK;
     rg_real fx = b->fx[i] + force.x, fy = b->fy[i] + force.y;
     if (!(rg_fabs(fx) <= (rg_real)RG_MAX_FORCE && rg_fabs(fy) <= (rg_real)RG_MAX_FORCE)) {
-        int g = arg_digits(rg_fabs(fx) > rg_fabs(fy) ? rg_fabs(fx) : rg_fabs(fy), RG_MAX_FORCE);
+        int g = arg_digits((double)rg_max(rg_fabs(fx), rg_fabs(fy)), RG_MAX_FORCE);
         return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT,
                        "force (%g, %g) makes the step's applied force (%.*g, %.*g), beyond RG_MAX_FORCE (%g)",
                        (double)force.x, (double)force.y, g, (double)fx, g, (double)fy, RG_MAX_FORCE);
@@ -171,7 +171,7 @@ RG_API rg_status rg_body_apply_impulse(rg_world *world, rg_body body, rg_vec2 im
     rg_real vx = b->vx[i] + impulse.x * b->inv_mass[i];
     rg_real vy = b->vy[i] + impulse.y * b->inv_mass[i];
     if (!(rg_fabs(vx) <= (rg_real)RG_MAX_SPEED && rg_fabs(vy) <= (rg_real)RG_MAX_SPEED)) {
-        int g = arg_digits(rg_fabs(vx) > rg_fabs(vy) ? rg_fabs(vx) : rg_fabs(vy), RG_MAX_SPEED);
+        int g = arg_digits((double)rg_max(rg_fabs(vx), rg_fabs(vy)), RG_MAX_SPEED);
         return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT,
                        "impulse (%g, %g) makes the velocity (%.*g, %.*g), beyond RG_MAX_SPEED (%g)",
                        (double)impulse.x, (double)impulse.y, g, (double)vx, g, (double)vy, RG_MAX_SPEED);

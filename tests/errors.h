@@ -9,6 +9,9 @@
 
 #include "testutil.h"
 
+/* NAN and INFINITY as doubles (they are floats, and v2 takes doubles) */
+#define NaN ((double)NAN)
+#define INF ((double)INFINITY)
 #define INVALID RG_ERR_INVALID_ARGUMENT
 #define STALE RG_ERR_STALE_HANDLE
 #define ALL 0xFFFFFFFFu

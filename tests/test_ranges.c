@@ -17,8 +17,8 @@
 /* A maximum of |x|: both signs. */
 #define EDGE_ABS(s, arg, constant, max, call)                    \
     do {                                                         \
-        EDGE(s, arg, constant, (max), INFINITY, call);           \
-        EDGE(s, arg, constant, -(max), -INFINITY, call);         \
+        EDGE(s, arg, constant, (max), INF, call);           \
+        EDGE(s, arg, constant, -(max), -INF, call);         \
     } while (0)
 
 static rg_vec2 xy(rg_real x, rg_real y)
@@ -35,17 +35,17 @@ static void test_world_and_step_ranges_accept_the_edge_and_refuse_beyond(void **
     EDGE_ABS(s, "gravity.y", "RG_MAX_ACCELERATION", RG_MAX_ACCELERATION, rg_world_set_gravity(w, xy(0, x)));
     EDGE_ABS(s, "force.x", "RG_MAX_FORCE", RG_MAX_FORCE, rg_world_set_wind(w, xy(x, 0)));
     EDGE_ABS(s, "force.y", "RG_MAX_FORCE", RG_MAX_FORCE, rg_world_set_wind(w, xy(0, x)));
-    EDGE(s, "dt", "RG_MAX_DT", RG_MAX_DT, INFINITY, rg_world_set_fixed_step(w, x, 8));
-    EDGE(s, "speed", "RG_MAX_SPEED", RG_MAX_SPEED, INFINITY, rg_world_set_sleep_thresholds(w, x, 1));
-    EDGE(s, "slop", "RG_MAX_SHAPE_SIZE", RG_MAX_SHAPE_SIZE, INFINITY, rg_world_set_contact_tuning(w, x, 0.2f, 2, 1));
-    EDGE(s, "max_push", "RG_MAX_SPEED", RG_MAX_SPEED, INFINITY, rg_world_set_contact_tuning(w, 0, 0.2f, x, 1));
-    EDGE(s, "restitution_threshold", "RG_MAX_SPEED", RG_MAX_SPEED, INFINITY,
+    EDGE(s, "dt", "RG_MAX_DT", RG_MAX_DT, INF, rg_world_set_fixed_step(w, x, 8));
+    EDGE(s, "speed", "RG_MAX_SPEED", RG_MAX_SPEED, INF, rg_world_set_sleep_thresholds(w, x, 1));
+    EDGE(s, "slop", "RG_MAX_SHAPE_SIZE", RG_MAX_SHAPE_SIZE, INF, rg_world_set_contact_tuning(w, x, 0.2f, 2, 1));
+    EDGE(s, "max_push", "RG_MAX_SPEED", RG_MAX_SPEED, INF, rg_world_set_contact_tuning(w, 0, 0.2f, x, 1));
+    EDGE(s, "restitution_threshold", "RG_MAX_SPEED", RG_MAX_SPEED, INF,
          rg_world_set_contact_tuning(w, 0, 0.2f, 2, x));
     assert_ok(rg_world_set_contact_tuning(w, 0.005f, 0.2f, 2, 1));
     assert_ok(rg_world_set_wind(w, v2(0, 0)));
     assert_ok(rg_world_set_gravity(w, v2(0, -10)));
     /* the longest step, last: the scene takes it */
-    EDGE(s, "dt", "RG_MAX_DT", RG_MAX_DT, INFINITY, rg_world_step(w, x));
+    EDGE(s, "dt", "RG_MAX_DT", RG_MAX_DT, INF, rg_world_step(w, x));
 }
 
 static void test_body_ranges_accept_the_edge_and_refuse_beyond(void **state)
@@ -54,9 +54,9 @@ static void test_body_ranges_accept_the_edge_and_refuse_beyond(void **state)
     rg_world *w = s->w;
     rg_body d = s->dyn, k = s->kin, nb, heavy = make_body(w, RG_MAX_MASS, 0, 9), one = make_body(w, 1, 0, 12);
     EDGE(s, "mass", "RG_MIN_MASS", RG_MIN_MASS, 0, rg_body_create(w, RG_BODY_DYNAMIC, x, v2(0, 20), &nb));
-    EDGE(s, "mass", "RG_MAX_MASS", RG_MAX_MASS, INFINITY, rg_body_create(w, RG_BODY_DYNAMIC, x, v2(0, 20), &nb));
+    EDGE(s, "mass", "RG_MAX_MASS", RG_MAX_MASS, INF, rg_body_create(w, RG_BODY_DYNAMIC, x, v2(0, 20), &nb));
     EDGE(s, "mass", "RG_MIN_MASS", RG_MIN_MASS, 0, rg_body_set_mass(w, d, x));
-    EDGE(s, "mass", "RG_MAX_MASS", RG_MAX_MASS, INFINITY, rg_body_set_mass(w, d, x));
+    EDGE(s, "mass", "RG_MAX_MASS", RG_MAX_MASS, INF, rg_body_set_mass(w, d, x));
     EDGE_ABS(s, "position.x", "RG_MAX_COORD", RG_MAX_COORD, rg_body_create(w, RG_BODY_STATIC, 0, xy(x, 0), &nb));
     EDGE_ABS(s, "position.y", "RG_MAX_COORD", RG_MAX_COORD, rg_body_create(w, RG_BODY_KINEMATIC, 0, xy(0, x), &nb));
     EDGE_ABS(s, "position.x", "RG_MAX_COORD", RG_MAX_COORD, rg_body_set_position(w, s->bare, xy(x, 0)));
@@ -71,19 +71,19 @@ static void test_body_ranges_accept_the_edge_and_refuse_beyond(void **state)
     SUCCEEDS(s, rg_body_apply_impulse(w, one, v2(RG_MAX_SPEED, 0)));
     assert_ok(rg_body_set_velocity(w, one, v2(0, 0)));
     FAILS_SAYING(s, INVALID, "impulse", "RG_MAX_SPEED",
-                 rg_body_apply_impulse(w, one, xy(next_real(RG_MAX_SPEED, INFINITY), 0)));
+                 rg_body_apply_impulse(w, one, xy(next_real(RG_MAX_SPEED, INF), 0)));
     EDGE_ABS(s, "scale", "RG_MAX_GRAVITY_SCALE", RG_MAX_GRAVITY_SCALE, rg_body_set_gravity_scale(w, d, x));
-    EDGE(s, "linear", "RG_MAX_DRAG", RG_MAX_DRAG, INFINITY, rg_body_set_drag(w, d, x, 0));
-    EDGE(s, "quadratic", "RG_MAX_DRAG", RG_MAX_DRAG, INFINITY, rg_body_set_drag(w, d, 0, x));
-    EDGE(s, "mu", "RG_MAX_FRICTION", RG_MAX_FRICTION, INFINITY, rg_body_set_surface_friction(w, d, x, 1));
-    EDGE(s, "normal_force", "RG_MAX_FORCE", RG_MAX_FORCE, INFINITY, rg_body_set_surface_friction(w, d, 1, x));
-    EDGE(s, "min_speed", "RG_MAX_SPEED", RG_MAX_SPEED, INFINITY, rg_body_set_speed_limits(w, d, x, 0));
-    EDGE(s, "max_speed", "RG_MAX_SPEED", RG_MAX_SPEED, INFINITY, rg_body_set_speed_limits(w, d, 0, x));
+    EDGE(s, "linear", "RG_MAX_DRAG", RG_MAX_DRAG, INF, rg_body_set_drag(w, d, x, 0));
+    EDGE(s, "quadratic", "RG_MAX_DRAG", RG_MAX_DRAG, INF, rg_body_set_drag(w, d, 0, x));
+    EDGE(s, "mu", "RG_MAX_FRICTION", RG_MAX_FRICTION, INF, rg_body_set_surface_friction(w, d, x, 1));
+    EDGE(s, "normal_force", "RG_MAX_FORCE", RG_MAX_FORCE, INF, rg_body_set_surface_friction(w, d, 1, x));
+    EDGE(s, "min_speed", "RG_MAX_SPEED", RG_MAX_SPEED, INF, rg_body_set_speed_limits(w, d, x, 0));
+    EDGE(s, "max_speed", "RG_MAX_SPEED", RG_MAX_SPEED, INF, rg_body_set_speed_limits(w, d, 0, x));
     EDGE(s, "radius", "RG_MIN_SHAPE_SIZE", RG_MIN_SHAPE_SIZE, 0, rg_body_set_circle(w, d, x));
-    EDGE(s, "radius", "RG_MAX_SHAPE_SIZE", RG_MAX_SHAPE_SIZE, INFINITY, rg_body_set_circle(w, d, x));
+    EDGE(s, "radius", "RG_MAX_SHAPE_SIZE", RG_MAX_SHAPE_SIZE, INF, rg_body_set_circle(w, d, x));
     EDGE(s, "half_width", "RG_MIN_SHAPE_SIZE", RG_MIN_SHAPE_SIZE, 0, rg_body_set_aabb(w, d, x, 1));
-    EDGE(s, "half_height", "RG_MAX_SHAPE_SIZE", RG_MAX_SHAPE_SIZE, INFINITY, rg_body_set_aabb(w, d, 1, x));
-    EDGE(s, "mu", "RG_MAX_FRICTION", RG_MAX_FRICTION, INFINITY, rg_body_set_friction(w, d, x));
+    EDGE(s, "half_height", "RG_MAX_SHAPE_SIZE", RG_MAX_SHAPE_SIZE, INF, rg_body_set_aabb(w, d, 1, x));
+    EDGE(s, "mu", "RG_MAX_FRICTION", RG_MAX_FRICTION, INF, rg_body_set_friction(w, d, x));
     EDGE_ABS(s, "target.x", "RG_MAX_COORD", RG_MAX_COORD, rg_body_move(w, k, xy(x, 0), ALL, RG_MOVE_CROSS, NULL, NULL, 0, NULL));
     EDGE_ABS(s, "target.y", "RG_MAX_COORD", RG_MAX_COORD, rg_body_move(w, k, xy(0, x), ALL, RG_MOVE_CROSS, NULL, NULL, 0, NULL));
     /* forces add up to at most RG_MAX_FORCE per component */
@@ -102,9 +102,9 @@ static void test_spring_and_query_ranges_accept_the_edge_and_refuse_beyond(void 
     uint64_t sp;
     rg_ray_hit hit, hits[2];
     rg_body out[2];
-    EDGE(s, "rest_length", "RG_MAX_COORD", RG_MAX_COORD, INFINITY, rg_spring_create(w, d, s->kin, v2(0, 0), x, 1, 0, &sp));
-    EDGE(s, "stiffness", "RG_MAX_STIFFNESS", RG_MAX_STIFFNESS, INFINITY, rg_spring_create(w, d, s->kin, v2(0, 0), 1, x, 0, &sp));
-    EDGE(s, "damping", "RG_MAX_DAMPING", RG_MAX_DAMPING, INFINITY, rg_spring_create(w, d, s->kin, v2(0, 0), 1, 1, x, &sp));
+    EDGE(s, "rest_length", "RG_MAX_COORD", RG_MAX_COORD, INF, rg_spring_create(w, d, s->kin, v2(0, 0), x, 1, 0, &sp));
+    EDGE(s, "stiffness", "RG_MAX_STIFFNESS", RG_MAX_STIFFNESS, INF, rg_spring_create(w, d, s->kin, v2(0, 0), 1, x, 0, &sp));
+    EDGE(s, "damping", "RG_MAX_DAMPING", RG_MAX_DAMPING, INF, rg_spring_create(w, d, s->kin, v2(0, 0), 1, 1, x, &sp));
     EDGE_ABS(s, "anchor.x", "RG_MAX_COORD", RG_MAX_COORD, rg_spring_create(w, d, 0, xy(x, 0), 1, 1, 0, &sp));
     EDGE_ABS(s, "anchor.y", "RG_MAX_COORD", RG_MAX_COORD, rg_spring_create(w, d, 0, xy(0, x), 1, 1, 0, &sp));
     const double q = RG_MAX_QUERY_COORD;
@@ -121,7 +121,7 @@ static void test_spring_and_query_ranges_accept_the_edge_and_refuse_beyond(void 
              rg_world_cast_shape(w, RG_SHAPE_AABB, v2(1, 1), v2(0, 5), xy(x, 0), ALL, &hit));
     EDGE(s, "size.x", "RG_MIN_SHAPE_SIZE", RG_MIN_SHAPE_SIZE, 0,
          rg_world_cast_shape(w, RG_SHAPE_CIRCLE, xy(x, 0), v2(0, 5), v2(0, -10), ALL, &hit));
-    EDGE(s, "size.y", "RG_MAX_SHAPE_SIZE", RG_MAX_SHAPE_SIZE, INFINITY,
+    EDGE(s, "size.y", "RG_MAX_SHAPE_SIZE", RG_MAX_SHAPE_SIZE, INF,
          rg_world_cast_shape(w, RG_SHAPE_AABB, xy(1, x), v2(0, 5), v2(0, -10), ALL, &hit));
 }
 
