@@ -171,9 +171,9 @@ RG_API rg_status rg_world_step(rg_world *world, rg_real dt);
 RG_API rg_status rg_world_set_fixed_step(rg_world *world, rg_real dt, int32_t max_steps_per_advance);
 RG_API rg_status rg_world_get_fixed_step(const rg_world *world, rg_real *out_dt,
                                          int32_t *out_max_steps);
-/* Adds frame_time (>= 0, any finite number of seconds) to an accumulator and takes as many fixed steps
- * as fit, at most max_steps_per_advance; time beyond that is dropped (the game slows down
- * instead of spiralling).  *out_steps (may be NULL) receives the number of steps taken.
+/* Adds frame_time (>= 0, any finite number of seconds) to an accumulator and takes as many
+ * fixed steps as fit, at most max_steps_per_advance; time beyond that is dropped (the game
+ * slows down instead of spiralling).  *out_steps (may be NULL) receives the number of steps taken.
  * The state after k fixed steps is bit-identical whatever frame times fed the accumulator.
  * The contact events read after it (rg_world_get_contact_events) are those of every step it
  * took, in step order; none when it took no step.  Their buffer grows as needed and then
@@ -257,9 +257,9 @@ RG_API rg_status rg_body_set_gravity_scale(rg_world *world, rg_body body, rg_rea
  * (quadratic = 1/2 * rho * Cd * A); both in [0, RG_MAX_DRAG]. */
 RG_API rg_status rg_body_set_drag(rg_world *world, rg_body body, rg_real linear, rg_real quadratic);
 /* Surface friction F = -mu * normal_force * v/|v| (mu in [0, RG_MAX_FRICTION], normal_force
- * in [0, RG_MAX_FORCE] N): a body
- * sliding on a surface, as seen from above.  It brings the body exactly to rest, never
- * reverses it, and holds it at rest against any smaller force (static friction). */
+ * in [0, RG_MAX_FORCE] N): a body sliding on a surface, as seen from above.  It brings the
+ * body exactly to rest, never reverses it, and holds it at rest against any smaller force
+ * (static friction). */
 RG_API rg_status rg_body_set_surface_friction(rg_world *world, rg_body body, rg_real mu,
                                               rg_real normal_force);
 /* After each step: |v| < min_speed -> v = 0 exactly; |v| > max_speed -> v scaled to
@@ -569,9 +569,9 @@ RG_API int32_t rg_world_cast_shape(const rg_world *world, int32_t shape, rg_vec2
    circle sliding over a row of flush boxes (a tile floor) does not catch on their seams;
    SLIDE takes at most 8 legs.  *out_count (may be NULL) gets the number of hits, of which
    min(count, capacity) are copied.  target is a position (each component within
-   +-RG_MAX_COORD).  The body must have a shape (else
-   RG_ERR_INVALID_ARGUMENT); it is woken, and rendering interpolates from where it was at
-   the last step (the previous position is kept). */
+   +-RG_MAX_COORD).  The body must have a shape (else RG_ERR_INVALID_ARGUMENT); it is woken,
+   and rendering interpolates from where it was at the last step (the previous position is
+   kept). */
 RG_API rg_status rg_body_move(rg_world *world, rg_body body, rg_vec2 target, uint32_t mask,
                               int32_t response, rg_vec2 *out_position, rg_ray_hit *out_hits,
                               int32_t capacity, int32_t *out_count);
