@@ -4,6 +4,7 @@
 #include "body.h"
 #include "broadphase.h"
 #include "contact.h"
+#include "error.h"
 #include "events.h"
 #include "snapshot.h"
 #include "spring.h"
@@ -186,15 +187,35 @@ static int restore_layout(snap_in *in)
 static int fin(rg_real v) { return rg_finite(v); }
 static int nonneg(rg_real v) { return rg_finite(v) && v >= 0; }
 
-static int restore_check_header(snap_in *in, const void *data, size_t size)
+/* The header; 1, or 0 with the reason set. */
+static int restore_check_header(const rg_world *w, snap_in *in, const void *data, size_t size)
 {
+    const char *f = "rg_world_restore";
     in->p = data;
     in->size = size;
-    if (size < SNAP_HEADER + snap_scalars_size()) return BAD;
-    if (memcmp(in->p, SNAP_MAGIC, 8) != 0) return BAD;
-    if (snap_get32(in->p + 8) != SNAP_VERSION || snap_get32(in->p + 12) != sizeof(rg_real)) return BAD;
-    if (snap_get64(in->p + 16) != (uint64_t)size) return BAD;
-    if (snap_get64(in->p + 24) != snap_hash(in->p + SNAP_HEADER, size - SNAP_HEADER)) return BAD;
+    if (size < SNAP_HEADER + snap_scalars_size() || memcmp(in->p, SNAP_MAGIC, 8) != 0) {
+        error_set(w, RG_ERR_INVALID_ARGUMENT, f, "data (%lu bytes) is no snapshot", (unsigned long)size);
+        return 0;
+    }
+    if (snap_get32(in->p + 8) != SNAP_VERSION) {
+        error_set(w, RG_ERR_INVALID_ARGUMENT, f, "snapshot of format %u; this build reads format %u",
+                  (unsigned)snap_get32(in->p + 8), (unsigned)SNAP_VERSION);
+        return 0;
+    }
+    if (snap_get32(in->p + 12) != sizeof(rg_real)) {
+        error_set(w, RG_ERR_INVALID_ARGUMENT, f, "snapshot of a build with rg_real of %u bytes; this build's has %u",
+                  (unsigned)snap_get32(in->p + 12), (unsigned)sizeof(rg_real));
+        return 0;
+    }
+    if (snap_get64(in->p + 16) != (uint64_t)size) {
+        error_set(w, RG_ERR_INVALID_ARGUMENT, f, "size %lu, the snapshot says %llu (truncated or extended)",
+                  (unsigned long)size, (unsigned long long)snap_get64(in->p + 16));
+        return 0;
+    }
+    if (snap_get64(in->p + 24) != snap_hash(in->p + SNAP_HEADER, size - SNAP_HEADER)) {
+        error_set(w, RG_ERR_INVALID_ARGUMENT, f, "checksum mismatch (the snapshot is corrupted)");
+        return 0;
+    }
     restore_read_scalars(in);
     return 1;
 }
@@ -837,23 +858,40 @@ static void restore_load(rg_world *w, const snap_in *in, const restore_scratch *
 
 /* ---------------------------------------------------------------- the call */
 
+/* A snapshot whose checksum holds but whose state breaks an invariant: forged, or damaged
+ * before it was sealed. */
+static rg_status restore_refuse(const rg_world *w, const char *what)
+{
+    return error_set(w, RG_ERR_INVALID_ARGUMENT, "rg_world_restore",
+                     "the snapshot's %s break the state's invariants (forged or damaged before it was sealed)", what);
+}
+
 static rg_status restore_checked(rg_world *w, snap_in *in)
 {
     const snap_scalars *s = &in->s;
     const rg_mem *m = &w->mem;
+    const char *bad = NULL;
     if (!restore_check_pool(in, in->l.bgen, in->l.bindex, s->bslots, s->bmax_gen, s->bfree, s->count,
-                            in->p + in->l.field[SNAP_F_slot], in->l.stride[SNAP_F_slot]) ||
-        !restore_check_bodies(in) || !restore_check_springs(in) ||
-        !restore_check_events(in, in->l.ev, s->n_ev) || !restore_check_events(in, in->l.pend, s->n_pend))
-        return RG_ERR_INVALID_ARGUMENT;
+                            in->p + in->l.field[SNAP_F_slot], in->l.stride[SNAP_F_slot]))
+        bad = "body handles";
+    else if (!restore_check_bodies(in))
+        bad = "bodies";
+    else if (!restore_check_springs(in))
+        bad = "springs";
+    else if (!restore_check_events(in, in->l.ev, s->n_ev) || !restore_check_events(in, in->l.pend, s->n_pend))
+        bad = "events";
+    if (bad != NULL) return restore_refuse(w, bad);
     restore_scratch r;
     size_t rsize = 0;
     r.s = s;
     void *rblock = mem_block(m, restore_scratch_layout, &r, &rsize);
-    if (rblock == NULL) return RG_ERR_OUT_OF_MEMORY;
+    if (rblock == NULL) return error_alloc(w, "rg_world_restore", RG_ERR_OUT_OF_MEMORY, "restore scratch", "RG_MAX_BODIES");
     memset(rblock, 0, rsize);
-    rg_status st = restore_check_contacts(in, &r) && restore_check_broadphase(in, &r) ? RG_OK
-                                                                                      : RG_ERR_INVALID_ARGUMENT;
+    rg_status st = RG_OK;
+    if (!restore_check_contacts(in, &r))
+        st = restore_refuse(w, "contacts");
+    else if (!restore_check_broadphase(in, &r))
+        st = restore_refuse(w, "broadphase");
     /* room: growth keeps the world as it is; the contact storage (of exactly the saved
      * capacity, which decides the ids of new contacts) and the bucket table (of exactly the
      * saved size, which decides the chains) are made aside and taken at the end */
@@ -875,6 +913,8 @@ static rg_status restore_checked(rg_world *w, snap_in *in)
             st = RG_ERR_OUT_OF_MEMORY;
         }
     }
+    if (st == RG_ERR_OUT_OF_MEMORY || st == RG_ERR_CAPACITY)
+        error_alloc(w, "rg_world_restore", st, "the restored world", "RG_MAX_BODIES");
     if (st == RG_OK) {
         /* nothing can fail from here on */
         contact_block_adopt(w, &cb);
@@ -888,9 +928,10 @@ static rg_status restore_checked(rg_world *w, snap_in *in)
 RG_API rg_status rg_world_restore(rg_world *world, const void *data, size_t size)
 {
     WORLD_WRITABLE(world);
-    if (world == NULL || data == NULL) return RG_ERR_INVALID_ARGUMENT;
+    if (data == NULL) return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "data is NULL");
     snap_in in;
     memset(&in, 0, sizeof in);
-    if (!restore_check_header(&in, data, size) || !restore_check_scalars(&in)) return RG_ERR_INVALID_ARGUMENT;
+    if (!restore_check_header(world, &in, data, size)) return RG_ERR_INVALID_ARGUMENT;
+    if (!restore_check_scalars(&in)) return restore_refuse(world, "settings and counts");
     return restore_checked(world, &in);
 }

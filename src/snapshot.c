@@ -1,5 +1,6 @@
 /* snapshot.c: the snapshot writer (rg_world_save), the state hash (rg_world_hash), the
  * format's layout and its hash function (see snapshot.h). */
+#include "error.h"
 #include "snapshot.h"
 
 #define SNAP_COUNT(T, name) +1
@@ -458,7 +459,10 @@ static size_t snap_size(const snap_scalars *s, const int *uniform)
 
 RG_API rg_status rg_world_save(const rg_world *world, void *out, size_t capacity, size_t *out_size)
 {
-    if (world == NULL || out_size == NULL || (out == NULL && capacity > 0)) return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    if (out_size == NULL) return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "out_size is NULL");
+    if (out == NULL && capacity > 0)
+        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "out is NULL with capacity %lu", (unsigned long)capacity);
     snap_scalars s;
     int uniform[SNAP_FIELDS];
     snap_scalars_of(world, &s);
@@ -466,7 +470,9 @@ RG_API rg_status rg_world_save(const rg_world *world, void *out, size_t capacity
     size_t size = snap_size(&s, uniform);
     *out_size = size;
     if (out == NULL && capacity == 0) return RG_OK;
-    if (capacity < size) return RG_ERR_CAPACITY;
+    if (capacity < size)
+        return RG_FAIL(world, RG_ERR_CAPACITY, "capacity %lu is below the snapshot's size %lu", (unsigned long)capacity,
+                       (unsigned long)size);
     uint8_t *p = out;
     memcpy(p, SNAP_MAGIC, 8);
     snap_put32(p + 8, SNAP_VERSION);
@@ -486,7 +492,8 @@ RG_API rg_status rg_world_save(const rg_world *world, void *out, size_t capacity
 
 RG_API rg_status rg_world_hash(const rg_world *world, uint64_t *out_hash)
 {
-    if (world == NULL || out_hash == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    if (out_hash == NULL) return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "out_hash is NULL");
     snap_scalars s;
     snap_hasher h;
     int uniform[SNAP_FIELDS];

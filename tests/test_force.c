@@ -367,9 +367,10 @@ static void test_force_setters_reject_bad_input_and_change_nothing(void **state)
     assert_status(rg_body_apply_force(w, b, v2(0, inf)), RG_ERR_INVALID_ARGUMENT);
     assert_status(rg_body_apply_force(NULL, b, v2(0, 0)), RG_ERR_INVALID_ARGUMENT);
     assert_status(rg_body_apply_force(w, 0, v2(0, 0)), RG_ERR_STALE_HANDLE);
-    /* two huge finite forces whose sum overflows are refused, the first one stays */
-    assert_ok(rg_body_apply_force(w, b, v2(REAL_MAX / 2, 0)));
-    assert_status(rg_body_apply_force(w, b, v2(REAL_MAX, 0)), RG_ERR_INVALID_ARGUMENT);
+    /* a force whose sum with the step's applied force leaves RG_MAX_FORCE is refused, the
+     * first one stays (before the ranges: two forces whose sum overflowed) */
+    assert_ok(rg_body_apply_force(w, b, v2(RG_MAX_FORCE / 2, 0)));
+    assert_status(rg_body_apply_force(w, b, v2(RG_MAX_FORCE, 0)), RG_ERR_INVALID_ARGUMENT);
     assert_status(rg_body_apply_impulse(w, b, v2(nan, 0)), RG_ERR_INVALID_ARGUMENT);
     assert_status(rg_body_apply_impulse(w, b, v2(0, -inf)), RG_ERR_INVALID_ARGUMENT);
     assert_status(rg_body_apply_impulse(NULL, b, v2(0, 0)), RG_ERR_INVALID_ARGUMENT);
@@ -383,7 +384,7 @@ static void test_force_setters_reject_bad_input_and_change_nothing(void **state)
     assert_status(rg_body_set_surface_friction(w, b, 1, -1), RG_ERR_INVALID_ARGUMENT);
     assert_status(rg_body_set_surface_friction(w, b, nan, 1), RG_ERR_INVALID_ARGUMENT);
     assert_status(rg_body_set_surface_friction(w, b, 1, inf), RG_ERR_INVALID_ARGUMENT);
-    assert_status(rg_body_set_surface_friction(w, b, (rg_real)(REAL_MAX / 4), 8), RG_ERR_INVALID_ARGUMENT); /* mu N overflows */
+    assert_status(rg_body_set_surface_friction(w, b, (rg_real)(REAL_MAX / 4), 8), RG_ERR_INVALID_ARGUMENT); /* mu beyond RG_MAX_FRICTION */
     assert_status(rg_body_set_speed_limits(w, b, -1, 0), RG_ERR_INVALID_ARGUMENT);
     assert_status(rg_body_set_speed_limits(w, b, 0, -1), RG_ERR_INVALID_ARGUMENT);
     assert_status(rg_body_set_speed_limits(w, b, 2, 1), RG_ERR_INVALID_ARGUMENT);
@@ -396,7 +397,7 @@ static void test_force_setters_reject_bad_input_and_change_nothing(void **state)
     /* none of it took: one step moves the body by the one accepted force only, no drag */
     assert_ok(rg_world_step(w, 1));
     rg_vec2 v = vel_of(w, b);
-    assert_true(v.x == (rg_real)(REAL_MAX / 2) && v.y == 0);
+    assert_true(v.x == (rg_real)(RG_MAX_FORCE / 2) && v.y == 0);
     rg_world_destroy(w);
 }
 

@@ -48,6 +48,7 @@ enum {
   RG_MAX_SPRINGS = 16777215
 };
 const char *rg_status_string(rg_status s);
+const char *rg_world_last_error(const rg_world *world);
 int32_t rg_version(void);
 int32_t rg_real_size(void);
 typedef void *(*rg_alloc_fn)(void *user, void *ptr, size_t old_size, size_t new_size);
