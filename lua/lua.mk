@@ -8,7 +8,7 @@ LUA_MOD := $(B)/rigid.so
 LUA_HOST := $(B)/rigid
 LUA_HOST_SRC := lua/host.c lua/lsandbox.c lua/lpattern.c lua/lsvg.c lua/lhtml.c lua/lframes.c \
                 lua/lenc.c
-# The replay viewer's page, compiled in as an array of lines (lhtml.c writes it out).
+# The replay viewer's page, compiled in as an array of lines (lua/viewer.mk).
 LUA_VIEWER := $(B)/lua/lviewer_html.o
 LUA_HOST_OBJ := $(patsubst lua/%.c,$(B)/lua/%.o,$(LUA_HOST_SRC)) $(LUA_VIEWER)
 ZLIB_LIBS := $(shell pkg-config --libs zlib 2>/dev/null || echo -lz)
@@ -54,30 +54,6 @@ $(LUA_MOD): $(LUA_BIND_OBJ) $(LIB_A) lua/rigid.map
 $(LUA_HOST): $(LUA_HOST_OBJ) $(LUA_BIND_OBJ) $(LIB_A)
 	$(CC) $(LDFLAGS) -o $@ $(LUA_HOST_OBJ) $(LUA_BIND_OBJ) $(LIB_A) $(LUA_PKG_LIBS) $(ZLIB_LIBS) $(LDLIBS)
 
-# The page: viewer.html with its scripts in place of the marker line; each of its lines
-# becomes one string literal (C99 promises literals up to 4095
-# bytes); backslashes, quotes and question marks (trigraphs) escaped.
-LUA_VIEWER_JS := lua/viewer/decode.js lua/viewer/raster.js lua/viewer/draw.js lua/viewer/ui.js
-$(B)/lua/viewer.html: lua/viewer/viewer.html $(LUA_VIEWER_JS)
-	@mkdir -p $(@D)
-	{ echo '<script>'; cat $(LUA_VIEWER_JS); echo '</script>'; } > $@.js
-	sed -e '/^<!-- rigid:scripts -->$$/{r $@.js' -e 'd;}' $< > $@.tmp
-	@grep -q '^<!-- rigid:recording -->$$' $@.tmp || { echo "$<: no recording marker"; exit 1; }
-	@mv $@.tmp $@
-	@rm -f $@.js
-
-$(B)/lua/lviewer_html.c: $(B)/lua/viewer.html
-	@mkdir -p $(@D)
-	@awk 'length($$0) > 4000 { print FILENAME ":" NR ": line too long for a C string literal"; bad = 1 } END { exit bad }' $<
-	{ echo '/* generated from lua/viewer/viewer.html: do not edit */'; \
-	  echo 'extern const char *const lviewer_html[];'; \
-	  echo 'const char *const lviewer_html[] = {'; \
-	  sed -e 's/\\/\\\\/g' -e 's/"/\\"/g' -e 's/?/\\?/g' -e 's/^/    "/' -e 's/$$/\\n",/' $<; \
-	  echo '    0'; echo '};'; } > $@.tmp
-	@mv $@.tmp $@
-
-$(LUA_VIEWER): $(B)/lua/lviewer_html.c
-	$(CC) $(CFLAGS) -c $< -o $@
 
 # The bounded pattern matcher checked against stock Lua's on random cases.
 $(LUA_PATFUZZ): tests/lua/pattern_fuzz.c $(B)/lua/lpattern.o
@@ -91,9 +67,10 @@ check-lua: $(LUA_MOD) $(LUA_HOST) $(LUA_PATFUZZ)
 	$(LUA_BIN) tests/lua/run.lua --host $(LUA_HOST) --module-dir $(B) --lua $(LUA_BIN) \
 	  --out $(B)/lua-tests --fuzz $(LUA_PATFUZZ) --lua-env "$(FFI_ENV)"
 
-# The main job (make run): the platformer, a line per second, its picture in $(B)/run.svg.
+# The main job (make run): the platformer, a line per second, its picture in $(B)/run.svg
+# and its replay in $(B)/run.html.
 run-main: $(LUA_HOST)
-	@$(LUA_HOST) lua/examples/platformer.lua --svg $(B)/run.svg
+	@$(LUA_HOST) lua/examples/platformer.lua --svg $(B)/run.svg --html $(B)/run.html
 
 # Cost of one Lua call into the binding, in stock lua5.4 and in the host.
 bench: bench-lua
