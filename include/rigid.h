@@ -1,11 +1,29 @@
 /* rigid.h: the one public header of rigid, a C99 library for 2D game physics.
  *
- * Units are SI throughout: metres, seconds, kilograms, newtons.  Every function validates
- * its input in every build and returns a status; a call that returns an error changes
- * nothing.  No input, however bad, crashes the library or puts a NaN into the world.
+ * The contract (programs outside this repository are written against it):
  *
- * The contract is in shared/ABI.md: the names, parameter orders, types and values of the
- * entry points it lists are fixed.  Everything else here extends it in the same style.
+ * - Fixed: every name, parameter order, type and value declared here that the project's
+ *   ABI lists (the world, stepping, body, force, spring, collision, event and query calls
+ *   of version 0.1, and the gameplay, snapshot, error, debug-draw and thread calls as they
+ *   land).  New calls are added in the same style; none is renamed or reordered.
+ * - Names: every exported symbol is rg_*, every macro and constant RG_*.  The shared library
+ *   exports nothing else.  This header includes only <stddef.h> and <stdint.h>.
+ * - Units are SI throughout: metres, seconds, kilograms, newtons.
+ * - rg_real is float, or double in the double build (which defines RG_DOUBLE and names its
+ *   library librigid-double); rg_real_size() tells an FFI host which one it loaded.
+ * - Structs: rg_vec2 is the only struct passed by value, and only as an input; outputs go
+ *   through pointers.  Booleans and enums cross as int32_t.
+ * - Handles: rg_world is opaque.  A body (rg_body) or spring is a 64-bit handle packing a
+ *   slot, a generation and a tag of its world; 0 is never one.  A destroyed body's handle
+ *   never becomes valid again in that world, and a handle from another world or a forged
+ *   one is rejected (RG_ERR_STALE_HANDLE).
+ * - Errors: every function validates its input in every build and returns a status
+ *   (rg_status, below; functions returning a count return it >= 0 or a negative status).
+ *   A call that returns an error changes nothing.  No input, however bad, crashes the
+ *   library or puts a NaN into the world.
+ * - No global state: two worlds share nothing, and a world may move to another thread
+ *   between calls.  The same calls give bit-identical results on any compiler, optimisation
+ *   level and SIMD path.
  */
 #ifndef RIGID_H
 #define RIGID_H
@@ -55,7 +73,8 @@ typedef int32_t rg_status;
 #define RG_ERR_STALE_HANDLE     (-2) /* destroyed, forged, zero or another world's handle */
 #define RG_ERR_OUT_OF_MEMORY    (-3)
 #define RG_ERR_CAPACITY         (-4) /* more bodies or springs than a world can hold */
-#define RG_ERR_LOCKED           (-5) /* not allowed at this moment */
+#define RG_ERR_LOCKED           (-5) /* not allowed at this moment: a call that would change
+                                        the world, made from a callback inside its step */
 
 #define RG_INTEGRATOR_EXPLICIT_EULER      0
 #define RG_INTEGRATOR_SEMI_IMPLICIT_EULER 1   /* the default */
@@ -384,6 +403,45 @@ RG_API int32_t rg_world_raycast(const rg_world *world, rg_vec2 origin, rg_vec2 t
  * bounds, lower > upper in x or y, capacity < 0, or out NULL with capacity > 0. */
 RG_API int32_t rg_world_query_aabb(const rg_world *world, rg_vec2 lower, rg_vec2 upper,
                                    uint32_t mask, rg_body *out, int32_t capacity);
+
+/* ---------------------------------------------------------------- debug draw
+ *
+ * rg_world_draw calls back for what draw->flags ask, layer by layer (shapes, bounds, springs,
+ * velocities, contacts), each layer in a fixed order: bodies by slot (creation order, a
+ * destroyed body's slot reused in place), springs by creation, contacts by id.  The same
+ * world gives the same calls.  A NULL callback is skipped.  It changes nothing. */
+
+#define RG_DRAW_SHAPES     1u   /* circles and boxes; a body without a shape as a point */
+#define RG_DRAW_CONTACTS   2u   /* touching contacts: the point and the normal from a toward b */
+#define RG_DRAW_VELOCITIES 4u   /* a segment from the centre to centre + v * RG_DRAW_VELOCITY_SCALE */
+#define RG_DRAW_BOUNDS     8u   /* the broadphase's fat boxes */
+#define RG_DRAW_SPRINGS    16u  /* a segment between the two ends, or to the anchor */
+
+/* The palette, 0xRRGGBBAA.  A shape takes the colour of its body's state. */
+#define RG_COLOR_STATIC    0x8C8C8CFFu  /* grey */
+#define RG_COLOR_KINEMATIC 0x3C78DCFFu  /* blue */
+#define RG_COLOR_AWAKE     0xE6782DFFu  /* orange: an awake dynamic body */
+#define RG_COLOR_SLEEPING  0x8C64B4FFu  /* violet: a sleeping dynamic body */
+#define RG_COLOR_SENSOR    0xDCB41E80u  /* translucent gold (any type); its contacts too */
+#define RG_COLOR_CONTACT   0xDC2828FFu  /* red */
+#define RG_COLOR_VELOCITY  0x28A03CFFu  /* green */
+#define RG_COLOR_BOUNDS    0x32B4B4FFu  /* teal */
+#define RG_COLOR_SPRING    0xB43CB4FFu  /* magenta */
+/* Seconds of motion a velocity segment shows, and the length of a contact normal in m. */
+#define RG_DRAW_VELOCITY_SCALE 0.1
+#define RG_DRAW_NORMAL_LENGTH  0.25
+
+typedef struct rg_debug_draw {
+    void (*circle)(rg_body body, rg_vec2 center, rg_real radius, uint32_t rgba, void *user);
+    void (*box)(rg_body body, rg_vec2 lower, rg_vec2 upper, uint32_t rgba, void *user);
+    void (*segment)(rg_vec2 a, rg_vec2 b, uint32_t rgba, void *user);
+    void (*point)(rg_vec2 p, uint32_t rgba, void *user);
+    uint32_t flags;     /* RG_DRAW_* */
+    void *user;
+} rg_debug_draw;
+
+/* RG_ERR_INVALID_ARGUMENT for a NULL world or draw, or a flag outside RG_DRAW_*. */
+RG_API rg_status rg_world_draw(const rg_world *world, const rg_debug_draw *draw);
 
 #ifdef __cplusplus
 }

@@ -1,7 +1,7 @@
 /* query.c: raycast and box queries over the broadphase, as bodies are now. */
 #include "collision.h"
 #include "vec2.h"
-#include "world.h"
+#include "state.h"
 
 typedef struct ray_query {
     const rg_world *w;
