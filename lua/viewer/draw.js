@@ -24,6 +24,10 @@ function niceStep(span) {
   return p * (m < 1.5 ? 1 : m < 3.5 ? 2 : m < 7.5 ? 5 : 10);
 }
 
+function label(g, step) {
+  return Math.abs(g) < step * 1e-6 ? "0" : +g.toPrecision(6) + "";
+}
+
 // Grid lines (CSS pixel position, colour) a nice step apart, and their labels.
 function gridLines(v, w, h) {
   const x0 = -v.ox / v.s, x1 = (w - v.ox) / v.s, y1 = v.oy / v.s, y0 = (v.oy - h) / v.s;
@@ -31,12 +35,12 @@ function gridLines(v, w, h) {
   for (let gx = Math.ceil(x0 / step) * step; gx <= x1; gx += step) {
     const px = Math.round(v.ox + gx * v.s) + 0.5;
     g.x.push([px, Math.abs(gx) < step / 2 ? 0xc4c4bcff : 0xe6e6e0ff]);
-    if (px < w - 40) g.labels.push([+gx.toPrecision(6) + "", px + 3, h - 4]);
+    if (px < w - 40) g.labels.push([label(gx, step), px + 3, h - 4]);
   }
   for (let gy = Math.ceil(y0 / step) * step; gy <= y1; gy += step) {
     const py = Math.round(v.oy - gy * v.s) + 0.5;
     g.y.push([py, Math.abs(gy) < step / 2 ? 0xc4c4bcff : 0xe6e6e0ff]);
-    g.labels.push([+gy.toPrecision(6) + "", 3, py - 3]);
+    g.labels.push([label(gy, step), 3, py - 3]);
   }
   g.labels.push(["m", w - 12, h - 4]);
   return g;
@@ -106,12 +110,12 @@ function drawBodies(ctx, rec, k, v, w, h) {
     if (x !== x) continue;
     const px = v.ox + x * v.s, py = v.oy - t.y[i] * v.s;
     const col = t.col.at(k);
-    if (col < 0) { points.push(px, py); continue; }
+    if (t.shape === 0) { points.push(px, py, col); continue; }
     const sz = t.size.at(k), hx = sz[0] * v.s, hy = sz[1] * v.s;
     if (px + hx < 0 || px - hx > w || py + hy < 0 || py - hy > h) continue;
     buckets[col].push(t.shape, px, py, hx, hy);
   }
-  let drawn = points.length / 2;
+  let drawn = points.length / 3;
   for (let c = 0; c < buckets.length; c++) {
     const b = buckets[c];
     if (!b.length) continue;
@@ -136,19 +140,15 @@ function drawBodies(ctx, rec, k, v, w, h) {
     }
     drawn += b.length / 5;
   }
-  if (points.length) {   /* bodies without a shape: a ring and a dot */
+  for (let j = 0; j < points.length; j += 3) {   /* bodies without a shape: a ring and a dot */
+    const css = points[j + 2] >= 0 ? RV.css(colors[points[j + 2]][0], 1, true) : "#333";
     ctx.beginPath();
-    for (let j = 0; j < points.length; j += 2) {
-      ctx.moveTo(points[j] + 4, points[j + 1]);
-      ctx.arc(points[j], points[j + 1], 4, 0, 2 * Math.PI);
-    }
+    ctx.arc(points[j], points[j + 1], 4, 0, 2 * Math.PI);
     ctx.lineWidth = 1.5;
-    ctx.strokeStyle = "#333";
+    ctx.strokeStyle = css;
     ctx.stroke();
-    ctx.beginPath();
-    for (let j = 0; j < points.length; j += 2) ctx.rect(points[j] - 1, points[j + 1] - 1, 2, 2);
-    ctx.fillStyle = "#333";
-    ctx.fill();
+    ctx.fillStyle = css;
+    ctx.fillRect(points[j] - 1, points[j + 1] - 1, 2, 2);
   }
   return drawn;
 }

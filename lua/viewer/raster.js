@@ -100,8 +100,9 @@ RV.rasterFrame = function (ctx, rec, k, v, w, h, dpr, show, lists, qc, gridSteps
     const i = k - t.first, x = t.x[i];
     if (x !== x) continue;
     const px = ox + x * s, py = oy - t.y[i] * s, col = t.col.at(k);
-    if (col < 0) {
-      R.circle(px, py, 4 * dpr, shapeless, shapeless);
+    if (t.shape === 0) {
+      const c = col >= 0 ? rim[col] : shapeless;
+      R.circle(px, py, 4 * dpr, c, c);
       continue;
     }
     const sz = t.size.at(k), hx = sz[0] * s, hy = sz[1] * s;

@@ -240,7 +240,7 @@
       const i = st.k - t.first;
       if (t.x[i] !== t.x[i]) continue;
       const sz = t.size.at(st.k), dx = x - t.x[i], dy = y - t.y[i];
-      const hit = t.col.at(st.k) < 0 ? Math.hypot(dx, dy) <= 6 / v.s
+      const hit = t.shape === 0 ? Math.hypot(dx, dy) <= 6 / v.s
         : t.shape === 1 ? Math.hypot(dx, dy) <= sz[0] + tol
         : Math.abs(dx) <= sz[0] + tol && Math.abs(dy) <= sz[1] + tol;
       const a = (sz[0] + tol) * (sz[1] + tol);
@@ -352,7 +352,7 @@
     STATE.forEach(function (s) { if (c[1] & s[0]) what.push(s[0] === 4 ? "dynamic, awake" : s[0] === 8 ? "dynamic, asleep" : s[1]); });
     if (what.length) item(swatch(c[0]) + what.join(" / "));
     if (c[1] & 32) item(swatch(c[0]) + "fat box (broadphase bounds)");
-    if (c[1] & 64) item(swatch(c[0]) + "contact point and normal");
+    if (c[1] & 64) item(swatch(c[0]) + (c[1] & 16 ? "contact with a sensor" : "contact point and normal"));
     if (c[1] & 128) item(swatch(c[0]) + "spring");
   });
   if (T.some(function (t) { return t.shape === 0 && t.first >= 0; })) item("&#9711; body without a shape");
