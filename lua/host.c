@@ -130,29 +130,11 @@ static void host_charge(lua_State *L, void *ud, double units)
     lsandbox_charge(L, h->sb, units);
 }
 
-static void record_contacts(host *h, lua_State *L, int world_idx)
-{
-    rg_world *w = lrigid_toworld(L, world_idx);
-    rg_contact_event *ev;
-    int32_t n, i;
-    if (h->rec == NULL || w == NULL) return;
-    n = rg_world_get_contact_events(w, NULL, 0);
-    if (n <= 0 || (ev = (rg_contact_event *)malloc((size_t)n * sizeof *ev)) == NULL) return;
-    n = rg_world_get_contact_events(w, ev, n);
-    for (i = 0; i < n; i++)
-        if (ev[i].kind == RG_CONTACT_BEGIN && !ev[i].sensor)
-            lsvg_contact(h->rec, (double)ev[i].point.x, (double)ev[i].point.y);
-    free(ev);
-}
-
 /* One frame of the drawn world for --svg and --html. */
 static void record(host *h, lua_State *L, int world_idx, double t)
 {
     world_idx = lua_absindex(L, world_idx);
-    if (h->rec != NULL) {
-        lsvg_record(h->rec, L, world_idx, t);
-        record_contacts(h, L, world_idx);
-    }
+    if (h->rec != NULL) lsvg_record(h->rec, L, world_idx, t);
     if (h->replay != NULL) lhtml_record(h->replay, L, world_idx, t);
 }
 
@@ -357,7 +339,7 @@ static int run_scene(host *h)
 
 static void write_picture(host *h, int ok)
 {
-    char title[512], sub[512];
+    char title[512], sub[768], caption[300];
     const char *base = strrchr(h->script, '/');
     int bodies = 0;
     if (h->rec == NULL && h->replay == NULL) return;
@@ -369,17 +351,23 @@ static void write_picture(host *h, int ok)
         lua_pop(h->L, 1);
     }
     snprintf(title, sizeof title, "rigid: %s", base != NULL ? base + 1 : h->script);
+    /* A scene may say what its picture shows: a global string `caption`. */
+    caption[0] = '\0';
+    lua_pushglobaltable(h->L);
+    lua_pushstring(h->L, "caption");
+    lua_rawget(h->L, -2);
+    if (lua_type(h->L, -1) == LUA_TSTRING) snprintf(caption, sizeof caption, "%s; ", lua_tostring(h->L, -1));
+    lua_pop(h->L, 2);
     if (h->rec != NULL) {
-        snprintf(sub, sizeof sub, "%lld steps, %.2f s simulated, %d bodies at the end, %d contacts%s",
-                 h->steps_taken, h->sim_time, bodies, lsvg_contact_count(h->rec),
-                 ok ? "" : " (the script failed: this is the world it left)");
+        snprintf(sub, sizeof sub, "%s%lld steps, %.2f s simulated, %d bodies at the end%s", caption,
+                 h->steps_taken, h->sim_time, bodies, ok ? "" : " (the script failed: this is the world it left)");
         if (lsvg_write(h->rec, h->svg, title, sub) != 0)
             fprintf(stderr, "rigid: cannot write %s: %s\n", h->svg, strerror(errno));
         else
             printf("rigid: picture written to %s\n", h->svg);
     }
     if (h->replay != NULL) {
-        snprintf(sub, sizeof sub, "%lld steps, %.2f s simulated, %d bodies at the end%s",
+        snprintf(sub, sizeof sub, "%s%lld steps, %.2f s simulated, %d bodies at the end%s", caption,
                  h->steps_taken, h->sim_time, bodies,
                  ok ? "" : " (the script failed: the last frame is the world it left)");
         if (lhtml_write(h->replay, h->html, title, sub) != 0)
