@@ -160,18 +160,27 @@ static void css(char out[32], uint32_t rgba, double dark)
              (double)(rgba & 255) / 255);
 }
 
-/* The width of 12 px Helvetica text, from the advances of its letters' classes (to within a
- * few percent: layout only). */
+/* Advances of Helvetica (and Arial, Liberation Sans) for ' ' to '~', in 1/1000 em (the font's
+ * AFM metrics); other bytes count as wide letters. */
+static const short helvetica[95] = {
+    278, 278, 355, 556, 556, 889, 667, 191, 333, 333, 389, 584, 278, 333, 278, 278,
+    556, 556, 556, 556, 556, 556, 556, 556, 556, 556, 278, 278, 584, 584, 584, 556,
+    1015, 667, 667, 722, 722, 667, 611, 778, 722, 278, 500, 667, 556, 833, 722, 778,
+    667, 778, 722, 667, 611, 722, 667, 944, 667, 667, 611, 278, 278, 278, 469, 556,
+    333, 556, 556, 500, 556, 556, 278, 556, 556, 222, 222, 500, 222, 833, 556, 556,
+    556, 556, 333, 500, 278, 556, 500, 722, 500, 500, 500, 334, 260, 334, 584,
+};
+
+/* The width of text at 12 px. */
 static double text_width(const char *t, size_t n)
 {
     double w = 0;
     size_t i;
     for (i = 0; i < n; i++) {
-        char c = t[i];
-        w += strchr("iljtfr.,:;'!|() ", c) && c != '\0' ? 3.4 : strchr("mwMW", c) && c != '\0' ? 9.8
-             : (c >= 'A' && c <= 'Z') ? 8.0 : (c >= '0' && c <= '9') ? 6.7 : 6.1;
+        unsigned char c = (unsigned char)t[i];
+        w += c >= 32 && c < 127 ? helvetica[c - 32] : 667;
     }
-    return w;
+    return w * 12 / 1000;
 }
 
 /* The colour a track's path takes: one per name (all the coins share one), else its own. */

@@ -47,6 +47,14 @@ check-lua: $(LUA_MOD) $(LUA_HOST) $(LUA_PATFUZZ)
 	$(LUA_BIN) tests/lua/run.lua --host $(LUA_HOST) --module-dir $(B) --lua $(LUA_BIN) \
 	  --out $(B)/lua-tests --fuzz $(LUA_PATFUZZ) --lua-env "$(FFI_ENV)"
 
+# The examples' pictures say what the world was at the moment they show: bodies alive then,
+# contacts where bodies touch, labels off the bodies, text inside the picture.
+TEST_RUNS += check-pictures
+.PHONY: check-pictures
+check-pictures: $(LUA_HOST)
+	@echo "== tests/pictures/check_svg.py"
+	$(PYTHON) tests/pictures/check_svg.py --host $(LUA_HOST) --out $(B)/picture-check
+
 # The main job (make run): the platformer, a line per second, its picture in $(B)/run.svg
 # and its replay in $(B)/run.html.
 run-main: $(LUA_HOST)
