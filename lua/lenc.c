@@ -6,6 +6,22 @@
 
 #include "lenc.h"
 
+int lenc_grow(void **p, int32_t *room, int32_t n, size_t sz)
+{
+    int32_t k = *room < 64 ? 64 : *room;
+    void *q;
+    if (n <= *room) return 1;
+    while (k < n) {
+        if (k > (1 << 27)) return 0;
+        k *= 2;
+    }
+    if ((q = realloc(*p, (size_t)k * sz)) == NULL) return 0;
+    memset((char *)q + (size_t)*room * sz, 0, (size_t)(k - *room) * sz);
+    *p = q;
+    *room = k;
+    return 1;
+}
+
 void lenc_init(lenc_buf *b, size_t cap)
 {
     memset(b, 0, sizeof *b);

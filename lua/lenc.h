@@ -15,6 +15,10 @@ typedef struct lenc_buf {
     int failed;
 } lenc_buf;
 
+/* Grows the array *p of elements of size sz (room of them now) to hold n; the new elements
+ * are zero.  0 when out of memory or past 2^28 elements (nothing changes then). */
+int lenc_grow(void **p, int32_t *room, int32_t n, size_t sz);
+
 void lenc_init(lenc_buf *b, size_t cap);
 void lenc_free(lenc_buf *b);
 void lenc_bytes(lenc_buf *b, const void *p, size_t n);

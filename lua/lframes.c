@@ -71,23 +71,6 @@ void lframes_free(lframes *e)
     free(e);
 }
 
-/* Grows *p (elements of size sz) to hold n; 0 when out of memory. */
-static int grow(void **p, int32_t *room, int32_t n, size_t sz)
-{
-    int32_t r = *room < 64 ? 64 : *room;
-    void *q;
-    if (n <= *room) return 1;
-    while (r < n) {
-        if (r > (1 << 29)) return 0;
-        r *= 2;
-    }
-    q = realloc(*p, (size_t)r * sz);
-    if (q == NULL) return 0;
-    *p = q;
-    *room = r;
-    return 1;
-}
-
 static int by_track(const void *a, const void *b)
 {
     int32_t x = ((const lframes_body *)a)->track, y = ((const lframes_body *)b)->track;
@@ -112,7 +95,7 @@ static int prim_qsort(const void *a, const void *b)
 static int write_life(lframes *e, const lframes_body *B, int32_t n)
 {
     int32_t i, j, nb = 0, nd = 0, last;
-    if (!grow((void **)&e->scratch, &e->scratch_room, n + e->nalive, sizeof(int32_t))) return 0;
+    if (!lenc_grow((void **)&e->scratch, &e->scratch_room, n + e->nalive, sizeof(int32_t))) return 0;
     for (i = 0, j = 0; j < n; j++) {        /* born: in B, not in alive */
         while (i < e->nalive && e->alive[i] < B[j].track) i++;
         if (i == e->nalive || e->alive[i] != B[j].track) e->scratch[nb++] = B[j].track;
@@ -127,7 +110,7 @@ static int write_life(lframes *e, const lframes_body *B, int32_t n)
     for (i = 0, last = -1; i < nd; last = e->scratch[nb + i++])
         lenc_uv(&e->raw, (uint64_t)(e->scratch[nb + i] - last));
     for (i = 0; i < nb; i++) e->hist[e->scratch[i]].n = 0;
-    if (!grow((void **)&e->alive, &e->alive_room, n, sizeof(int32_t))) return 0;
+    if (!lenc_grow((void **)&e->alive, &e->alive_room, n, sizeof(int32_t))) return 0;
     for (j = 0; j < n; j++) e->alive[j] = B[j].track;
     e->nalive = n;
     return 1;
@@ -210,7 +193,7 @@ static int match(lframes *f, const flist *P, const lframes_prim *C, int32_t nc, 
     uint32_t mask = 1, i;
     int32_t *head, *next, *used, j;
     while (mask < 2u * (uint32_t)P->n) mask <<= 1;
-    if (!grow((void **)&f->grid, &f->grid_room, (int32_t)mask + 2 * P->n, sizeof(int32_t))) return 0;
+    if (!lenc_grow((void **)&f->grid, &f->grid_room, (int32_t)mask + 2 * P->n, sizeof(int32_t))) return 0;
     head = f->grid;
     next = head + mask;
     used = next + P->n;
@@ -256,7 +239,7 @@ static int write_list(lframes *f, flist *P, flist *Psorted, lframes_prim *C, int
         return 1;
     }
     lenc_uv(&f->raw, (uint64_t)nc + 1);
-    if (!grow((void **)&f->order, &f->order_room, 3 * nc, sizeof(int32_t))) return 0;
+    if (!lenc_grow((void **)&f->order, &f->order_room, 3 * nc, sizeof(int32_t))) return 0;
     ord = f->order;
     if (!match(f, P, C, nc, ord + 2 * nc)) return 0;
     for (j = 0; j < nc; j++) {     /* (ref or P->n + j for a new one, j): sorted by ref */
@@ -265,7 +248,7 @@ static int write_list(lframes *f, flist *P, flist *Psorted, lframes_prim *C, int
         ord[2 * j + 1] = j;
     }
     qsort(ord, (size_t)nc, 2 * sizeof(int32_t), by_ref);
-    if (!grow((void **)&f->spare.p, &f->spare.room, nc, sizeof *C)) return 0;
+    if (!lenc_grow((void **)&f->spare.p, &f->spare.room, nc, sizeof *C)) return 0;
     for (n = 0; n < nc; n++) {
         const lframes_prim *c = &C[ord[2 * n + 1]];
         int32_t r = ord[2 * n];
@@ -297,7 +280,7 @@ static int write_list(lframes *f, flist *P, flist *Psorted, lframes_prim *C, int
         P->n = nc;
         f->spare = t;
     }
-    if (!grow((void **)&Psorted->p, &Psorted->room, nc, sizeof *C)) return 0;
+    if (!lenc_grow((void **)&Psorted->p, &Psorted->room, nc, sizeof *C)) return 0;
     if (nc > 0) memcpy(Psorted->p, C, (size_t)nc * sizeof *C);
     Psorted->n = nc;
     return 1;
@@ -316,11 +299,7 @@ int lframes_add(lframes *e, int64_t t_us, lframes_body *B, int32_t n,
     }
     n = m;
     if (n > 0) maxtrack = B[n - 1].track;
-    if (maxtrack >= e->hist_room) {
-        int32_t old = e->hist_room;
-        if (!grow((void **)&e->hist, &e->hist_room, maxtrack + 1, sizeof *e->hist)) goto fail;
-        memset(e->hist + old, 0, (size_t)(e->hist_room - old) * sizeof *e->hist);
-    }
+    if (!lenc_grow((void **)&e->hist, &e->hist_room, maxtrack + 1, sizeof *e->hist)) goto fail;
     lenc_sv(&e->raw, e->frames == 0 ? t_us : e->frames == 1 ? t_us - e->t1 : t_us - 2 * e->t1 + e->t2);
     e->t2 = e->t1;
     e->t1 = t_us;

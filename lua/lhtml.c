@@ -45,22 +45,6 @@ struct lhtml {
     int log_open;             /* a line is being printed */
 };
 
-static int grow(void **p, int32_t *room, int32_t n, size_t sz)
-{
-    int32_t k = *room < 64 ? 64 : *room;
-    void *q;
-    if (n <= *room) return 1;
-    while (k < n) {
-        if (k > (1 << 28)) return 0;
-        k *= 2;
-    }
-    q = realloc(*p, (size_t)k * sz);
-    if (q == NULL) return 0;
-    *p = q;
-    *room = k;
-    return 1;
-}
-
 static void stop(lhtml *r, const char *why)
 {
     if (!r->stopped) r->why = why;
@@ -156,7 +140,7 @@ void lhtml_record(lhtml *r, lua_State *L, int world_idx, double t)
         if (s->hmin < 0.25) r->q = ldexp(1.0, (int)floor(log2(s->hmin / 256)));
         if (r->q < ldexp(1.0, -30)) r->q = ldexp(1.0, -30);
     }
-    if (!grow((void **)&r->cur, &r->cur_room, s->ncur, sizeof *r->cur)) {
+    if (!lenc_grow((void **)&r->cur, &r->cur_room, s->ncur, sizeof *r->cur)) {
         stop(r, "out of memory");
         return;
     }
@@ -181,7 +165,7 @@ void lhtml_record(lhtml *r, lua_State *L, int world_idx, double t)
         }
     }
     for (l = 0; l < LSAMPLE_LISTS; l++) {
-        if (!grow((void **)&r->lists[l], &r->rooms[l], s->counts[l], sizeof *r->lists[l])) {
+        if (!lenc_grow((void **)&r->lists[l], &r->rooms[l], s->counts[l], sizeof *r->lists[l])) {
             stop(r, "out of memory");
             return;
         }
@@ -207,7 +191,7 @@ static void log_begin(lhtml *r)
     logline *ln;
     r->log_open = 0;
     if (r->log.len + 1 >= LHTML_MAX_LOG ||
-        !grow((void **)&r->lines, &r->lines_room, r->nlines + 1, sizeof *r->lines)) {
+        !lenc_grow((void **)&r->lines, &r->lines_room, r->nlines + 1, sizeof *r->lines)) {
         r->dropped++;
         return;
     }

@@ -8,6 +8,7 @@
 #include <lua.h>
 
 #include "lrigid.h"
+#include "lenc.h"
 #include "lsample.h"
 
 #define MAX_NAMES ((size_t)4 << 20)   /* bytes of names kept */
@@ -37,23 +38,6 @@ void lsample_release(lsample *s)
     free(s->spots);
     for (i = 0; i < LSAMPLE_LISTS; i++) free(s->lists[i]);
     lsample_init(s);
-}
-
-/* Grows *p (elements of size sz) to hold n; 0 when out of memory. */
-static int grow(void **p, int32_t *room, int32_t n, size_t sz)
-{
-    int32_t k = *room < 64 ? 64 : *room;
-    void *q;
-    if (n <= *room) return 1;
-    while (k < n) {
-        if (k > (1 << 28)) return 0;
-        k *= 2;
-    }
-    q = realloc(*p, (size_t)k * sz);
-    if (q == NULL) return 0;
-    *p = q;
-    *room = k;
-    return 1;
 }
 
 const char *lsample_name(const lsample *s, int32_t track, size_t *len)
@@ -117,7 +101,7 @@ static int32_t track_of(lsample *s, const rg_world *w, rg_body body)
         free(ok);
         free(ov);
     }
-    if (!grow((void **)&s->tracks, &s->tracks_room, s->ntracks + 1, sizeof *s->tracks)) return -1;
+    if (!lenc_grow((void **)&s->tracks, &s->tracks_room, s->ntracks + 1, sizeof *s->tracks)) return -1;
     t = s->ntracks++;
     tr = &s->tracks[t];
     memset(tr, 0, sizeof *tr);
@@ -190,7 +174,7 @@ static lsample_body *body_sample(pass *p, rg_body body)
         return t >= 0 && s->tracks[t].stamp == s->frames + 1 ? &s->cur[s->tracks[t].cur] : NULL;
     }
     if ((t = track_of(s, p->w, body)) < 0 ||
-        !grow((void **)&s->cur, &s->cur_room, s->ncur + 1, sizeof *s->cur)) {
+        !lenc_grow((void **)&s->cur, &s->cur_room, s->ncur + 1, sizeof *s->cur)) {
         s->oom = 1;
         return NULL;
     }
@@ -240,7 +224,7 @@ static void prim(pass *p, int kind, double a, double b, double c, double d, uint
     int l = p->layer == RG_DRAW_SPRINGS ? LSAMPLE_SPRINGS : LSAMPLE_CONTACTS;
     lsample_prim *q;
     if (p->layer != RG_DRAW_CONTACTS && p->layer != RG_DRAW_SPRINGS) return;
-    if (!grow((void **)&s->lists[l], &s->rooms[l], s->counts[l] + 1, sizeof *s->lists[l])) {
+    if (!lenc_grow((void **)&s->lists[l], &s->rooms[l], s->counts[l] + 1, sizeof *s->lists[l])) {
         s->oom = 1;
         return;
     }
@@ -287,7 +271,7 @@ static void cb_point(rg_vec2 pt, uint32_t rgba, void *user)
         prim(p, LSAMPLE_POINT, (double)pt.x, (double)pt.y, 0, 0, rgba);
         return;
     }
-    if (!grow((void **)&s->spots, &s->spots_room, s->nspots + 1, sizeof *s->spots)) {
+    if (!lenc_grow((void **)&s->spots, &s->spots_room, s->nspots + 1, sizeof *s->spots)) {
         s->oom = 1;
         return;
     }

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lenc.h"
 #include "lsample.h"
 #include "lsvg.h"
 
@@ -67,19 +68,6 @@ void lsvg_free(lsvg *r)
     free(r);
 }
 
-static int grow(void **p, int32_t *room, int32_t n, size_t sz)
-{
-    int32_t k = *room < 64 ? 64 : *room;
-    void *q;
-    if (n <= *room) return 1;
-    while (k < n) k *= 2;
-    if ((q = realloc(*p, (size_t)k * sz)) == NULL) return 0;
-    memset((char *)q + (size_t)*room * sz, 0, (size_t)(k - *room) * sz);
-    *p = q;
-    *room = k;
-    return 1;
-}
-
 /* Appends p, keeping every stride-th point; when full, drops every other point. */
 static void trail_add(trail *s, point p)
 {
@@ -108,8 +96,8 @@ void lsvg_record(lsvg *r, lua_State *L, int world_idx, double t)
     if (r == NULL || r->failed) return;
     s = &r->smp;
     if (lsample_frame(s, L, world_idx) != 0 ||
-        !grow((void **)&r->lasts, &r->lasts_room, s->ntracks, sizeof *r->lasts) ||
-        !grow((void **)&r->trails, &r->trails_room, s->ntracks < MAX_TRAILS ? s->ntracks : MAX_TRAILS,
+        !lenc_grow((void **)&r->lasts, &r->lasts_room, s->ntracks, sizeof *r->lasts) ||
+        !lenc_grow((void **)&r->trails, &r->trails_room, s->ntracks < MAX_TRAILS ? s->ntracks : MAX_TRAILS,
               sizeof *r->trails)) {
         r->failed = 1;
         return;

@@ -3,7 +3,7 @@
 LUA_VIEWER_JS := lua/viewer/decode.js lua/viewer/raster.js lua/viewer/draw.js lua/viewer/ui.js
 CHROMIUM := $(shell command -v chromium 2>/dev/null || command -v chromium-browser 2>/dev/null)
 TEST_RUNS += check-viewer
-.PHONY: check-viewer bench-viewer viewer-shot
+.PHONY: check-viewer bench-viewer readme-pictures
 
 # The page: viewer.html with the scripts in place of its marker line.
 $(B)/lua/viewer.html: lua/viewer/viewer.html $(LUA_VIEWER_JS)
@@ -43,8 +43,9 @@ bench-viewer: $(LUA_HOST)
 	@$(LUA_HOST) lua/examples/rain.lua --html $(B)/rain.html > /dev/null
 	@$(PYTHON) tools/viewer_bench.py --fps $(B)/rain.html
 
-# The README's picture of the viewer: make run's page at a moment in the air.
-viewer-shot: $(LUA_HOST)
+# The README's pictures of make run: the replay viewer at a moment in the air, and the SVG.
+readme-pictures: $(LUA_HOST)
 	@tools/install-deps.sh --browser
-	@$(LUA_HOST) lua/examples/platformer.lua --html $(B)/run.html > /dev/null
-	$(PYTHON) tools/viewer_bench.py --shot "$(B)/run.html#frame=250&velocities=1" tools/charts/viewer.png
+	@$(LUA_HOST) lua/examples/platformer.lua --svg $(B)/run.svg --html $(B)/run.html > /dev/null
+	$(PYTHON) tools/viewer_bench.py --shot "$(B)/run.html#frame=250&velocities=1" tools/charts/viewer.png \
+	  --svg-shot $(B)/run.svg tools/charts/run.png

@@ -2,12 +2,15 @@
 
     viewer_bench.py --fps PAGE.html [--seconds S]   size, time to read, frame rate playing
     viewer_bench.py --shot 'PAGE.html#frame=K' OUT.png   a screenshot of the player
+    viewer_bench.py --svg-shot PICTURE.svg OUT.png        an SVG picture as PNG, at its size
 
 The frame rate is the page's own: the requestAnimationFrame timestamps of the frames it drew
 while playing at 1x (rigidViewer.stats()).  Not a test: it prints what it measures.
 """
 import argparse
+import base64
 import os
+import re
 import sys
 import time
 
@@ -25,6 +28,7 @@ def main():
     ap.add_argument("--fps")
     ap.add_argument("--seconds", type=float, default=6.0)
     ap.add_argument("--shot", nargs=2, metavar=("PAGE", "PNG"))
+    ap.add_argument("--svg-shot", nargs=2, metavar=("SVG", "PNG"))
     a = ap.parse_args()
     with Browser() as b:
         if a.fps:
@@ -52,10 +56,20 @@ def main():
             h = page.eval("document.getElementById('main').getBoundingClientRect().bottom + 8")
             png = page.call("Page.captureScreenshot", format="png",
                             clip={"x": 0, "y": 0, "width": 1480, "height": h, "scale": 1})["data"]
-            import base64
             with open(a.shot[1], "wb") as f:
                 f.write(base64.b64decode(png))
             print("wrote " + a.shot[1])
+        if a.svg_shot:
+            text = open(a.svg_shot[0]).read(2000)
+            w = float(re.search(r'width="([\d.]+)"', text).group(1))
+            h = float(re.search(r'height="([\d.]+)"', text).group(1))
+            page = b.open(url_of(a.svg_shot[0]), width=int(w + 0.5), height=int(h + 0.5))
+            page.wait("document.readyState === 'complete'", 30)
+            png = page.call("Page.captureScreenshot", format="png",
+                            clip={"x": 0, "y": 0, "width": w, "height": h, "scale": 1})["data"]
+            with open(a.svg_shot[1], "wb") as f:
+                f.write(base64.b64decode(png))
+            print("wrote " + a.svg_shot[1])
     return 0
 
 

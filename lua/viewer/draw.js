@@ -202,9 +202,10 @@ function drawList(ctx, list, v, qc) {
   });
 }
 
+RV.VELOCITY = 0x28a03cff;   // RG_COLOR_VELOCITY, the arrows' colour in the SVG pictures too
+
 function drawVelocities(ctx, rec, k, v) {
-  ctx.strokeStyle = "#222";
-  ctx.fillStyle = "#222";
+  ctx.strokeStyle = ctx.fillStyle = RV.css(RV.VELOCITY);
   ctx.lineWidth = 1.2;
   for (const t of rec.tracks) {
     if (t.type === 0 || k < t.first || k > t.last) continue;

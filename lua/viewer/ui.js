@@ -356,7 +356,7 @@
     if (c[1] & 128) item(swatch(c[0]) + "spring");
   });
   if (T.some(function (t) { return t.shape === 0 && t.first >= 0; })) item("&#9711; body without a shape");
-  item("&#8594; velocity: " + RV.ARROW_S + " s of motion");
+  item("<span style=\"color:" + RV.css(RV.VELOCITY) + "\">&#8594;</span> velocity: " + RV.ARROW_S + " s of motion");
   item("&#9472; trail: the path so far (" + RV.TRAILS + " bodies at most)");
   item("dashed box: the plotted body");
   item("colours: rg_world_draw's");

@@ -21,22 +21,17 @@ import math
 import os
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+import checks  # noqa: E402
+
 IGS = ["explicit_euler", "semi_implicit_euler", "verlet", "rk4"]
 SCENES = ["oscillator", "damped_oscillator", "projectile_linear_drag", "fall_quadratic_drag",
           "throw_up_quadratic_drag", "slide_friction"]
-PASSED, FAILED = 0, 0
-CHART = {"passed": 0, "failed": 0}   # the chart being checked: its checks pass quietly
 
 
 def check(ok, name, detail=""):
-    global PASSED, FAILED
-    if ok:
-        PASSED += 1
-        CHART["passed"] += 1
-    else:
-        FAILED += 1
-        CHART["failed"] += 1
-        print("FAIL  " + name + ("\n      " + detail if detail else ""))
+    """A check of the chart being checked: quiet when it passes (the chart gets one line)."""
+    return checks.check(ok, name, detail, quiet=True)
 
 
 def read_csv(d, name):
@@ -255,13 +250,12 @@ def main():
     ap.add_argument("--csv", required=True)
     ap.add_argument("--tables", required=True)
     a = ap.parse_args()
-    for name, fn in CHARTS.items():
-        CHART["passed"] = CHART["failed"] = 0
+    for name in CHARTS:
+        before = dict(checks.counts)
         report(name, a)
-        if CHART["failed"] == 0:
-            print("ok    %s: %d checks of its curves against its CSV" % (name, CHART["passed"]))
-    print("%d passed, %d failed" % (PASSED, FAILED))
-    return 1 if FAILED else 0
+        if checks.counts["failed"] == before["failed"]:
+            print("ok    %s: %d checks of its curves against its CSV" % (name, checks.counts["passed"] - before["passed"]))
+    return checks.finish()
 
 
 def report(name, a):

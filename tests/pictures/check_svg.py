@@ -10,7 +10,6 @@ the moment they show.  For every example it draws (the script's own run):
     python3 tests/pictures/check_svg.py --host build/rigid --out build/picture-check
 Closes with "N passed, N failed".
 """
-import argparse
 import glob
 import math
 import os
@@ -18,6 +17,9 @@ import re
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from checks import check, finish, host_and_out  # noqa: E402
 
 NS = "{http://www.w3.org/2000/svg}"
 CONTACT_FILLS = ("rgba(220,40,40,1.000)", "rgba(220,180,30,0.502)")   # RG_COLOR_CONTACT, RG_COLOR_SENSOR
@@ -28,18 +30,6 @@ HELVETICA = [278, 278, 355, 556, 556, 889, 667, 191, 333, 333, 389, 584, 278, 33
 
 def text_width(s, px):
     return sum(HELVETICA[ord(c) - 32] if 32 <= ord(c) < 127 else 667 for c in s) * px / 1000
-PASSED, FAILED = 0, 0
-
-
-def check(ok, name, detail=""):
-    global PASSED, FAILED
-    if ok:
-        PASSED += 1
-        print("ok    " + name)
-    else:
-        FAILED += 1
-        print("FAIL  " + name + ("\n      " + detail if detail else ""))
-    return ok
 
 
 def f(e, k):
@@ -126,11 +116,7 @@ def check_picture(name, path):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--host", required=True)
-    ap.add_argument("--out", required=True)
-    a = ap.parse_args()
-    os.makedirs(a.out, exist_ok=True)
+    a = host_and_out()
     for script in sorted(glob.glob("lua/examples/*.lua")):
         name = os.path.basename(script)[:-4]
         svg = os.path.join(a.out, name + ".svg")
@@ -138,8 +124,7 @@ def main():
         if not check(run.returncode == 0 and os.path.exists(svg), "%s: runs and draws" % name, run.stderr[-500:]):
             continue
         check_picture(name, svg)
-    print("%d passed, %d failed" % (PASSED, FAILED))
-    return 1 if FAILED else 0
+    return finish()
 
 
 if __name__ == "__main__":

@@ -16,7 +16,6 @@ What it proves, each as one named check:
   * rain.lua with 4000 circles over 600 steps makes a file under 10 MB that the page reads.
 Closes with "N passed, N failed".
 """
-import argparse
 import json
 import os
 import re
@@ -25,21 +24,11 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from browser import Browser, png_pixels  # noqa: E402
+from checks import check, finish, host_and_out  # noqa: E402
 
-PASSED, FAILED = 0, 0
 OFF = "&trails=0&names=0&contacts=0&velocities=0"   # shapes only: clean pixels
-
-
-def check(ok, name, detail=""):
-    global PASSED, FAILED
-    if ok:
-        PASSED += 1
-        print("ok    " + name)
-    else:
-        FAILED += 1
-        print("FAIL  " + name + ("\n      " + detail if detail else ""))
-    return ok
 
 
 def record(host, script, html, args=()):
@@ -209,11 +198,7 @@ def test_rain(b, host, out):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--host", required=True)
-    ap.add_argument("--out", required=True)
-    a = ap.parse_args()
-    os.makedirs(a.out, exist_ok=True)
+    a = host_and_out()
     with Browser() as b:
         for name, test in (("platformer", lambda: test_platformer(b, a.host, a.out)),
                            ("no network", lambda: test_no_network(b, a.out, os.path.join(a.out, "run.html"))),
@@ -224,8 +209,7 @@ def main():
                 check(False, "%s: ran to the end" % name, "%s: %s" % (type(e).__name__, e))
         for line in b.console:
             check(False, "the page logs no error", line)
-    print("%d passed, %d failed" % (PASSED, FAILED))
-    return 1 if FAILED else 0
+    return finish()
 
 
 if __name__ == "__main__":
