@@ -23,7 +23,8 @@ static const char usage[] =
     "usage: rigid SCRIPT.lua [options] [-- script arguments]\n"
     "  --steps N      fixed steps a scene runs (default: its `duration` global, else 10 s)\n"
     "  --seconds S    simulated seconds a scene runs\n"
-    "  --svg FILE     draw the world (bodies, trails, contact points) into FILE\n"
+    "  --svg FILE     draw the world at the end as rg_world_draw does, with the paths\n"
+    "                 that led there, into FILE (SVG)\n"
     "  --html FILE    record the run into FILE, a replay viewer (one self-contained page)\n"
     "  --memory MiB   memory cap of the script, physics included (default 64)\n"
     "  --budget N     instructions per call into the script: the main chunk, setup, each\n"
@@ -337,12 +338,14 @@ static int run_scene(host *h)
     return 1;
 }
 
-static void write_picture(host *h, int ok)
+/* Writes what --svg and --html asked for; 0 when one cannot be written. */
+static int write_picture(host *h, int ok)
 {
     char title[512], sub[768], caption[300];
     const char *base = strrchr(h->script, '/');
     int bodies = 0;
-    if (h->rec == NULL && h->replay == NULL) return;
+    int written = 1;
+    if (h->rec == NULL && h->replay == NULL) return 1;
     if (h->world_ref != LUA_NOREF) {
         rg_world *w;
         lua_rawgeti(h->L, LUA_REGISTRYINDEX, h->world_ref);
@@ -361,20 +364,24 @@ static void write_picture(host *h, int ok)
     if (h->rec != NULL) {
         snprintf(sub, sizeof sub, "%s%lld steps, %.2f s simulated, %d bodies at the end%s", caption,
                  h->steps_taken, h->sim_time, bodies, ok ? "" : " (the script failed: this is the world it left)");
-        if (lsvg_write(h->rec, h->svg, title, sub) != 0)
+        if (lsvg_write(h->rec, h->svg, title, sub) != 0) {
             fprintf(stderr, "rigid: cannot write %s: %s\n", h->svg, strerror(errno));
-        else
+            written = 0;
+        } else
             printf("rigid: picture written to %s\n", h->svg);
     }
     if (h->replay != NULL) {
         snprintf(sub, sizeof sub, "%s%lld steps, %.2f s simulated, %d bodies at the end%s", caption,
                  h->steps_taken, h->sim_time, bodies,
                  ok ? "" : " (the script failed: the last frame is the world it left)");
-        if (lhtml_write(h->replay, h->html, title, sub) != 0)
+        if (lhtml_write(h->replay, h->html, title, sub) != 0) {
             fprintf(stderr, "rigid: cannot write %s: %s\n", h->html, strerror(errno));
-        else
+            written = 0;
+        } else {
             printf("rigid: replay of %d frames written to %s\n", lhtml_frames(h->replay), h->html);
+        }
     }
+    return written;
 }
 
 int main(int argc, char **argv)
@@ -435,7 +442,7 @@ int main(int argc, char **argv)
         }
     }
     lua_settop(L, 0);
-    write_picture(&h, ok);
+    if (!write_picture(&h, ok)) ok = 0;
     if (ok)
         fprintf(stderr, "rigid: %s: %lld steps (%.2f s simulated) in %.3f s CPU, peak memory %.2f MiB\n",
                 h.script, h.steps_taken, h.sim_time, (double)(clock() - t0) / CLOCKS_PER_SEC,

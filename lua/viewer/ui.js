@@ -12,10 +12,12 @@
     $("title").textContent = meta.title;
     $("subtitle").textContent = meta.subtitle + (meta.stopped ? "; recording stopped early: " + meta.stopped : "") +
       (meta.log_dropped ? "; " + meta.log_dropped + " printed lines past the log's cap not kept" : "");
+    if (meta.frames === 0) throw new Error("no frames were recorded");
     rec = RV.decode(meta, await RV.inflate(RV.base64($("rigid-frames").textContent)));
-    if (rec.frames === 0) throw new Error("no frames were recorded");
   } catch (e) {
-    status.textContent = "cannot read the recording: " + e.message;
+    status.textContent = meta && meta.frames === 0 ? "nothing to replay: the script stepped no world"
+                                                   : "cannot read the recording: " + e.message;
+    if (meta) $("log").textContent = meta.log.map(function (l) { return l[1]; }).join("\n");
     document.body.dataset.error = e.message;
     return;
   }

@@ -13,7 +13,8 @@ What it proves, each as one named check:
   * the page makes no network request (the DevTools protocol sees every request; a page that
     does request something is caught, so the check can fail) and its text refers to nothing
     outside itself;
-  * rain.lua with 4000 circles over 600 steps makes a file under 10 MB that the page reads.
+  * rain.lua with 4000 circles over 600 steps makes a file under 10 MB that the page reads;
+  * scenes that churn bodies, shapes, names and the log (tests/viewer/scenes) replay whole.
 Closes with "N passed, N failed".
 """
 import json
@@ -197,12 +198,43 @@ def test_rain(b, host, out):
           "the page reads all 601 frames of the 4003 bodies", err)
 
 
+def test_scenes(b, host, out):
+    """Scenes that make the recorder work: bodies made, destroyed, reshaped and moved, names
+    with markup and broken UTF-8, a spring, an error inside print; a log past its cap; a
+    script that steps its own world."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    for name, frames in (("churn", 121), ("chatter", 31), ("plain", 30)):
+        html = os.path.join(out, name + ".html")
+        record(host, os.path.join(here, "scenes", name + ".lua"), html)
+        page = b.open("file://" + os.path.abspath(html) + "#frame=%d" % (frames - 1))
+        page.wait("document.body.dataset.ready === '1' || document.body.dataset.error", 60)
+        err = page.eval("document.body.dataset.error || ''")
+        check(not err and page.eval("rigidViewer.frames") == frames,
+              "%s: the page reads its %d frames" % (name, frames), err)
+        meta, _ = meta_of(html)
+        if name == "churn":
+            names = page.eval("Array.prototype.map.call(document.getElementById('body').options, function (o) { return o.textContent; })")
+            check(any("</script><script>" in n for n in names) and any("bad \ufffd\ufffd bytes \ufffd" in n for n in names),
+                  "churn: a name with markup is shown as text, bytes that are not UTF-8 as U+FFFD", str(names))
+            drops = [t for t in meta["tracks"] if (t[0] or "").startswith("drop ")]
+            check(len(drops) == 24 and sum(1 for t in drops if t[5] < frames - 1) == 10,
+                  "churn: 24 bodies dropped in, 10 destroyed before the end", str([t[4:6] for t in drops]))
+            check(meta["recorded"]["springs"], "churn: the spring is recorded")
+            logged = [l[1] for l in meta["log"]]
+            check("a line with a tab\tand a NUL \u0000 inside" in logged and "before the error" in logged,
+                  "churn: printed lines logged as printed (a tab, a NUL; the part before an error)", str(logged))
+        elif name == "chatter":
+            check(meta["log_dropped"] > 0 and "not kept" in page.eval("document.getElementById('subtitle').textContent"),
+                  "chatter: the log stops at its cap and the page says how many lines it dropped (%d)" % meta["log_dropped"])
+
+
 def main():
     a = host_and_out()
     with Browser() as b:
         for name, test in (("platformer", lambda: test_platformer(b, a.host, a.out)),
                            ("no network", lambda: test_no_network(b, a.out, os.path.join(a.out, "run.html"))),
-                           ("rain", lambda: test_rain(b, a.host, a.out))):
+                           ("rain", lambda: test_rain(b, a.host, a.out)),
+                           ("scenes", lambda: test_scenes(b, a.host, a.out))):
             try:
                 test()
             except Exception as e:   # a wait that timed out, a run that failed: a failure
