@@ -247,7 +247,7 @@ static int write_list(lframes *f, flist *P, flist *Psorted, lframes_prim *C, int
         ord[2 * j] = r >= 0 ? r : P->n + j;
         ord[2 * j + 1] = j;
     }
-    qsort(ord, (size_t)nc, 2 * sizeof(int32_t), by_ref);
+    if (nc > 1) qsort(ord, (size_t)nc, 2 * sizeof(int32_t), by_ref);
     if (!lenc_grow((void **)&f->spare.p, &f->spare.room, nc, sizeof *C)) return 0;
     for (n = 0; n < nc; n++) {
         const lframes_prim *c = &C[ord[2 * n + 1]];
@@ -292,7 +292,7 @@ int lframes_add(lframes *e, int64_t t_us, lframes_body *B, int32_t n,
     int32_t j, m, maxtrack = -1;
     int l;
     if (e->stopped) return -1;
-    qsort(B, (size_t)n, sizeof *B, by_track);
+    if (n > 1) qsort(B, (size_t)n, sizeof *B, by_track);
     for (j = 0, m = 0; j < n; j++) {         /* one sample per track: the last given */
         if (m > 0 && B[m - 1].track == B[j].track) m--;
         B[m++] = B[j];
@@ -306,7 +306,7 @@ int lframes_add(lframes *e, int64_t t_us, lframes_body *B, int32_t n,
     if (!write_life(e, B, n)) goto fail;
     write_bodies(e, B, n);
     for (l = 0; l < LFRAMES_LISTS; l++) {
-        qsort(lists[l], (size_t)counts[l], sizeof *lists[l], prim_qsort);
+        if (counts[l] > 1) qsort(lists[l], (size_t)counts[l], sizeof *lists[l], prim_qsort);
         if (!write_list(e, &e->prev[l], &e->sorted[l], lists[l], counts[l])) goto fail;
     }
     /* A frame compresses to at most its size plus a little (deflate's stored blocks). */

@@ -325,7 +325,7 @@ static void bodies_from_lua(pass *p, lua_State *L, int world_idx)
 {
     lsample *s = p->s;
     int tbl;
-    qsort(s->spots, (size_t)s->nspots, sizeof *s->spots, spot_cmp);
+    if (s->nspots > 1) qsort(s->spots, (size_t)s->nspots, sizeof *s->spots, spot_cmp);
     lrigid_pushbodies(L, world_idx);
     tbl = lua_gettop(L);
     lua_pushnil(L);
