@@ -77,6 +77,7 @@ static rg_status contact_grow(rg_world *w)
     /* new ids on the free list, lowest first */
     for (int32_t id = cap - 1; id >= old; id--) {
         memset(&c[id], 0, sizeof c[id]);
+        c[id].sa = c[id].sb = -1; /* free */
         c[id].na = cs->free_head;
         c[id].awake = -1;
         cs->free_head = id;
@@ -128,6 +129,11 @@ static inline void contact_mix(contact *c, const body_store *b, int32_t ia, int3
     c->e = rg_max(b->rest[ia], b->rest[ib]);
 }
 
+static inline uint32_t contact_one_way(const body_store *b, int32_t ia, int32_t ib)
+{
+    return (b->owx[ia] != 0 || b->owy[ia] != 0 || b->owx[ib] != 0 || b->owy[ib] != 0) ? CT_ONEWAY : 0;
+}
+
 int32_t contact_create(rg_world *w, int32_t s, int32_t t)
 {
     contact_store *cs = &w->coll.contacts;
@@ -148,6 +154,7 @@ int32_t contact_create(rg_world *w, int32_t s, int32_t t)
     c->sb = t;
     c->awake = -1;
     c->flags = ((b->cflags[ia] | b->cflags[ib]) & CF_SENSOR) ? CT_SENSOR : 0;
+    c->flags |= contact_one_way(b, ia, ib);
     contact_mix(c, b, ia, ib);
     contact_link(w, id, s);
     contact_link(w, id, t);
@@ -167,6 +174,7 @@ void contact_destroy(rg_world *w, int32_t id)
     contact_unlink(w, id, c->sb);
     if (c->awake >= 0) contact_awake_remove(cs, id);
     c->flags = 0;
+    c->sa = c->sb = -1; /* free */
     c->na = cs->free_head;
     cs->free_head = id;
     cs->live--;
@@ -180,4 +188,22 @@ void contact_refresh_materials(rg_world *w, int32_t s)
         contact *c = &cs->c[id];
         contact_mix(c, b, body_dense(w, c->sa), body_dense(w, c->sb));
     }
+}
+
+void contact_refresh_flags(rg_world *w, int32_t s)
+{
+    contact_store *cs = &w->coll.contacts;
+    const body_store *b = &w->b;
+    for (int32_t id = b->chead[body_dense(w, s)] - 1; id >= 0; id = contact_next(&cs->c[id], s)) {
+        contact *c = &cs->c[id];
+        c->flags = (c->flags & ~CT_ONEWAY) | contact_one_way(b, body_dense(w, c->sa), body_dense(w, c->sb));
+    }
+}
+
+int32_t contact_find(const rg_world *w, int32_t s, int32_t t)
+{
+    const contact_store *cs = &w->coll.contacts;
+    for (int32_t id = w->b.chead[body_dense(w, s)] - 1; id >= 0; id = contact_next(&cs->c[id], s))
+        if (contact_other(&cs->c[id], s) == t) return id;
+    return -1;
 }

@@ -24,6 +24,10 @@ int32_t contact_create(struct rg_world *w, int32_t s, int32_t t);
 void contact_destroy(struct rg_world *w, int32_t id);
 /* Mixes the materials of the contacts of body slot s again. */
 void contact_refresh_materials(struct rg_world *w, int32_t s);
+/* Sets CT_ONEWAY of the contacts of body slot s again (its one-way normal changed). */
+void contact_refresh_flags(struct rg_world *w, int32_t s);
+/* The contact between body slots s and t, or -1. */
+int32_t contact_find(const struct rg_world *w, int32_t s, int32_t t);
 void contact_awake_add(contact_store *cs, int32_t id);
 void contact_awake_remove(contact_store *cs, int32_t id);
 

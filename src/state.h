@@ -42,7 +42,8 @@
     X(int32_t, chead)                    /* first contact id + 1; 0: none */           \
     X(rg_real, dx) X(rg_real, dy)        /* displacement of the last integration, m */ \
     X(rg_real, sleep_t)                  /* s spent below the sleep speed */           \
-    X(int32_t, isl_head) X(int32_t, isl_next) /* sleeping island list: slot + 1 */
+    X(int32_t, isl_head) X(int32_t, isl_next) /* sleeping island list: slot + 1 */    \
+    X(rg_real, owx) X(rg_real, owy)      /* one-way normal; (0, 0): two-way */
 
 #define BODY_F_DISSIPATIVE 1u /* has drag or surface friction (and is dynamic) */
 #define BODY_F_LIMITED     2u /* has a speed limit (and is dynamic) */
@@ -121,9 +122,11 @@ typedef struct spring_store {
 #define CT_SENSOR   2u
 #define CT_SOLVE    4u  /* solved in this step */
 #define CT_CLOSING  8u  /* the step's free motion would make the pair overlap */
+#define CT_ONEWAY  16u  /* a body of the pair is one-way (narrow.c decides when it blocks) */
+#define CT_PASS    32u  /* passing: neither solved nor touching until a step ends apart */
 
 typedef struct contact {
-    int32_t sa, sb;           /* body slots; a has the lower handle */
+    int32_t sa, sb;           /* body slots; a has the lower handle; -1 when the id is free */
     int32_t na, pa, nb, pb;   /* next/prev contact ids in a's and b's lists (-1 ends) */
     int32_t awake;            /* index in awake[], -1 while both bodies rest */
     uint32_t flags;           /* CT_* */
@@ -265,7 +268,17 @@ struct rg_world {
 
     /* Collision: broadphase, contacts, events, islands, settings. */
     collide_world coll;
+
+    /* The pre-solve hook (narrow.c), and whether the world is locked: a callback inside its
+     * step is running, and calls that would change the world return RG_ERR_LOCKED. */
+    rg_pre_solve_fn *pre_solve;
+    void *pre_solve_user;
+    int32_t locked;
 };
+
+/* At the top of every call that changes the world. */
+#define WORLD_WRITABLE(world) \
+    if ((world) != NULL && (world)->locked) return RG_ERR_LOCKED
 
 /* Dense index of the live body in pool slot `slot`.  Slots never move; dense indices move
  * whenever a body changes partition (falls asleep, wakes, is created or destroyed), so code

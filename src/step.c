@@ -75,6 +75,7 @@ static rg_status step_prepare(rg_world *w)
 
 RG_API rg_status rg_world_step(rg_world *world, rg_real dt)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL || !rg_finite(dt) || !(dt > 0)) return RG_ERR_INVALID_ARGUMENT;
     rg_status st = step_prepare(world);
     if (st != RG_OK) return st;
@@ -86,6 +87,7 @@ RG_API rg_status rg_world_step(rg_world *world, rg_real dt)
 
 RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *out_steps)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL || !rg_finite(frame_time) || frame_time < 0) return RG_ERR_INVALID_ARGUMENT;
     rg_status st = step_prepare(world);
     if (st != RG_OK) return st;

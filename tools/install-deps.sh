@@ -1,16 +1,18 @@
 #!/bin/sh
 # Installs from Debian's packages what rigid needs and is missing; does nothing when all is
 # there.  --bench adds the peers of the side-by-side benchmark (Box2D 2.4, Chipmunk 7);
-# --charts adds gnuplot; --browser adds Chromium (the replay viewer's test and bench).
-# Uses sudo when not root.
+# --charts adds gnuplot; --love adds LOVE and a headless X server for the LOVE game's test
+# (make test skips it without them); --browser adds Chromium for the replay viewer's test
+# and bench (make test skips it without).  Uses sudo when not root.
 set -e
-pkgs="libcmocka-dev liblua5.4-dev lua5.4 pkg-config python3 zlib1g-dev"
+pkgs="libcmocka-dev liblua5.4-dev lua5.4 luajit luarocks pkg-config python3 zlib1g-dev"
 for arg in "$@"; do
     case "$arg" in
     --bench) pkgs="$pkgs libbox2d-dev libchipmunk-dev g++" ;;
     --charts) pkgs="$pkgs gnuplot-nox" ;;
+    --love) pkgs="$pkgs love xvfb xauth" ;;
     --browser) pkgs="$pkgs chromium" ;;
-    *) echo "usage: $0 [--bench] [--charts] [--browser]" >&2; exit 2 ;;
+    *) echo "usage: $0 [--bench] [--charts] [--love] [--browser]" >&2; exit 2 ;;
     esac
 done
 missing=""
