@@ -130,7 +130,8 @@ void lhtml_record(lhtml *r, lua_State *L, int world_idx, double t)
     s = &r->smp;
     frame = s->frames;
     if (lsample_frame(s, L, world_idx) != 0) {
-        stop(r, s->oom ? "out of memory" : "rg_world_draw failed");
+        stop(r, s->full ? "more bodies than the recording keeps (2^21)" : s->oom ? "out of memory"
+                                                                                : "rg_world_draw failed");
         return;
     }
     if (r->q == 0) {

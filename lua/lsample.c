@@ -81,6 +81,10 @@ static int32_t track_of(lsample *s, const rg_world *w, rg_body body)
     int32_t t = find(s, body), i;
     lsample_track *tr;
     if (t >= 0) return t;
+    if (s->ntracks >= LSAMPLE_MAX_TRACKS) {
+        s->full = 1;
+        return -1;
+    }
     if (2 * (s->ntracks + 1) > s->hcap) {   /* rehash at half full */
         int32_t cap = s->hcap < 1024 ? 1024 : 2 * s->hcap;
         uint64_t *ok = s->keys;

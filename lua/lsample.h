@@ -31,6 +31,7 @@
 #define LSAMPLE_LISTS    2
 
 #define LSAMPLE_MAX_COLORS 1024
+#define LSAMPLE_MAX_TRACKS (1 << 21)   /* bodies drawn in a run (about 64 bytes each) */
 
 /* A body that has been drawn: its track lives as long as the sampler. */
 typedef struct lsample_track {
@@ -79,7 +80,8 @@ typedef struct lsample {
     double box[4];            /* union of all drawn: min x, min y, max x, max y */
     double hmin;              /* smallest half extent of a shape in the first frame */
     int any[LSAMPLE_LISTS + 1];   /* contacts, springs, fat boxes ever drawn */
-    int oom;
+    int oom;                  /* out of memory, or (full) past LSAMPLE_MAX_TRACKS bodies */
+    int full;
 } lsample;
 
 void lsample_init(lsample *s);
