@@ -1,8 +1,8 @@
 -- platformer.lua: a character runs right, jumps (only when grounded) over a gap, up two
 -- platforms and over a crate, collects coins (sensors) and reaches the flag.  The "player"
 -- presses jump at fixed places and also mashes it in the air; presses in the air do
--- nothing.  Prints a line per second and a summary.  This is `make run`.
---   build/rigid lua/examples/platformer.lua --svg build/run.svg
+-- nothing.  Prints where it starts, a line per second and a summary.  This is `make run`.
+--   build/rigid lua/examples/platformer.lua --svg build/run.svg --html build/run.html
 duration = 9
 
 local G = 25                       -- m/s^2: arcade gravity, snappy jumps
@@ -40,6 +40,8 @@ function setup(world)
   end
   player = world:body{ x = 0, y = HALF_H, aabb = { HALF_W, HALF_H }, friction = 0, name = "player" }
   presses = { 10.5, 16.6, 22.0, 28.3 }
+  local x, y = player:position()
+  print(string.format("t =  0.0 s  x = %5.2f  y = %5.2f  (the start)", x, y))
 end
 
 local function press_jump()
