@@ -508,6 +508,45 @@ RG_API rg_status rg_body_move(rg_world *world, rg_body body, rg_vec2 target, uin
                               int32_t response, rg_vec2 *out_position, rg_ray_hit *out_hits,
                               int32_t capacity, int32_t *out_count);
 
+/* ---------------------------------------------------------------- snapshots (rollback)
+ *
+ * A snapshot is the whole simulation state in a portable format: one byte order
+ * (little-endian) and fixed field sizes, so a snapshot saved on one machine restores on
+ * another (x86-64 and aarch64 alike) of the same rg_real, and both continue to the same
+ * bytes.  It holds no pointer and carries a 64-bit checksum.  Typical rollback use:
+ *   size_t n; rg_world_save(w, NULL, 0, &n);         the size (it changes with the scene)
+ *   rg_world_save(w, buf, cap, &n);                   at frame k
+ *   ...                                               a late input arrives for frame k
+ *   rg_world_restore(w, buf, n);                      back to frame k
+ *   step the frames again with the corrected inputs.
+ * Saving and hashing allocate nothing; restoring allocates only when the world must grow. */
+
+/* Writes the whole simulation state (bodies, shapes, springs, contacts and warm-start
+   impulses, islands and sleep timers, accumulator, settings, handle generations) to out.
+   With out == NULL and capacity == 0 it only reports the size. RG_ERR_CAPACITY when
+   capacity is too small (nothing written beyond it).  *out_size receives the size in every
+   case but a NULL world or out_size.  Also the contact events readable now (and the ends
+   held for the next step) are saved, so a restored world reads the same events. */
+RG_API rg_status rg_world_save(const rg_world *world, void *out, size_t capacity, size_t *out_size);
+
+/* Replaces the world's state with a saved one. Afterwards every handle the saving world
+   gave out names the same body or spring here (a world restored from another world's
+   snapshot takes that world's handle identity, so a clone answers the original's handles),
+   and stepping continues exactly as the saving world would have. A truncated, corrupted or
+   forged snapshot, or one from a build with another rg_real, is RG_ERR_INVALID_ARGUMENT and
+   changes nothing. The pre-solve hook and allocator are the world's own, not saved.
+   RG_ERR_OUT_OF_MEMORY when the world cannot grow to hold it (nothing changed either);
+   RG_ERR_LOCKED from inside a step's callback.  Every structural invariant of the state is
+   checked before anything is changed, so no snapshot, however forged, can make a later call
+   misbehave. */
+RG_API rg_status rg_world_restore(rg_world *world, const void *data, size_t size);
+
+/* A 64-bit hash of the simulation state: equal states give equal hashes, and the same
+   scene gives the same hash on any compiler, optimisation level and SIMD path.  It covers
+   what a snapshot holds but the world's handle tag, so two worlds built by the same calls
+   (or a world and its restored clone) hash alike on any machine of the same rg_real. */
+RG_API rg_status rg_world_hash(const rg_world *world, uint64_t *out_hash);
+
 /* ---------------------------------------------------------------- debug draw
  *
  * rg_world_draw calls back for what draw->flags ask, layer by layer (shapes, bounds, springs,

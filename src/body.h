@@ -30,6 +30,8 @@ int32_t body_lookup(const struct rg_world *w, rg_body body);
 
 /* Grows storage so one more body fits; all-or-nothing. */
 rg_status body_reserve(struct rg_world *w);
+/* Grows storage so n bodies fit (restoring a snapshot); all-or-nothing. */
+rg_status body_reserve_count(struct rg_world *w, int32_t n);
 /* A new body (after a successful body_reserve) of a valid type, mass and position, placed in
  * its partition, every field at its default; returns its handle. */
 rg_body body_add(struct rg_world *w, int32_t type, rg_real mass, rg_vec2 position);

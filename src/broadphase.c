@@ -149,66 +149,79 @@ static void set_box(broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_rea
     }
 }
 
-rg_status broadphase_reserve(broadphase *bp, const rg_mem *m, int32_t slots, int32_t members)
+/* Room for slots [0, cap): the per-slot arrays grown, their contents kept. */
+static rg_status bp_grow_slots(broadphase *bp, const rg_mem *m, int32_t cap)
+{
+    if (cap <= bp->cap) return RG_OK;
+    bp_entry *e = mem_alloc(m, mem_array_size((size_t)cap, sizeof *e));
+    int32_t *mem_ = mem_alloc(m, mem_array_size((size_t)cap, sizeof *mem_));
+    int32_t *huge = mem_alloc(m, mem_array_size((size_t)cap, sizeof *huge));
+    int32_t *moved = mem_alloc(m, mem_array_size((size_t)cap, sizeof *moved));
+    int32_t *act = mem_alloc(m, mem_array_size((size_t)cap, sizeof *act));
+    if (e == NULL || mem_ == NULL || huge == NULL || moved == NULL || act == NULL) {
+        mem_free(m, e, (size_t)cap * sizeof *e);
+        mem_free(m, mem_, (size_t)cap * sizeof *mem_);
+        mem_free(m, huge, (size_t)cap * sizeof *huge);
+        mem_free(m, moved, (size_t)cap * sizeof *moved);
+        mem_free(m, act, (size_t)cap * sizeof *act);
+        return RG_ERR_OUT_OF_MEMORY;
+    }
+    if (bp->cap == 0)
+        for (int li = 0; li < BP_LEVELS; li++) bp->level_head[li] = -1;
+    if (bp->cap > 0) {
+        memcpy(e, bp->e, (size_t)bp->cap * sizeof *e);
+        memcpy(mem_, bp->members, (size_t)bp->count * sizeof *mem_);
+        memcpy(huge, bp->huge, (size_t)bp->n_huge * sizeof *huge);
+        memcpy(moved, bp->moved, (size_t)bp->n_moved * sizeof *moved);
+        memcpy(act, bp->active, (size_t)bp->n_active * sizeof *act);
+    }
+    for (int32_t s = bp->cap; s < cap; s++) {
+        memset(&e[s], 0, sizeof e[s]);
+        e[s].member = -1;
+        e[s].next = e[s].prev = -1;
+        e[s].lnext = e[s].lprev = -1;
+        e[s].apos = -1;
+    }
+    mem_free(m, bp->e, (size_t)bp->cap * sizeof *bp->e);
+    mem_free(m, bp->members, (size_t)bp->cap * sizeof *bp->members);
+    mem_free(m, bp->huge, (size_t)bp->cap * sizeof *bp->huge);
+    mem_free(m, bp->moved, (size_t)bp->cap * sizeof *bp->moved);
+    mem_free(m, bp->active, (size_t)bp->cap * sizeof *bp->active);
+    bp->e = e;
+    bp->members = mem_;
+    bp->huge = huge;
+    bp->moved = moved;
+    bp->active = act;
+    bp->cap = cap;
+    return RG_OK;
+}
+
+/* The slot capacity that holds `slots`: doubling from 64. */
+static int32_t bp_slot_cap(const broadphase *bp, int32_t slots)
 {
     int32_t cap = bp->cap;
     if (slots > cap) {
         cap = cap < 64 ? 64 : cap;
         while (cap < slots) cap = cap > (INT32_MAX / 2) ? INT32_MAX : cap * 2;
     }
+    return cap;
+}
+
+rg_status broadphase_reserve(broadphase *bp, const rg_mem *m, int32_t slots, int32_t members)
+{
+    int32_t cap = bp_slot_cap(bp, slots);
     int bits = bp->bucket_bits < BP_MIN_BUCKET_BITS ? BP_MIN_BUCKET_BITS : bp->bucket_bits;
     while (((int64_t)1 << bits) < 2 * (int64_t)members) bits++;
     if (cap == bp->cap && bits == bp->bucket_bits) return RG_OK;
-
-    bp_entry *e = NULL;
-    int32_t *mem_ = NULL, *huge = NULL, *moved = NULL, *act = NULL, *head = NULL;
     size_t nb = (size_t)1 << bits;
-    if (cap != bp->cap) {
-        e = mem_alloc(m, mem_array_size((size_t)cap, sizeof *e));
-        mem_ = mem_alloc(m, mem_array_size((size_t)cap, sizeof *mem_));
-        huge = mem_alloc(m, mem_array_size((size_t)cap, sizeof *huge));
-        moved = mem_alloc(m, mem_array_size((size_t)cap, sizeof *moved));
-        act = mem_alloc(m, mem_array_size((size_t)cap, sizeof *act));
+    int32_t *head = NULL;
+    if (bits != bp->bucket_bits) {
+        head = mem_alloc(m, nb * sizeof *head);
+        if (head == NULL) return RG_ERR_OUT_OF_MEMORY;
     }
-    if (bits != bp->bucket_bits) head = mem_alloc(m, nb * sizeof *head);
-    if ((cap != bp->cap && (e == NULL || mem_ == NULL || huge == NULL || moved == NULL || act == NULL)) ||
-        (bits != bp->bucket_bits && head == NULL)) {
-        mem_free(m, e, (size_t)cap * sizeof *e);
-        mem_free(m, mem_, (size_t)cap * sizeof *mem_);
-        mem_free(m, huge, (size_t)cap * sizeof *huge);
-        mem_free(m, moved, (size_t)cap * sizeof *moved);
-        mem_free(m, act, (size_t)cap * sizeof *act);
+    if (bp_grow_slots(bp, m, cap) != RG_OK) {
         mem_free(m, head, nb * sizeof *head);
         return RG_ERR_OUT_OF_MEMORY;
-    }
-    if (cap != bp->cap) {
-        if (bp->cap == 0)
-            for (int li = 0; li < BP_LEVELS; li++) bp->level_head[li] = -1;
-        if (bp->cap > 0) {
-            memcpy(e, bp->e, (size_t)bp->cap * sizeof *e);
-            memcpy(mem_, bp->members, (size_t)bp->count * sizeof *mem_);
-            memcpy(huge, bp->huge, (size_t)bp->n_huge * sizeof *huge);
-            memcpy(moved, bp->moved, (size_t)bp->n_moved * sizeof *moved);
-            memcpy(act, bp->active, (size_t)bp->n_active * sizeof *act);
-        }
-        for (int32_t s = bp->cap; s < cap; s++) {
-            memset(&e[s], 0, sizeof e[s]);
-            e[s].member = -1;
-            e[s].next = e[s].prev = -1;
-            e[s].lnext = e[s].lprev = -1;
-            e[s].apos = -1;
-        }
-        mem_free(m, bp->e, (size_t)bp->cap * sizeof *bp->e);
-        mem_free(m, bp->members, (size_t)bp->cap * sizeof *bp->members);
-        mem_free(m, bp->huge, (size_t)bp->cap * sizeof *bp->huge);
-        mem_free(m, bp->moved, (size_t)bp->cap * sizeof *bp->moved);
-        mem_free(m, bp->active, (size_t)bp->cap * sizeof *bp->active);
-        bp->e = e;
-        bp->members = mem_;
-        bp->huge = huge;
-        bp->moved = moved;
-        bp->active = act;
-        bp->cap = cap;
     }
     if (head != NULL) {
         mem_free(m, bp->head, ((size_t)1 << bp->bucket_bits) * sizeof *bp->head);
@@ -222,6 +235,75 @@ rg_status broadphase_reserve(broadphase *bp, const rg_mem *m, int32_t slots, int
         }
     }
     return RG_OK;
+}
+
+/* ---------------------------------------------------------------- restoring a snapshot */
+
+void broadphase_locate(rg_real lx, rg_real ly, rg_real ux, rg_real uy, int16_t *level, uint64_t *key)
+{
+    int li = level_of(lx, ly, ux, uy);
+    *level = (int16_t)li;
+    *key = 0;
+    if (li != BP_HUGE) {
+        rg_real inv = level_inv(li);
+        *key = cell_key(li, cell_coord(lx, inv), cell_coord(ly, inv));
+    }
+}
+
+uint32_t broadphase_bucket(int bits, uint64_t key)
+{
+    return (uint32_t)((key * 0x9E3779B97F4A7C15ull) >> (64 - bits));
+}
+
+rg_status broadphase_reserve_slots(broadphase *bp, const rg_mem *m, int32_t slots)
+{
+    return bp_grow_slots(bp, m, bp_slot_cap(bp, slots));
+}
+
+void broadphase_clear(broadphase *bp, const rg_mem *m, int32_t *head, int bits)
+{
+    if (bits != bp->bucket_bits) {
+        if (bp->head != NULL) mem_free(m, bp->head, ((size_t)1 << bp->bucket_bits) * sizeof *bp->head);
+        bp->head = head;
+        bp->bucket_bits = bits;
+    }
+    bp->count = bp->n_huge = bp->n_moved = bp->n_active = 0;
+    for (int32_t s = 0; s < bp->cap; s++) {
+        bp_entry *e = &bp->e[s];
+        memset(e, 0, sizeof *e);
+        e->member = -1;
+        e->next = e->prev = -1;
+        e->lnext = e->lprev = -1;
+        e->apos = -1;
+    }
+    if (bp->head != NULL)
+        for (size_t k = 0; k < ((size_t)1 << bp->bucket_bits); k++) bp->head[k] = -1;
+    for (int li = 0; li <= BP_LEVELS; li++) bp->level_count[li] = 0;
+    for (int li = 0; li < BP_LEVELS; li++) bp->level_head[li] = -1;
+    bp->levels = 0;
+}
+
+void broadphase_restore_finish(broadphase *bp)
+{
+    for (int32_t i = 0; i < bp->count; i++) {
+        int32_t s = bp->members[i];
+        bp_entry *e = &bp->e[s];
+        level_count_add(bp, e->level, 1);
+        if (e->level == BP_HUGE) {
+            bp->huge[e->next] = s;
+            bp->n_huge++;
+            e->prev = e->lnext = e->lprev = -1;
+            continue;
+        }
+        if (e->prev < 0) bp->head[bucket_of(bp, e->key)] = s;
+        if (e->lprev < 0) bp->level_head[e->level] = s;
+    }
+    for (int32_t i = 0; i < bp->count; i++) {
+        int32_t s = bp->members[i];
+        if (bp->e[s].apos < 0) continue;
+        bp->active[bp->e[s].apos] = s;
+        bp->n_active++;
+    }
 }
 
 void broadphase_release(broadphase *bp, const rg_mem *m)

@@ -28,6 +28,21 @@ void contact_refresh_materials(struct rg_world *w, int32_t s);
 void contact_refresh_flags(struct rg_world *w, int32_t s);
 /* The contact between body slots s and t, or -1. */
 int32_t contact_find(const struct rg_world *w, int32_t s, int32_t t);
+/* Contact storage of an exact capacity with room for n_ev events, made aside (restoring a
+ * snapshot) and taken by contact_block_adopt, which frees what it replaces and leaves the
+ * contents to the caller.  Nothing is allocated when the world's storage already fits. */
+typedef struct contact_block {
+    contact *c;
+    int32_t *awake;
+    solver_rows rows;
+    event_store ev;
+    int32_t cap;
+    int new_contacts, new_events;
+} contact_block;
+rg_status contact_block_alloc(contact_block *b, const struct rg_world *w, int32_t cap, int32_t n_ev, int32_t n_pend);
+void contact_block_adopt(struct rg_world *w, contact_block *b);
+void contact_block_free(contact_block *b, const rg_mem *m);
+
 void contact_awake_add(contact_store *cs, int32_t id);
 void contact_awake_remove(contact_store *cs, int32_t id);
 

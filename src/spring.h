@@ -10,6 +10,8 @@
 
 struct rg_world;
 
+/* Room for n springs; all-or-nothing. */
+rg_status spring_reserve(struct rg_world *w, int32_t n);
 /* Destroys the springs attached to body slot `slot`. */
 void spring_detach_body(struct rg_world *w, int32_t slot);
 void spring_release(struct rg_world *w);

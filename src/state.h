@@ -126,7 +126,7 @@ typedef struct spring_store {
 #define CT_PASS    32u  /* passing: neither solved nor touching until a step ends apart */
 
 typedef struct contact {
-    int32_t sa, sb;           /* body slots; a has the lower handle */
+    int32_t sa, sb;           /* body slots; a has the lower handle; -1 when the id is free */
     int32_t na, pa, nb, pb;   /* next/prev contact ids in a's and b's lists (-1 ends) */
     int32_t awake;            /* index in awake[], -1 while both bodies rest */
     uint32_t flags;           /* CT_* */

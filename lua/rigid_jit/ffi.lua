@@ -164,6 +164,9 @@ int32_t rg_world_raycast_all(const rg_world *world, rg_vec2 origin, rg_vec2 tran
 int32_t rg_world_query_point(const rg_world *world, rg_vec2 point, uint32_t mask, rg_body *out, int32_t capacity);
 int32_t rg_world_cast_shape(const rg_world *world, int32_t shape, rg_vec2 size, rg_vec2 origin, rg_vec2 translation, uint32_t mask, rg_ray_hit *out_hit);
 rg_status rg_body_move(rg_world *world, rg_body body, rg_vec2 target, uint32_t mask, int32_t response, rg_vec2 *out_position, rg_ray_hit *out_hits, int32_t capacity, int32_t *out_count);
+rg_status rg_world_save(const rg_world *world, void *out, size_t capacity, size_t *out_size);
+rg_status rg_world_restore(rg_world *world, const void *data, size_t size);
+rg_status rg_world_hash(const rg_world *world, uint64_t *out_hash);
 typedef struct rg_debug_draw {
   void (*circle)(rg_body body, rg_vec2 center, rg_real radius, uint32_t rgba, void *user);
   void (*box)(rg_body body, rg_vec2 lower, rg_vec2 upper, uint32_t rgba, void *user);
