@@ -108,7 +108,8 @@ check-readme-lua: $(LUA_HOST) $(B)/readme_example.lua
 # LuaJIT binding loads the double library too, by RIGID_LIBRARY).
 LUA_CMOD_DIR ?= $(PREFIX)/lib/lua/5.4
 LUA_LMOD_DIR ?= $(PREFIX)/share/lua/5.1
-LUA_JIT_FILES := rigid_jit.lua rigid_jit/ffi.lua rigid_jit/check.lua
+LUA_JIT_FILES := rigid_jit.lua rigid_jit/ffi.lua rigid_jit/check.lua rigid_jit/query.lua \
+                 rigid_jit/contact.lua
 .PHONY: install-lua uninstall-lua rock-build rock-install check-rock
 ifeq ($(REAL),float)
 install: install-lua
