@@ -59,6 +59,7 @@ typedef struct pairs_query {
     uint32_t mark;    /* the bodies s has a contact with carry it */
     int teleported;
     int failed;
+    int *grow_failed; /* a contact grow failed in this search: every later try would too */
     int woke;
 } pairs_query;
 
@@ -74,7 +75,10 @@ static void pairs_visit(void *p, int32_t t)
     if (et->mark == q->mark) return;    /* s has a contact with t */
     int32_t it = body_dense(w, t);
     if (!pairs_admitted(w, q->is, it)) return;
-    if (contact_create(w, s, t) < 0) {
+    /* Out of memory, the search asks once: trying the same allocations again for every
+     * remaining pair would cost a failed grow per pair (44,850 for 300 overlapping bodies). */
+    if ((cw->contacts.free_head < 0 && *q->grow_failed) || contact_create(w, s, t) < 0) {
+        *q->grow_failed = 1;
         q->failed = 1;
         return;
     }
@@ -93,7 +97,7 @@ int pairs_find(rg_world *w)
     contact_store *cs = &cw->contacts;
     broadphase *bp = &cw->bp;
     int32_t n = bp->n_moved, kept = 0;
-    int woke = 0;
+    int woke = 0, grow_failed = 0;
     for (int32_t k = 0; k < n; k++) {
         int32_t s = bp->moved[k];
         const bp_entry *e = &bp->e[s];
@@ -115,6 +119,7 @@ int pairs_find(rg_world *w)
         q.is = body_dense(w, s);
         q.teleported = (w->b.cflags[q.is] & CF_TELEPORTED) != 0;
         q.failed = 0;
+        q.grow_failed = &grow_failed;
         q.woke = 0;
         broadphase_query(bp, e->lx, e->ly, e->ux, e->uy, pairs_visit, &q);
         woke |= q.woke;
