@@ -1,6 +1,6 @@
 /* lquery.c: what the Lua binding reads out of a world after a step: contact events
  * (world:events) and queries (world:raycast, raycast_all, query_aabb, query_point,
- * cast_circle, cast_box).  Bodies come back as the values scripts hold (lbody_push); the
+ * cast_circle, cast_box, stopped).  Bodies come back as the values scripts hold (lbody_push); the
  * bodies visited are charged to the host. */
 #include "lrigid_int.h"
 
@@ -156,6 +156,25 @@ static int lquery_point(lua_State *L)
     return 1;
 }
 
+/* world:stopped(): the bodies the last stepping call stopped at the edge of the range. */
+static int lquery_stopped(lua_State *L)
+{
+    rg_world *w = lworld_checkopen(L, 1);
+    int32_t n = rg_world_get_stopped(w, NULL, 0), i;
+    rg_body *out;
+    lua_settop(L, 1);
+    if (n < 0) return lcheck_status(L, n, "stopped", NULL);
+    out = (rg_body *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *out, 0);
+    if (n > 0) n = rg_world_get_stopped(w, out, n);
+    lworld_charge(L, n);
+    lua_createtable(L, n, 0);
+    for (i = 0; i < n; i++) {
+        lbody_push(L, 1, out[i]);
+        lua_rawseti(L, -2, i + 1);
+    }
+    return 1;
+}
+
 /* world:cast_circle(r, x, y, dx, dy [, mask]) and world:cast_box(hw, hh, x, y, dx, dy
  * [, mask]): the returns of world:raycast. */
 static int lquery_cast(lua_State *L, int32_t shape, rg_vec2 size, int at, const char *what,
@@ -189,6 +208,7 @@ const luaL_Reg lquery_world_methods[] = {
     { "raycast_all", lquery_raycast_all },
     { "query_aabb", lquery_aabb },
     { "query_point", lquery_point },
+    { "stopped", lquery_stopped },
     { "cast_circle", lquery_cast_circle },
     { "cast_box", lquery_cast_box },
     { NULL, NULL }

@@ -48,6 +48,7 @@
 
 #define BODY_F_DISSIPATIVE 1u /* has drag or surface friction (and is dynamic) */
 #define BODY_F_LIMITED     2u /* has a speed limit (and is dynamic) */
+#define BODY_F_STOPPED     4u /* the last stepping call stopped it at the range's edge (bounds.c) */
 
 /* cflags: collision state of a body */
 #define CF_SENSOR     1u
@@ -257,6 +258,7 @@ struct rg_world {
     /* What the scene uses, so a stage nobody uses costs nothing. */
     int32_t dissipative_count; /* dynamic bodies with drag or surface friction */
     int32_t limit_count;       /* dynamic bodies with speed limits */
+    int32_t stopped_any;       /* some body may carry BODY_F_STOPPED (bounds.c) */
 
     /* Fixed-step accumulator (double, so that long runs do not drift). */
     double fixed_dt;

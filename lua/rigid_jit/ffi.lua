@@ -67,6 +67,7 @@ rg_status rg_world_get_fixed_step(const rg_world *world, rg_real *out_dt, int32_
 rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *out_steps);
 rg_status rg_world_get_alpha(const rg_world *world, rg_real *out_alpha);
 rg_status rg_body_get_interpolated_position(const rg_world *world, rg_body body, rg_vec2 *out);
+int32_t rg_world_get_stopped(const rg_world *world, rg_body *out, int32_t capacity);
 int32_t rg_world_body_count(const rg_world *world);
 int32_t rg_world_spring_count(const rg_world *world);
 rg_status rg_body_create(rg_world *world, int32_t type, rg_real mass, rg_vec2 position, rg_body *out_body);

@@ -1,6 +1,6 @@
 -- rigid_jit/query.lua: what the LuaJIT binding reads out of a world after a step, as
 -- lua/lquery.c does: contact events (world:events) and the queries (world:raycast,
--- raycast_all, query_aabb, query_point, cast_circle, cast_box).  rigid_jit.lua calls the
+-- raycast_all, query_aabb, query_point, cast_circle, cast_box, stopped).  rigid_jit.lua calls the
 -- function this returns with its core (World, open_world, push_body); it returns
 -- { pushhit = f } for rigid_jit/contact.lua.
 local ffi = require "ffi"
@@ -124,6 +124,15 @@ return function(core)
     if n < 0 then status_error(n, "query_point") end
     found, found_cap = grow(found, found_cap, n, "rg_body[?]")
     if n > 0 then n = V.rg_world_query_point(p, x, y, mask, found, n) end
+    return found_list(w, n)
+  end
+
+  function World.stopped(w)
+    local p = open_world(w)
+    local n = C.rg_world_get_stopped(p, nil, 0)
+    if n < 0 then status_error(n, "stopped") end
+    found, found_cap = grow(found, found_cap, n, "rg_body[?]")
+    if n > 0 then n = C.rg_world_get_stopped(p, found, n) end
     return found_list(w, n)
   end
 

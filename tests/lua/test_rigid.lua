@@ -546,6 +546,28 @@ test("springs: bad options raise", function()
   eq(w:spring_count(), 0)
 end)
 
+-- The range guard: 1e12 N (RG_MAX_FORCE) on 1e-6 kg (RG_MIN_MASS) for 10 s (RG_MAX_DT) would
+-- reach 1e19 m/s and 1e20 m; the step stops the body at x = 1e9 (RG_MAX_COORD) and lists it
+-- until the next stepping call.
+test("stopped: a body driven out of range stops at the edge and is listed", function()
+  local w = rigid.world()
+  local calm = w:body{ x = 5 }
+  local b = w:body{ mass = 1e-6 }
+  b:apply_force(1e12, 0)
+  w:step(10)
+  local list = w:stopped()
+  eq(#list, 1, "stopped count"); check(rawequal(list[1], b), "the body's own value")
+  local x, y = b:position()
+  eq(x, 1e9, "x at the edge"); eq(y, 0, "y")
+  local vx, vy = b:velocity()
+  eq(vx, 0, "vx"); eq(vy, 0, "vy")
+  eq(calm:position(), 5, "the body in range is untouched")
+  w:step(10)
+  eq(#w:stopped(), 0, "cleared by the next step")
+  w:close()
+  raises("attempt to use a closed world", w.stopped, w)
+end)
+
 -- ---------------------------------------------------------------- collision
 
 if rigid.collision then
