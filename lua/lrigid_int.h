@@ -167,4 +167,9 @@ extern const luaL_Reg lquery_world_methods[];
 /* body:contacts, body:pass_through, body:set_one_way, body:one_way, body:move */
 extern const luaL_Reg lcontact_methods[];
 
+/* ---------------------------------------------------------------- lsnapshot.c */
+
+/* world:save, world:restore, world:hash */
+extern const luaL_Reg lsnap_world_methods[];
+
 #endif

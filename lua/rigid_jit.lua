@@ -5,12 +5,14 @@
 -- Its parts: rigid_jit/ffi.lua loads the library (RIGID_LIBRARY, else librigid) and
 -- declares the header; rigid_jit/check.lua checks arguments and words the errors;
 -- rigid_jit/query.lua has the events and queries of a world, rigid_jit/contact.lua a body's
--- contacts, passing through and moving (as lua/lquery.c and lua/lcontact.c).
+-- contacts, passing through and moving, rigid_jit/snapshot.lua world:save, world:restore
+-- and world:hash (as lua/lquery.c, lua/lcontact.c and lua/lsnapshot.c).
 -- Bodies, worlds and springs are tables with a protected metatable.  A body is one value
 -- wherever it appears (world:body, world:bodies, events, queries), so tables can be keyed
 -- by it, also after it is destroyed, for as long as anyone holds it; a world stays alive
--- while any of its bodies is held.  Where LuaJIT has no 64-bit integers, body:id() and a
--- large body:user_data() are int64_t cdata, and user data may be given as such cdata.
+-- while any of its bodies is held.  Where LuaJIT has no 64-bit integers, body:id(),
+-- world:hash() and a large body:user_data() are int64_t cdata, and user data may be given
+-- as such cdata.
 local ffi = require "ffi"
 local lib = require "rigid_jit.ffi"
 local check = require "rigid_jit.check"
@@ -387,7 +389,7 @@ function World.body(w, ...)
   -- back to before that body was made: it stays destroyed for good (see objects above).
   local old = w[W_DEAD][key]
   if old then
-    old[B_RETIRED] = true
+    rawset(old, B_RETIRED, true)   -- bodies have no fields to set from outside
     w[W_DEAD][key] = nil
   end
   return b
@@ -639,9 +641,12 @@ function spring_mt.__tostring(s) return "rigid.spring (" .. (spring_live(s) and 
 
 do
   local core = { World = World, Body = Body, open_world = open_world, body_wh = body_wh,
-                 body_handle = body_handle, push_body = push_body, B_BOX = B_BOX, B_H = B_H,
-                 B_WORLD = B_WORLD }
+                 body_handle = body_handle, push_body = push_body, new_body = new_body,
+                 hkey = hkey, W_LIVE = W_LIVE, W_DEAD = W_DEAD, W_SERIAL = W_SERIAL,
+                 B_BOX = B_BOX, B_H = B_H, B_WORLD = B_WORLD, B_SERIAL = B_SERIAL,
+                 B_TYPE = B_TYPE, B_NAME = B_NAME }
   require("rigid_jit.contact")(core, require("rigid_jit.query")(core))
+  require("rigid_jit.snapshot")(core)
 end
 
 -- ---------------------------------------------------------------- module
