@@ -101,7 +101,8 @@ static int lcontact_move(lua_State *L)
     lua_settop(L, 1);
     lua_getiuservalue(L, 1, LBODY_UV_WORLD);   /* 2: the world value */
     LCHECK(L, w, rg_body_get_position(w, b->h, &start), what);
-    LCHECK(L, w, rg_body_move(w, b->h, target, (uint32_t)mask, response, &end, hits, cap, &n), what);
+    LCHECK(L, w, rg_body_move(w, b->h, target, (uint32_t)mask, response, &end, hits, cap, &n),
+           what);
     if (n > cap) {
         LCHECK(L, w, rg_body_move(w, b->h, start, 0, RG_MOVE_CROSS, NULL, NULL, 0, NULL), what);
         hits = (rg_ray_hit *)lua_newuserdatauv(L, (size_t)n * sizeof *hits, 0);

@@ -170,7 +170,8 @@ static size_t lsnap_read(lua_State *L, const unsigned char *s, size_t len, lsnap
     out->next_serial = (lua_Integer)lsnap_get(at, 8);
     out->count = (int32_t)lsnap_get(at + 8, 4);
     at += 12;
-    if (out->next_serial < 1 || out->count < 0 || (size_t)out->count > (size_t)(end - at) / LSNAP_ENTRY)
+    if (out->next_serial < 1 || out->count < 0 ||
+        (size_t)out->count > (size_t)(end - at) / LSNAP_ENTRY)
         luaL_error(L, "restore: the snapshot's body list is malformed");
     out->p = at;
     for (i = 0; i < out->count; i++) {
@@ -216,7 +217,8 @@ static void lsnap_prepare(lua_State *L, const lsnap_list *list)
         lsnap_entry(&at, &h, &serial, &name, &len);
         key = (lua_Integer)h;
         if (lua_rawgeti(L, 3, key) != LUA_TNIL)
-            luaL_error(L, "restore: the snapshot's body list is malformed (body %d twice)", (int)i + 1);
+            luaL_error(L, "restore: the snapshot's body list is malformed (body %d twice)",
+                       (int)i + 1);
         lua_pop(L, 1);
         if (lua_rawgeti(L, 7, key) == LUA_TNIL) {
             lua_pop(L, 1);
