@@ -212,7 +212,7 @@ end
 local function world_vec2(get, set, name)
   World[name] = function(w)
     local p = open_world(w)
-  local st = get(p, vec)
+    local st = get(p, vec)
     if st ~= 0 then status_error(p, st, name) end
     return vec[0].x, vec[0].y
   end
