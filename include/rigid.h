@@ -500,8 +500,11 @@ RG_API int32_t rg_world_query_aabb(const rg_world *world, rg_vec2 lower, rg_vec2
    In detail: when a contact with a one-way body would begin (the pair is about to touch or
    be solved), it blocks only if the contact normal from the one-way body toward the other
    points into the half-space of `normal` (dot > 0) and the shapes do not overlap by more
-   than the slop at the start of the step; otherwise the pair passes (no solve, no touching,
-   no events) until a step ends with the shapes apart.  A blocking contact keeps blocking
+   than the slop at the start of the step, or if the other shape lay wholly on the `normal`
+   side at the start of the step (its extent along `normal` begins no more than the slop
+   short of the one-way shape's end: a box sliding over flush one-way tiles meets each
+   next tile's corner first, with a side normal); otherwise the pair passes (no solve, no
+   touching, no events) until a step ends with the shapes apart.  A blocking contact keeps blocking
    while it touches.  normal must be finite and of length 1 within 1e-3, or (0, 0); it is
    stored normalised.  Raycasts and queries see one-way shapes as any other; the mover
    (rg_body_move) and the post-solve sweep respect them. */

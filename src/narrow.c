@@ -133,22 +133,32 @@ static inline int narrow_far_apart(const cbody *A, const cbody *B, int32_t ka, i
     return rg_fabs(gx) > slop && rg_fabs(gy) > slop;
 }
 
-/* Whether one-way body i (any body: two-way ones always block) blocks the other body of a
- * contact beginning with normal (nx, ny) from i toward the other and start separation s0. */
-static inline int narrow_one_way_blocks(const body_store *b, int32_t i, rg_real nx, rg_real ny,
-                                        rg_real s0, rg_real slop)
+/* Whether one-way body P (any body: two-way ones always block) blocks body O of a contact
+ * that begins with normal (nx, ny) from P toward O and start separation s0: the normal points
+ * to the side of P's one-way normal n and the shapes overlap by no more than the slop, or O's
+ * shape lay wholly on that side at the start of the step, its extent along n beginning no more
+ * than the slop short of the end of P's (for n = (0, 1): O's bottom at or above P's top minus
+ * the slop).  The second test is for a box sliding over flush one-way tiles: it meets the
+ * next tile's corner first, with a side normal, while it rests on their tops all along. */
+static inline int narrow_one_way_blocks(const body_store *b, int32_t ip, const cbody *P, const cbody *O,
+                                        rg_real nx, rg_real ny, rg_real s0, rg_real slop)
 {
-    rg_real ox = b->owx[i], oy = b->owy[i];
+    rg_real ox = b->owx[ip], oy = b->owy[ip];
     if (ox == 0 && oy == 0) return 1;
-    return nx * ox + ny * oy > 0 && s0 >= -slop;
+    if (nx * ox + ny * oy > 0 && s0 >= -slop) return 1;
+    /* a shape's reach along the unit n from its centre: r, or the box's corner */
+    rg_real rp = P->kind == RG_SHAPE_CIRCLE ? P->hx : rg_fabs(ox) * P->hx + rg_fabs(oy) * P->hy;
+    rg_real ro = O->kind == RG_SHAPE_CIRCLE ? O->hx : rg_fabs(ox) * O->hx + rg_fabs(oy) * O->hy;
+    rg_real gap = ((O->sx - P->sx) * ox + (O->sy - P->sy) * oy) - ro - rp;
+    return gap >= -slop;
 }
 
 /* Whether the pair is skipped (neither solved nor touching) this step: it is passing through
  * (rg_body_pass_through, or a one-way body it met from the wrong side or inside, until a
  * step ends with the shapes apart, d > 0), or the pre-solve hook says so.  `candidate`: the
  * pair would be solved or touching.  A touching one-way contact keeps blocking. */
-static int narrow_skip(rg_world *w, contact *c, int32_t ia, int32_t ib, rg_real s0, rg_real d,
-                       uint32_t was, int candidate)
+static int narrow_skip(rg_world *w, contact *c, int32_t ia, int32_t ib, const cbody *A, const cbody *B,
+                       rg_real s0, rg_real d, uint32_t was, int candidate)
 {
     if (c->flags & CT_PASS) {
         if (d > 0) c->flags &= ~CT_PASS; /* apart at the end of this step: collides from the next */
@@ -158,8 +168,8 @@ static int narrow_skip(rg_world *w, contact *c, int32_t ia, int32_t ib, rg_real 
     if ((c->flags & CT_ONEWAY) && !was) {
         const body_store *b = &w->b;
         rg_real slop = w->coll.slop;
-        if (!narrow_one_way_blocks(b, ia, c->nx, c->ny, s0, slop) ||
-            !narrow_one_way_blocks(b, ib, -c->nx, -c->ny, s0, slop)) {
+        if (!narrow_one_way_blocks(b, ia, A, B, c->nx, c->ny, s0, slop) ||
+            !narrow_one_way_blocks(b, ib, B, A, -c->nx, -c->ny, s0, slop)) {
             if (!(d > 0)) c->flags |= CT_PASS;
             return 1;
         }
@@ -257,7 +267,7 @@ static void narrow_one(rg_world *w, int32_t id, collide_step *x)
                     rg_finite(vn0);
         /* one-way shapes, pass-through and the pre-solve hook may skip the pair this step */
         if (((c->flags & (CT_ONEWAY | CT_PASS)) || w->pre_solve != NULL) &&
-            narrow_skip(w, c, ia, ib, s0, d, was, now != 0 || solve)) {
+            narrow_skip(w, c, ia, ib, A, B, s0, d, was, now != 0 || solve)) {
             now = 0;
             solve = 0;
             c->flags &= ~CT_CLOSING;
