@@ -32,7 +32,7 @@ WARN := -Wall -Wextra -Wpedantic -Werror -Wshadow -Wundef -Wwrite-strings \
 CFLAGS := -std=c99 $(OPT) -ffp-contract=off -fPIC -fvisibility=hidden $(WARN) $(REAL_FLAGS) \
           -Iinclude -Isrc -MMD -MP $(EXTRA_CFLAGS)
 LDFLAGS := $(EXTRA_LDFLAGS)
-LDLIBS := -lm
+LDLIBS := -lm -pthread
 
 VERSION := 0.1.0
 SONAME := lib$(LIB_NAME).so.0
@@ -140,7 +140,7 @@ $(B)/pc.vars: FORCE
 	@echo '$(PC_VARS)' | cmp -s - $@ || echo '$(PC_VARS)' > $@
 
 $(PC): $(B)/pc.vars
-	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: %s\nDescription: 2D game physics in C99 (%s)\nVersion: %s\nCflags: -I$${includedir} %s\nLibs: -L$${libdir} -l%s\nLibs.private: -lm\n' \
+	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: %s\nDescription: 2D game physics in C99 (%s)\nVersion: %s\nCflags: -I$${includedir} %s\nLibs: -L$${libdir} -l%s\nLibs.private: -lm -pthread\n' \
 	  '$(PREFIX)' '$(LIB_NAME)' '$(REAL)' '$(VERSION)' '$(REAL_FLAGS)' '$(LIB_NAME)' > $@
 
 install: $(LIB_A) $(LIB_SO) $(PC)

@@ -671,6 +671,49 @@ typedef struct rg_debug_draw {
 /* RG_ERR_INVALID_ARGUMENT for a NULL world or draw, or a flag outside RG_DRAW_*. */
 RG_API rg_status rg_world_draw(const rg_world *world, const rg_debug_draw *draw);
 
+/* ---------------------------------------------------------------- threads */
+
+/* A step can spread its stages over the threads of a task system: the game's own job system,
+   or the pool below.  The results are bit-identical at any number of workers, and identical
+   to the step without a task system: every stage is split into ranges whose results do not
+   depend on how it is split or in which order the ranges run, and what must happen in order
+   (the pre-solve hook, events, contact creation, waking) stays on the stepping thread.
+   Callbacks (the pre-solve hook) run on the thread that called rg_world_step or
+   rg_world_advance, never on a worker.
+
+   enqueue runs fn over [0, count): it may split it into ranges [begin, end) of at least
+   min_range items (the last may be shorter) and run them on any threads at once, in any
+   order, each call with a worker index in [0, workers) that no other call running at the
+   same time has; or run it all at once and return NULL.  finish waits until every range of
+   what enqueue returned has run (it is not called for NULL).  The world calls enqueue and
+   finish from the stepping thread only, and finishes each task before the next.  workers
+   must be in [1, RG_MAX_WORKERS]; enqueue and finish must not be NULL.  NULL tasks: one
+   thread, the default.  A world keeps a copy of *tasks. */
+#define RG_MAX_WORKERS 64
+typedef void rg_task_fn(int32_t begin, int32_t end, int32_t worker, void *context);
+typedef struct rg_task_system {
+    int32_t workers;   /* threads that may run tasks at once, >= 1 */
+    void *(*enqueue)(rg_task_fn *fn, int32_t count, int32_t min_range, void *context,
+                     void *user);   /* run fn over [0, count) in ranges of at least
+                                       min_range; may run it at once and return NULL */
+    void (*finish)(void *task, void *user);   /* wait for what enqueue returned */
+    void *user;
+} rg_task_system;
+RG_API rg_status rg_world_set_task_system(rg_world *world, const rg_task_system *tasks);
+
+/* A ready pool of `threads` threads in all ([1, RG_MAX_WORKERS]: the calling thread and
+   threads - 1 it starts), for games without a job system of their own.  Its task system runs
+   each task with the calling thread taking part and returns when it is done (enqueue
+   returns NULL); idle threads wait on a condition after a short spin.  One pool may serve
+   several worlds, stepped on different threads: their tasks take turns.  Destroy a pool
+   only when no world steps with it (a world keeps its task system until set again).
+   RG_ERR_INVALID_ARGUMENT for a count out of range or NULL out_pool, RG_ERR_OUT_OF_MEMORY
+   or, where threads cannot be started, RG_ERR_CAPACITY. */
+typedef struct rg_thread_pool rg_thread_pool;
+RG_API rg_status rg_thread_pool_create(int32_t threads, rg_thread_pool **out_pool);
+RG_API void rg_thread_pool_destroy(rg_thread_pool *pool);   /* NULL: no-op */
+RG_API rg_status rg_thread_pool_task_system(rg_thread_pool *pool, rg_task_system *out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -7,6 +7,7 @@
 #include "force.h"
 #include "integrator.h"
 #include "state.h"
+#include "task.h"
 #include "vec2.h"
 
 /* Backward-Euler dissipation for one body: given the velocity v_free the other forces give
@@ -272,38 +273,68 @@ static EULER_INLINE int euler_block(const body_store *b, int32_t i0, const euler
     return slow != 0;
 }
 
-/* Returns 1 when a body's new state is out of range. */
-EULER_DISPATCH static int32_t euler_step(rg_world *w, rg_real h, int explicit_euler)
-{
-    body_store *b = &w->b;
-    int32_t n = b->n_active;
+/* The pass over blocks [begin, end) of EULER_BLOCK bodies (the last one short), as a task
+ * (task.h): each block's bodies are its own, so any split gives the same results.  The
+ * worker's slot of `out` records a body out of range. */
+typedef struct euler_task {
+    body_store *b;
     euler_env e;
-    e.h = h;
-    e.gx = w->gravity.x;
-    e.gy = w->gravity.y;
-    e.wx = w->wind.x;
-    e.wy = w->wind.y;
-    e.springs = w->springs.count > 0;
-    e.dissipative = w->dissipative_count > 0;
-    e.explicit_euler = explicit_euler;
-    /* the springs at the start state come from the forces stage (force_begin) */
-    e.sax = w->scratch.sax;
-    e.say = w->scratch.say;
+    int32_t n;
+    int32_t out[RG_MAX_WORKERS];
+} euler_task;
+
+EULER_DISPATCH static void euler_range(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    euler_task *t = context;
+    body_store *b = t->b;
+    const euler_env *e = &t->e;
     rg_real no_spring[EULER_BLOCK];
     for (int j = 0; j < EULER_BLOCK; j++) no_spring[j] = -RG_R(0.0);
-    int32_t i0 = 0, out = 0;
-    for (; i0 + EULER_BLOCK <= n; i0 += EULER_BLOCK) {
-        rg_real nvx[EULER_BLOCK], nvy[EULER_BLOCK];
-        const rg_real *spx = e.springs ? e.sax + i0 : no_spring;
-        const rg_real *spy = e.springs ? e.say + i0 : no_spring;
-        /* A slow block's accelerations are written again by euler_body. */
-        if (euler_block(b, i0, &e, spx, spy, nvx, nvy, b->ax + i0, b->ay + i0)) {
-            for (int j = 0; j < EULER_BLOCK; j++) out |= euler_body(b, &e, i0 + j);
+    int32_t out = 0;
+    for (int32_t k = begin; k < end; k++) {
+        int32_t i0 = k * EULER_BLOCK;
+        if (i0 + EULER_BLOCK > t->n) { /* the short last block */
+            for (int32_t i = i0; i < t->n; i++) out |= euler_body(b, e, i);
             continue;
         }
-        out |= euler_commit(b->x + i0, b->y + i0, b->vx + i0, b->vy + i0, nvx, nvy, h, explicit_euler);
+        rg_real nvx[EULER_BLOCK], nvy[EULER_BLOCK];
+        const rg_real *spx = e->springs ? e->sax + i0 : no_spring;
+        const rg_real *spy = e->springs ? e->say + i0 : no_spring;
+        /* A slow block's accelerations are written again by euler_body. */
+        if (euler_block(b, i0, e, spx, spy, nvx, nvy, b->ax + i0, b->ay + i0)) {
+            for (int j = 0; j < EULER_BLOCK; j++) out |= euler_body(b, e, i0 + j);
+            continue;
+        }
+        out |= euler_commit(b->x + i0, b->y + i0, b->vx + i0, b->vy + i0, nvx, nvy, e->h, e->explicit_euler);
     }
-    for (int32_t i = i0; i < n; i++) out |= euler_body(b, &e, i);
+    t->out[worker] |= out;
+}
+
+/* Blocks per task range: some 1000 bodies, so a range outweighs handing it out. */
+#define EULER_RANGE 16
+
+/* Returns 1 when a body's new state is out of range. */
+static int32_t euler_step(rg_world *w, rg_real h, int explicit_euler)
+{
+    euler_task t;
+    euler_env *e = &t.e;
+    t.b = &w->b;
+    t.n = w->b.n_active;
+    e->h = h;
+    e->gx = w->gravity.x;
+    e->gy = w->gravity.y;
+    e->wx = w->wind.x;
+    e->wy = w->wind.y;
+    e->springs = w->springs.count > 0;
+    e->dissipative = w->dissipative_count > 0;
+    e->explicit_euler = explicit_euler;
+    /* the springs at the start state come from the forces stage (force_begin) */
+    e->sax = w->scratch.sax;
+    e->say = w->scratch.say;
+    int32_t workers = task_workers(w), out = 0;
+    for (int32_t k = 0; k < workers; k++) t.out[k] = 0;
+    task_for(w, euler_range, (t.n + EULER_BLOCK - 1) / EULER_BLOCK, EULER_RANGE, &t);
+    for (int32_t k = 0; k < workers; k++) out |= t.out[k];
     return out;
 }
 
