@@ -1,14 +1,16 @@
 #!/bin/sh
 # Installs from Debian's packages what rigid needs and is missing; does nothing when all is
 # there.  --bench adds the peers of the side-by-side benchmark (Box2D 2.4, Chipmunk 7);
-# --charts adds gnuplot.  Uses sudo when not root.
+# --charts adds gnuplot; --fuzz adds clang with its sanitizer and libFuzzer runtimes (make
+# fuzz, make sanitize CC=clang).  Uses sudo when not root.
 set -e
 pkgs="libcmocka-dev liblua5.4-dev lua5.4 pkg-config python3"
 for arg in "$@"; do
     case "$arg" in
     --bench) pkgs="$pkgs libbox2d-dev libchipmunk-dev g++" ;;
     --charts) pkgs="$pkgs gnuplot-nox" ;;
-    *) echo "usage: $0 [--bench] [--charts]" >&2; exit 2 ;;
+    --fuzz) pkgs="$pkgs clang libclang-rt-14-dev" ;;
+    *) echo "usage: $0 [--bench] [--charts] [--fuzz]" >&2; exit 2 ;;
     esac
 done
 missing=""
