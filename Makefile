@@ -46,7 +46,7 @@ TEST_BINS := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_SRC))
 # Fragments append to these; they are included here, before any rule uses the lists
 # (a prerequisite list is expanded when make reads the rule).
 ALL_TARGETS := $(LIB_A) $(LIB_SO)
-TEST_RUNS := check-c check-ffi check-readme check-exports
+TEST_RUNS := check-c check-ffi check-readme check-exports check-modules
 .DEFAULT_GOAL := all
 include $(sort $(wildcard lua/*.mk tools/*.mk tests/fuzz/*.mk))
 
@@ -103,6 +103,11 @@ check-exports: $(LIB_SO)
 	@bad=$$(nm -D --defined-only $(LIB_SO) | awk '{print $$3}' | grep -v '^rg_' | grep -v '^_' || true); \
 	 if [ -n "$$bad" ]; then echo "exported outside rg_*: $$bad"; exit 1; fi; \
 	 echo "$$(nm -D --defined-only $(LIB_SO) | grep -c ' T rg_') rg_* functions, nothing else"
+
+# No library module calls another that calls it back (from the symbols of librigid.a).
+check-modules: $(LIB_A)
+	@echo "== module layers of $(LIB_A)"
+	@$(PYTHON) tools/check-modules.py $(LIB_A)
 
 # Installs what is missing (tools/install-deps.sh is a no-op when all is there).
 deps:

@@ -1,11 +1,29 @@
 /* rigid.h: the one public header of rigid, a C99 library for 2D game physics.
  *
- * Units are SI throughout: metres, seconds, kilograms, newtons.  Every function validates
- * its input in every build and returns a status; a call that returns an error changes
- * nothing.  No input, however bad, crashes the library or puts a NaN into the world.
+ * The contract (programs outside this repository are written against it):
  *
- * The contract is in shared/ABI.md: the names, parameter orders, types and values of the
- * entry points it lists are fixed.  Everything else here extends it in the same style.
+ * - Fixed: every name, parameter order, type and value declared here that the project's
+ *   ABI lists (the world, stepping, body, force, spring, collision, event and query calls
+ *   of version 0.1, and the gameplay, snapshot, error, debug-draw and thread calls as they
+ *   land).  New calls are added in the same style; none is renamed or reordered.
+ * - Names: every exported symbol is rg_*, every macro and constant RG_*.  The shared library
+ *   exports nothing else.  This header includes only <stddef.h> and <stdint.h>.
+ * - Units are SI throughout: metres, seconds, kilograms, newtons.
+ * - rg_real is float, or double in the double build (which defines RG_DOUBLE and names its
+ *   library librigid-double); rg_real_size() tells an FFI host which one it loaded.
+ * - Structs: rg_vec2 is the only struct passed by value, and only as an input; outputs go
+ *   through pointers.  Booleans and enums cross as int32_t.
+ * - Handles: rg_world is opaque.  A body (rg_body) or spring is a 64-bit handle packing a
+ *   slot, a generation and a tag of its world; 0 is never one.  A destroyed body's handle
+ *   never becomes valid again in that world, and a handle from another world or a forged
+ *   one is rejected (RG_ERR_STALE_HANDLE).
+ * - Errors: every function validates its input in every build and returns a status
+ *   (rg_status, below; functions returning a count return it >= 0 or a negative status).
+ *   A call that returns an error changes nothing.  No input, however bad, crashes the
+ *   library or puts a NaN into the world.
+ * - No global state: two worlds share nothing, and a world may move to another thread
+ *   between calls.  The same calls give bit-identical results on any compiler, optimisation
+ *   level and SIMD path.
  */
 #ifndef RIGID_H
 #define RIGID_H
@@ -55,7 +73,8 @@ typedef int32_t rg_status;
 #define RG_ERR_STALE_HANDLE     (-2) /* destroyed, forged, zero or another world's handle */
 #define RG_ERR_OUT_OF_MEMORY    (-3)
 #define RG_ERR_CAPACITY         (-4) /* more bodies or springs than a world can hold */
-#define RG_ERR_LOCKED           (-5) /* not allowed at this moment */
+#define RG_ERR_LOCKED           (-5) /* not allowed at this moment: a call that would change
+                                        the world, made from a callback inside its step */
 
 #define RG_INTEGRATOR_EXPLICIT_EULER      0
 #define RG_INTEGRATOR_SEMI_IMPLICIT_EULER 1   /* the default */

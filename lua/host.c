@@ -126,7 +126,6 @@ static void host_charge(lua_State *L, void *ud, double units)
 
 static void record_contacts(host *h, lua_State *L, int world_idx)
 {
-#ifdef LRIGID_COLLISION
     rg_world *w = lrigid_toworld(L, world_idx);
     rg_contact_event *ev;
     int32_t n, i;
@@ -138,11 +137,6 @@ static void record_contacts(host *h, lua_State *L, int world_idx)
         if (ev[i].kind == RG_CONTACT_BEGIN && !ev[i].sensor)
             lsvg_contact(h->rec, (double)ev[i].point.x, (double)ev[i].point.y);
     free(ev);
-#else
-    (void)h;
-    (void)L;
-    (void)world_idx;
-#endif
 }
 
 static double fixed_dt(lua_State *L, int world_idx)
@@ -251,7 +245,6 @@ static int scene_step(host *h, double dt)
     }
     has_contact = global_function(L, "contact");
     if (has_contact) lua_pop(L, 1);
-#ifdef LRIGID_COLLISION
     if (has_contact) {
         int events, i, n;
         lrigid_pushevents(L, -1);
@@ -270,7 +263,6 @@ static int scene_step(host *h, double dt)
         }
         lua_pop(L, 1);
     }
-#endif
     lua_pop(L, 1);
     return 1;
 }

@@ -62,10 +62,8 @@ int lrigid_tobody(lua_State *L, int idx, lrigid_body_info *out);
  * when there is one, a new one otherwise (identity). */
 void lrigid_pushbody(lua_State *L, int world_idx, rg_body h);
 
-#ifdef LRIGID_COLLISION
 /* Pushes the contact events of the last step of the world at world_idx, as world:events()
  * returns them (the bodies are the values scripts hold). */
 void lrigid_pushevents(lua_State *L, int world_idx);
-#endif
 
 #endif

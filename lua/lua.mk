@@ -8,39 +8,19 @@ LUA_MOD := $(B)/rigid.so
 LUA_HOST := $(B)/rigid
 LUA_HOST_SRC := lua/host.c lua/lsandbox.c lua/lpattern.c lua/lsvg.c
 LUA_HOST_OBJ := $(patsubst lua/%.c,$(B)/lua/%.o,$(LUA_HOST_SRC))
-LUA_BIND_OBJ := $(B)/lua/lrigid.o
+# The binding: checks, world, body, springs, events and queries, registration.
+LUA_BIND_SRC := lua/lcheck.c lua/lworld.c lua/lbody.c lua/lspring.c lua/lquery.c lua/lrigid.c
+LUA_BIND_OBJ := $(patsubst lua/%.c,$(B)/lua/%.o,$(LUA_BIND_SRC))
 LUA_PATFUZZ := $(B)/lua/pattern_fuzz
-
-# The collision parts of the binding (shapes, materials, sensors, filters, grounded, events,
-# raycast, AABB query) compile in once src/ defines every collision call they make, so a
-# half-landed collision API never breaks `make`.  A stamp named after the state rebuilds
-# the binding when it flips.
-LUA_COLLISION_FNS := rg_body_set_circle rg_body_set_aabb rg_body_clear_shape \
-  rg_body_set_restitution rg_body_set_friction rg_body_set_sensor rg_body_set_filter \
-  rg_body_is_grounded rg_world_get_contact_events rg_world_raycast rg_world_query_aabb \
-  rg_body_get_shape rg_body_get_restitution rg_body_get_friction rg_body_is_sensor \
-  rg_body_get_filter rg_world_set_sleeping rg_world_get_sleeping rg_world_set_sleep_thresholds \
-  rg_body_is_awake rg_body_wake rg_world_set_continuous rg_world_set_solver_iterations \
-  rg_world_set_contact_tuning rg_world_awake_body_count rg_world_touching_count
-LUA_OPEN := (
-LUA_COLLISION_MISSING := $(foreach f,$(LUA_COLLISION_FNS),\
-  $(if $(shell grep -l '^RG_API[^;]*[ *]$(f)[$(LUA_OPEN)]' src/*.c 2>/dev/null),,$(f)))
-LUA_COLLISION := $(if $(strip $(LUA_COLLISION_MISSING)),,-DLRIGID_COLLISION)
-LUA_STAMP := $(B)/lua/collision-$(if $(LUA_COLLISION),on,off)
 
 ALL_TARGETS += $(LUA_MOD) $(LUA_HOST)
 TEST_RUNS += check-lua
 # The Makefile expands `all:` and .PHONY before it includes the fragments.
 .PHONY: check-lua bench-lua
 
-$(LUA_STAMP):
+$(B)/lua/%.o: lua/%.c
 	@mkdir -p $(@D)
-	@rm -f $(B)/lua/collision-*
-	@touch $@
-
-$(B)/lua/%.o: lua/%.c $(LUA_STAMP)
-	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) $(LUA_COLLISION) $(LUA_PKG_CFLAGS) -Ilua -c $< -o $@
+	$(CC) $(CFLAGS) $(LUA_PKG_CFLAGS) -Ilua -c $< -o $@
 
 # The module exports luaopen_rigid and nothing else: the version script hides the rg_*
 # symbols of the static library linked in.  Lua's own symbols come from the interpreter.

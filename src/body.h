@@ -1,4 +1,6 @@
-/* body.h: dense structure-of-arrays body storage and its bookkeeping. */
+/* body.h: body storage: the dense structure of arrays, its partitions, and the one lookup
+ * from handle to dense index.  Storage is used by the stages and the API; it calls none of
+ * them. */
 #ifndef RG_BODY_H
 #define RG_BODY_H
 
@@ -25,7 +27,7 @@
     X(int32_t, slot)                     /* pool slot of the body in this dense place */ \
     X(int32_t, type)                     /* RG_BODY_* */                               \
     X(uint32_t, flags)                   /* BODY_F_* */                                \
-    /* collision (src/contact.c) */                                                    \
+    /* collision (shape.c, pairs.c, narrow.c, island.c) */                             \
     X(int32_t, shape)                    /* RG_SHAPE_* */                              \
     X(rg_real, hx) X(rg_real, hy)        /* half extents, m ((r, r) for a circle) */   \
     X(rg_real, rest) X(rg_real, mu)      /* restitution, contact friction */           \
@@ -38,6 +40,11 @@
 
 #define BODY_F_DISSIPATIVE 1u /* has drag or surface friction (and is dynamic) */
 #define BODY_F_LIMITED     2u /* has a speed limit (and is dynamic) */
+
+/* cflags: collision state of a body */
+#define CF_SENSOR     1u
+#define CF_GROUNDED   2u
+#define CF_TELEPORTED 4u /* placed by the API since its last pair search */
 
 /* Dense order is partitioned: [0, n_active) moving and awake (dynamic and kinematic),
  * [n_active, n_moving) asleep, [n_moving, count) static.  Every stage loops over the
@@ -72,12 +79,34 @@ typedef struct scratch_store {
     int32_t capacity;
 } scratch_store;
 
+/* Defaults of a new body's collision fields (shape.c documents them). */
+#define BODY_DEFAULT_FRICTION ((rg_real)0.6)
+#define BODY_DEFAULT_CATEGORY 1u
+#define BODY_DEFAULT_MASK     0xFFFFFFFFu
+
 struct rg_world;
 
 /* Dense index of a live body of this world, or -1: the one place handles are checked. */
 int32_t body_lookup(const struct rg_world *w, rg_body body);
+/* body_dense(w, slot) (world.h, inline): the dense index of the live body in pool slot
+ * `slot`.  Slots never move; dense indices move whenever a body changes partition (falls
+ * asleep, wakes, is created or destroyed), so code that keeps a body across such a change
+ * keeps its slot. */
+
+/* Looks up `body` at the top of an API call: declares the dense index `i`, or returns
+ * RG_ERR_INVALID_ARGUMENT (NULL world) or RG_ERR_STALE_HANDLE. */
+#define BODY_GET(world, body, i)                               \
+    if ((world) == NULL) return RG_ERR_INVALID_ARGUMENT;       \
+    int32_t i = body_lookup((world), (body));                  \
+    if (i < 0) return RG_ERR_STALE_HANDLE
+
 /* Grows storage so one more body fits; all-or-nothing. */
 rg_status body_reserve(struct rg_world *w);
+/* A new body (after a successful body_reserve) of a valid type, mass and position, placed in
+ * its partition, every field at its default; returns its handle. */
+rg_body body_add(struct rg_world *w, int32_t type, rg_real mass, rg_vec2 position);
+/* Drops the live body `body` (its contacts, shape and springs already gone). */
+void body_remove(struct rg_world *w, rg_body body);
 /* Ensures the integrator scratch covers the body capacity; all-or-nothing. */
 rg_status body_scratch_reserve(struct rg_world *w);
 void body_store_release(struct rg_world *w);

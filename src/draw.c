@@ -51,7 +51,7 @@ static void draw_bodies(const rg_world *w, const rg_debug_draw *d, uint32_t flag
 /* Touching contacts by id: the point, and the normal from a toward b over RG_DRAW_NORMAL_LENGTH. */
 static void draw_contacts(const rg_world *w, const rg_debug_draw *d)
 {
-    const contact_world *cw = &w->coll;
+    const contact_store *cw = &w->coll.contacts;
     for (int32_t id = 0; id < cw->cap; id++) {
         const contact *c = &cw->c[id];
         if (!(c->flags & CT_TOUCHING)) continue;

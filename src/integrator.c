@@ -1,4 +1,5 @@
-/* integrator.c: the four integrators over the dense arrays of the active partition. */
+/* integrator.c: the four integrators over the dense arrays of the active partition, with
+ * dissipation that never reverses or grows a velocity. */
 #include <string.h>
 
 #include "integrator.h"
@@ -77,8 +78,8 @@ static inline void euler_body(body_store *b, const euler_env *e, int32_t i)
 {
     rg_real h = e->h;
     rg_real im = b->inv_mass[i];
-    rg_real ax = e->gx * b->gscale[i] + (e->wx + b->fx[i]) * im;
-    rg_real ay = e->gy * b->gscale[i] + (e->wy + b->fy[i]) * im;
+    rg_real ax = force_sum(e->gx, b->gscale[i], e->wx, b->fx[i], im);
+    rg_real ay = force_sum(e->gy, b->gscale[i], e->wy, b->fy[i], im);
     if (e->springs) {
         ax += e->sax[i];
         ay += e->say[i];
@@ -194,8 +195,8 @@ static EULER_INLINE int euler_block(const body_store *b, int32_t i0, const euler
     int32_t slow = 0;
     if (!(any & BODY_F_DISSIPATIVE)) { /* no dissipation in this block */
         for (int j = 0; j < EULER_BLOCK; j++) {
-            rg_real ax = gx * gs[j] + (wx + fx[j]) * im[j] + spx[j];
-            rg_real ay = gy * gs[j] + (wy + fy[j]) * im[j] + spy[j];
+            rg_real ax = force_sum(gx, gs[j], wx, fx[j], im[j]) + spx[j];
+            rg_real ay = force_sum(gy, gs[j], wy, fy[j], im[j]) + spy[j];
             oax[j] = ax;
             oay[j] = ay;
             nvx[j] = vx[j] + ax * h;
@@ -204,8 +205,8 @@ static EULER_INLINE int euler_block(const body_store *b, int32_t i0, const euler
     } else if ((all & BODY_F_DISSIPATIVE) && !(qf & EULER_MAGNITUDE)) {
         /* linear drag on every body of the block */
         for (int j = 0; j < EULER_BLOCK; j++) {
-            rg_real ax = gx * gs[j] + (wx + fx[j]) * im[j] + spx[j];
-            rg_real ay = gy * gs[j] + (wy + fy[j]) * im[j] + spy[j];
+            rg_real ax = force_sum(gx, gs[j], wx, fx[j], im[j]) + spx[j];
+            rg_real ay = force_sum(gy, gs[j], wy, fy[j], im[j]) + spy[j];
             rg_real v0x = vx[j], v0y = vy[j];
             rg_real vfx = v0x + ax * h, vfy = v0y + ay * h;
             rg_real s2 = v0x * v0x + v0y * v0y;
@@ -222,8 +223,8 @@ static EULER_INLINE int euler_block(const body_store *b, int32_t i0, const euler
         return 1; /* quadratic drag or friction: square roots, body by body */
     } else { /* a mixed block */
         for (int j = 0; j < EULER_BLOCK; j++) {
-            rg_real ax = gx * gs[j] + (wx + fx[j]) * im[j] + spx[j];
-            rg_real ay = gy * gs[j] + (wy + fy[j]) * im[j] + spy[j];
+            rg_real ax = force_sum(gx, gs[j], wx, fx[j], im[j]) + spx[j];
+            rg_real ay = force_sum(gy, gs[j], wy, fy[j], im[j]) + spy[j];
             rg_real v0x = vx[j], v0y = vy[j];
             rg_real vfx = v0x + ax * h, vfy = v0y + ay * h;
             rg_real s2 = v0x * v0x + v0y * v0y;
@@ -261,7 +262,7 @@ EULER_DISPATCH static void euler_step(rg_world *w, rg_real h, int explicit_euler
     e.springs = w->springs.count > 0;
     e.dissipative = w->dissipative_count > 0;
     e.explicit_euler = explicit_euler;
-    if (e.springs) force_springs(w, w->scratch.sax, w->scratch.say);
+    /* the springs at the start state come from the forces stage (force_begin) */
     e.sax = w->scratch.sax;
     e.say = w->scratch.say;
     rg_real no_spring[EULER_BLOCK];
@@ -292,7 +293,8 @@ static void save_start(rg_world *w, int32_t n)
     memcpy(s->vy0, b->vy, (size_t)n * sizeof *b->vy);
 }
 
-/* v_free = v0 + h * (gravity, wind, applied, springs at the start): what the step would
+/* v_free = v0 + h * (gravity, wind, applied, springs at the start, from the forces stage):
+ * what the step would
  * give without dissipation, the reference the guard compares against; and the start-state
  * decision whether this body's dissipation is treated implicitly this step. */
 static void free_velocity(rg_world *w, rg_real h)
@@ -300,12 +302,11 @@ static void free_velocity(rg_world *w, rg_real h)
     body_store *b = &w->b;
     scratch_store *s = &w->scratch;
     int32_t n = b->n_active;
-    if (w->springs.count > 0) force_springs(w, s->sax, s->say);
     for (int32_t i = 0; i < n; i++) {
         if (!(b->flags[i] & BODY_F_DISSIPATIVE)) continue;
         rg_real im = b->inv_mass[i];
-        rg_real ax = w->gravity.x * b->gscale[i] + (w->wind.x + b->fx[i]) * im;
-        rg_real ay = w->gravity.y * b->gscale[i] + (w->wind.y + b->fy[i]) * im;
+        rg_real ax = force_sum(w->gravity.x, b->gscale[i], w->wind.x, b->fx[i], im);
+        rg_real ay = force_sum(w->gravity.y, b->gscale[i], w->wind.y, b->fy[i], im);
         if (w->springs.count > 0) {
             ax += s->sax[i];
             ay += s->say[i];
@@ -346,14 +347,14 @@ static void verlet_step(rg_world *w, rg_real h)
     scratch_store *s = &w->scratch;
     int32_t n = b->n_active;
     rg_real hh = h * h / 2, h2 = h / 2;
-    force_eval(w, b->ax, b->ay);
+    force_eval(w, b->ax, b->ay, 1);
     for (int32_t i = 0; i < n; i++) {
         b->x[i] += h * b->vx[i] + hh * b->ax[i];
         b->y[i] += h * b->vy[i] + hh * b->ay[i];
         b->vx[i] = s->vx0[i] + h * b->ax[i];
         b->vy[i] = s->vy0[i] + h * b->ay[i];
     }
-    force_eval(w, s->tax, s->tay);
+    force_eval(w, s->tax, s->tay, 0);
     for (int32_t i = 0; i < n; i++) {
         b->vx[i] = s->vx0[i] + h2 * (b->ax[i] + s->tax[i]);
         b->vy[i] = s->vy0[i] + h2 * (b->ay[i] + s->tay[i]);
@@ -368,7 +369,7 @@ static void rk4_step(rg_world *w, rg_real h)
     scratch_store *s = &w->scratch;
     int32_t n = b->n_active;
     rg_real h2 = h / 2;
-    force_eval(w, b->ax, b->ay);
+    force_eval(w, b->ax, b->ay, 1);
     for (int32_t i = 0; i < n; i++) {
         s->kx[i] = s->vx0[i];
         s->ky[i] = s->vy0[i];
@@ -381,7 +382,7 @@ static void rk4_step(rg_world *w, rg_real h)
     }
     for (int stage = 2; stage <= 3; stage++) {
         rg_real hs = stage == 2 ? h2 : h;
-        force_eval(w, s->tax, s->tay);
+        force_eval(w, s->tax, s->tay, 0);
         for (int32_t i = 0; i < n; i++) {
             rg_real vx = b->vx[i], vy = b->vy[i];
             s->kx[i] += 2 * vx;
@@ -394,7 +395,7 @@ static void rk4_step(rg_world *w, rg_real h)
             b->vy[i] = s->vy0[i] + hs * s->tay[i];
         }
     }
-    force_eval(w, s->tax, s->tay);
+    force_eval(w, s->tax, s->tay, 0);
     rg_real h6 = h / 6;
     for (int32_t i = 0; i < n; i++) {
         rg_real kx = s->kx[i] + b->vx[i], ky = s->ky[i] + b->vy[i];
@@ -403,26 +404,6 @@ static void rk4_step(rg_world *w, rg_real h)
         b->y[i] = s->y0[i] + h6 * ky;
         b->vx[i] = s->vx0[i] + h6 * kvx;
         b->vy[i] = s->vy0[i] + h6 * kvy;
-    }
-}
-
-static void apply_speed_limits(rg_world *w)
-{
-    body_store *b = &w->b;
-    int32_t n = b->n_active;
-    for (int32_t i = 0; i < n; i++) {
-        if (!(b->flags[i] & BODY_F_LIMITED)) continue;
-        rg_real vx = b->vx[i], vy = b->vy[i];
-        rg_real s2 = vx * vx + vy * vy;
-        rg_real lo = b->min_speed[i], hi = b->max_speed[i];
-        if (s2 < lo * lo) {
-            b->vx[i] = 0;
-            b->vy[i] = 0;
-        } else if (hi > 0 && s2 > hi * hi) {
-            rg_real k = hi / rg_sqrt(s2);
-            b->vx[i] = vx * k;
-            b->vy[i] = vy * k;
-        }
     }
 }
 
@@ -455,5 +436,4 @@ void integrator_step(rg_world *w, rg_real h)
         break;
     }
     }
-    if (w->limit_count > 0) apply_speed_limits(w);
 }

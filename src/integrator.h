@@ -1,5 +1,5 @@
 /* integrator.h: explicit Euler, semi-implicit Euler, velocity Verlet and RK4 over the
- * active bodies, with non-reversing dissipation and speed limits. */
+ * active bodies, with non-reversing dissipation. */
 #ifndef RG_INTEGRATOR_H
 #define RG_INTEGRATOR_H
 
@@ -10,8 +10,9 @@ struct rg_world;
 /* Does the scratch allocation a step of the world's integrator needs; call before any
  * change so that a failing step changes nothing. */
 rg_status integrator_prepare(struct rg_world *w);
-/* Advances the active bodies by h seconds: forces, integration, dissipation guard, limits.
- * Records the start-of-step acceleration in b.ax, b.ay. */
+/* Advances the active bodies by h seconds from the forces stage's start state (force_begin):
+ * integration and the dissipation guard.  Records the start-of-step acceleration in b.ax,
+ * b.ay. */
 void integrator_step(struct rg_world *w, rg_real h);
 
 #endif

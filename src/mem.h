@@ -28,4 +28,57 @@ static inline size_t mem_array_size(size_t count, size_t size)
 /* The default allocator: malloc/realloc/free. */
 void *mem_default_alloc(void *user, void *ptr, size_t old_size, size_t new_size);
 
+/* Many arrays in one block, each on a cache line of its own, so that growing them is
+ * all-or-nothing and costs one allocation.  A layout function makes the same sequence of
+ * mem_take calls twice (mem_block): over a layout without a base, which only adds up the
+ * size, then over the block, which sets the pointers.  A size that would overflow makes the
+ * layout's size SIZE_MAX, which no allocator gives. */
+typedef struct mem_layout {
+    char *base;     /* NULL while measuring */
+    size_t size;    /* bytes used so far */
+} mem_layout;
+
+static inline mem_layout mem_layout_measure(void)
+{
+    mem_layout l = { NULL, 0 };
+    return l;
+}
+
+static inline mem_layout mem_layout_at(void *block)
+{
+    mem_layout l = { (char *)block, 0 };
+    return l;
+}
+
+/* Room for count elements of elem bytes, 64-byte aligned from the block's start; NULL while
+ * measuring. */
+static inline void *mem_take(mem_layout *l, size_t count, size_t elem)
+{
+    size_t bytes = mem_array_size(count, elem);
+    size_t at = (l->size + 63u) & ~(size_t)63u;
+    if ((bytes == 0 && count != 0 && elem != 0) || at < l->size || at > (size_t)-1 - bytes) {
+        l->size = (size_t)-1;
+        return NULL;
+    }
+    l->size = at + bytes;
+    return l->base != NULL ? l->base + at : NULL;
+}
+
+typedef void (*mem_layout_fn)(mem_layout *l, void *ctx);
+
+/* Measures layout(ctx), allocates a block of that size and lays ctx out over it: returns
+ * the block and its size in *size, or NULL when the allocator fails (ctx's pointers are
+ * then NULL: lay out a copy, and commit it on success). */
+static inline void *mem_block(const rg_mem *m, mem_layout_fn layout, void *ctx, size_t *size)
+{
+    mem_layout l = mem_layout_measure();
+    layout(&l, ctx);
+    void *block = mem_alloc(m, l.size);
+    if (block == NULL) return NULL;
+    *size = l.size;
+    l = mem_layout_at(block);
+    layout(&l, ctx);
+    return block;
+}
+
 #endif

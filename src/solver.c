@@ -548,3 +548,38 @@ void solver_wide_iterate_position(solver_batch *s, rg_real *pv)
     }
 }
 #endif
+
+/* ---------------------------------------------------------------- row storage */
+
+static void solver_rows_layout(mem_layout *l, void *ctx)
+{
+    solver_rows *r = ctx;
+    size_t n = (size_t)r->cap;
+    /* the wide rows first: the block's own alignment */
+    r->batch.rows = mem_take(l, (size_t)SOLVER_WIDE_ROWS(r->cap), sizeof(solver_wide));
+    r->stage = mem_take(l, n, sizeof(solver_constraint));
+    r->hgt = mem_take(l, n, sizeof(rg_real));
+    r->hgx = mem_take(l, n, sizeof(rg_real));
+    r->ord = mem_take(l, n, sizeof(int32_t));
+    r->tord = mem_take(l, n, sizeof(int32_t));
+    r->batch.map = mem_take(l, n, sizeof(int32_t));
+    r->batch.over = mem_take(l, n, sizeof(int32_t));
+    r->color = mem_take(l, n, sizeof(int32_t));
+    r->imp = mem_take(l, n, sizeof(int32_t));
+    r->key = mem_take(l, n, sizeof(uint16_t));
+    r->tkey = mem_take(l, n, sizeof(uint16_t));
+}
+
+rg_status solver_rows_alloc(solver_rows *fresh, const rg_mem *m, int32_t cap)
+{
+    memset(fresh, 0, sizeof *fresh);
+    fresh->cap = cap;
+    fresh->block = mem_block(m, solver_rows_layout, fresh, &fresh->block_size);
+    return fresh->block != NULL ? RG_OK : RG_ERR_OUT_OF_MEMORY;
+}
+
+void solver_rows_release(solver_rows *r, const rg_mem *m)
+{
+    mem_free(m, r->block, r->block_size);
+    memset(r, 0, sizeof *r);
+}

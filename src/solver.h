@@ -23,6 +23,7 @@
 
 #include <stdint.h>
 
+#include "mem.h"
 #include "rigid.h"
 
 typedef struct solver_constraint {
@@ -150,7 +151,7 @@ typedef struct solver_wide {
 typedef struct solver_batch {
     solver_wide *rows;   /* [0, nrows) */
     int32_t nrows;
-    int32_t *map;        /* per row of c: its wide slot (row * 4 + lane), or -1 */
+    int32_t *map;        /* per row of c: its wide slot (row * SOLVER_LANES + lane), or -1 */
     int32_t *over;       /* rows of c in the overflow list, [0, nover) */
     int32_t nover;
 } solver_batch;
@@ -168,5 +169,24 @@ void solver_unpack(const solver_batch *s, solver_constraint *c, int32_t n, int p
 /* Copies c's position rows (pmin, pp = 0) into the lanes. */
 void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t n);
 void solver_wide_iterate_position(solver_batch *s, rg_real *pv);
+
+/* ---- the rows of a step and their scratch, sized by the contact capacity (one row per
+ * contact at most), in one block. */
+typedef struct solver_rows {
+    solver_batch batch;       /* the rows eight at a time (rows: SOLVER_WIDE_ROWS(cap)) */
+    solver_constraint *stage; /* [0, cap): rows in contact order, before sorting */
+    rg_real *hgt, *hgx;       /* [0, cap): their contact points, then heights along gravity */
+    int32_t *ord, *tord;      /* [0, cap): staged rows in solving order, radix scratch */
+    uint16_t *key, *tkey;     /* [0, cap): their sort keys, radix scratch */
+    int32_t *color;           /* [0, cap): colouring scratch */
+    int32_t *imp;             /* [0, cap): staged rows that are impacts (toi > 0) */
+    void *block;
+    size_t block_size;
+    int32_t cap;
+} solver_rows;
+
+/* Rows for cap contacts into *fresh (nothing allocated on failure: RG_ERR_OUT_OF_MEMORY). */
+rg_status solver_rows_alloc(solver_rows *fresh, const rg_mem *m, int32_t cap);
+void solver_rows_release(solver_rows *r, const rg_mem *m);
 
 #endif

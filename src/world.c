@@ -1,9 +1,7 @@
-/* world.c: world lifetime, settings, the step pipeline and the fixed-step accumulator. */
-#include <math.h>
+/* world.c: world lifetime and settings, status strings and the version. */
 #include <stdlib.h>
 #include <string.h>
 
-#include "integrator.h"
 #include "vec2.h"
 #include "world.h"
 
@@ -59,7 +57,7 @@ RG_API rg_status rg_world_create_with_allocator(rg_alloc_fn alloc, void *user, r
     w->integrator = RG_INTEGRATOR_SEMI_IMPLICIT_EULER;
     w->fixed_dt = 1.0 / 60.0;
     w->max_steps = 8;
-    contact_init(w);
+    collide_init(w);
     *out_world = w;
     return RG_OK;
 }
@@ -72,8 +70,8 @@ RG_API rg_status rg_world_create(rg_world **out_world)
 RG_API void rg_world_destroy(rg_world *world)
 {
     if (world == NULL) return;
-    force_release(world);
-    contact_release(world);
+    spring_release(world);
+    collide_release(world);
     body_store_release(world);
     rg_mem mem = world->mem;
     mem_free(&mem, world, sizeof *world);
@@ -122,35 +120,6 @@ RG_API rg_status rg_world_get_integrator(const rg_world *world, int32_t *out_int
     return RG_OK;
 }
 
-/* One step after validation and preparation; cannot fail. */
-static void world_step_prepared(rg_world *w, rg_real dt)
-{
-    body_store *b = &w->b;
-    int collide = contact_stage_needed(w);
-    if (collide) contact_begin(w);
-    integrator_step(w, dt);
-    if (collide) contact_step(w, dt);
-    /* Applied forces last one step.  (An empty world has no arrays: memset(NULL, 0, 0) is
-     * undefined.) */
-    if (b->n_moving > 0) {
-        memset(b->fx, 0, (size_t)b->n_moving * sizeof *b->fx);
-        memset(b->fy, 0, (size_t)b->n_moving * sizeof *b->fy);
-    }
-    w->step_count++;
-}
-
-RG_API rg_status rg_world_step(rg_world *world, rg_real dt)
-{
-    if (world == NULL || !rg_finite(dt) || !(dt > 0)) return RG_ERR_INVALID_ARGUMENT;
-    rg_status st = integrator_prepare(world);
-    if (st == RG_OK) st = contact_prepare(world);
-    if (st != RG_OK) return st;
-    contact_events_clear(world);
-    world_step_prepared(world, dt);
-    world->prev_valid = 0;
-    return RG_OK;
-}
-
 RG_API rg_status rg_world_set_fixed_step(rg_world *world, rg_real dt, int32_t max_steps_per_advance)
 {
     if (world == NULL || !rg_finite(dt) || !(dt > 0) || max_steps_per_advance < 1)
@@ -165,51 +134,6 @@ RG_API rg_status rg_world_get_fixed_step(const rg_world *world, rg_real *out_dt,
     if (world == NULL || (out_dt == NULL && out_max_steps == NULL)) return RG_ERR_INVALID_ARGUMENT;
     if (out_dt != NULL) *out_dt = (rg_real)world->fixed_dt;
     if (out_max_steps != NULL) *out_max_steps = world->max_steps;
-    return RG_OK;
-}
-
-RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *out_steps)
-{
-    if (world == NULL || !rg_finite(frame_time) || frame_time < 0) return RG_ERR_INVALID_ARGUMENT;
-    rg_status st = integrator_prepare(world);
-    if (st == RG_OK) st = contact_prepare(world);
-    if (st != RG_OK) return st;
-    body_store *b = &world->b;
-    rg_real dt = (rg_real)world->fixed_dt;
-    int32_t steps = 0;
-    int cut = 0;
-    /* The events readable after an advance are those of all its steps, in step order. */
-    contact_events_clear(world);
-    world->accumulator += (double)frame_time;
-    while (world->accumulator >= world->fixed_dt && steps < world->max_steps) {
-        /* The first step's events always fit (their room comes with the contact storage);
-         * a later one needs room after the events held.  Without it the advance stops here
-         * and the steps not taken wait in the accumulator for the next advance: no event
-         * is lost and the simulation is the same, only later. */
-        if (steps > 0 && contact_events_reserve(world) != RG_OK) {
-            cut = 1;
-            break;
-        }
-        if (b->n_moving > 0) {
-            memcpy(b->px, b->x, (size_t)b->n_moving * sizeof *b->x);
-            memcpy(b->py, b->y, (size_t)b->n_moving * sizeof *b->y);
-        }
-        world_step_prepared(world, dt);
-        world->accumulator -= world->fixed_dt;
-        steps++;
-    }
-    /* Past the cap, whole steps are dropped (no spiral of death); the fraction stays. */
-    if (!cut && world->accumulator >= world->fixed_dt)
-        world->accumulator = fmod(world->accumulator, world->fixed_dt);
-    if (steps > 0) world->prev_valid = 1;
-    if (out_steps != NULL) *out_steps = steps;
-    return RG_OK;
-}
-
-RG_API rg_status rg_world_get_alpha(const rg_world *world, rg_real *out_alpha)
-{
-    if (world == NULL || out_alpha == NULL) return RG_ERR_INVALID_ARGUMENT;
-    *out_alpha = (rg_real)(world->accumulator / world->fixed_dt);
     return RG_OK;
 }
 

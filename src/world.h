@@ -5,10 +5,11 @@
 #include <stdint.h>
 
 #include "body.h"
-#include "contact.h"
+#include "collide.h"
 #include "force.h"
 #include "mem.h"
 #include "pool.h"
+#include "spring.h"
 
 struct rg_world {
     rg_mem mem;
@@ -34,8 +35,14 @@ struct rg_world {
     /* Per-body scratch for the integrators, grown with the body capacity when first needed. */
     scratch_store scratch;
 
-    /* Collision: broadphase, contacts, events, sleeping (src/contact.c). */
-    contact_world coll;
+    /* Collision: broadphase, contacts, events, islands, settings (collide.h). */
+    collide_world coll;
 };
+
+/* See body.h. */
+static inline int32_t body_dense(const struct rg_world *w, int32_t slot)
+{
+    return pool_dense(&w->body_pool, slot);
+}
 
 #endif

@@ -297,14 +297,14 @@ static uint64_t run_determinism_scene(void)
     return h;
 }
 
-/* Two runs give identical bytes; and the state matches the hash recorded for this build
- * type, so a change of any optimisation level, compiler flag or code path that alters a
- * single bit shows up here (update the constant only for an intended change of results). */
+/* The state matches the hash recorded for this build type, so a change of any
+ * optimisation level, compiler flag or code path that alters a single bit shows up here
+ * (update the constant only for an intended change of results).  Collision scenes are
+ * pinned in test_determinism.c. */
 static void test_same_scene_gives_identical_bytes(void **state)
 {
     (void)state;
-    uint64_t h1 = run_determinism_scene(), h2 = run_determinism_scene();
-    assert_true(h1 == h2);
+    uint64_t h1 = run_determinism_scene();
     printf("determinism hash: 0x%016llx\n", (unsigned long long)h1);
 #ifdef RG_DOUBLE
     const uint64_t expected = 0xba27f065b289d97dull;

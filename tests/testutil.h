@@ -91,6 +91,41 @@ static inline rg_body box_body(rg_world *w, int32_t type, double m, double x, do
     return b;
 }
 
+/* ---- collision fixtures */
+
+#define DT (1.0 / 60)
+
+/* A static floor whose top is y = 0, 200 m wide. */
+static inline rg_body floor_of(rg_world *w) { return box_body(w, RG_BODY_STATIC, 0, 0, -0.5, 100, 0.5); }
+
+/* Position and velocity components as doubles. */
+static inline double PX(rg_world *w, rg_body b) { return (double)pos_of(w, b).x; }
+static inline double PY(rg_world *w, rg_body b) { return (double)pos_of(w, b).y; }
+static inline double VX(rg_world *w, rg_body b) { return (double)vel_of(w, b).x; }
+static inline double VY(rg_world *w, rg_body b) { return (double)vel_of(w, b).y; }
+
+/* n steps of dt seconds. */
+static inline void step_n(rg_world *w, int n, double dt)
+{
+    for (int i = 0; i < n; i++) assert_ok(rg_world_step(w, (rg_real)dt));
+}
+
+/* A boolean getter's value (rg_body_is_grounded, rg_body_is_awake, ...). */
+static inline int32_t flag(rg_status (*get)(const rg_world *, rg_body, int32_t *), rg_world *w, rg_body b)
+{
+    int32_t v = -1;
+    assert_ok(get(w, b, &v));
+    return v;
+}
+
+/* The events of the last step or advance, at most cap of them; returns the count. */
+static inline int32_t get_events(rg_world *w, rg_contact_event *ev, int32_t cap)
+{
+    int32_t n = rg_world_get_contact_events(w, ev, cap);
+    assert_true(n >= 0);
+    return n;
+}
+
 /* ---- an allocator that counts, checks sizes, and fails from its Nth allocation on */
 typedef struct test_alloc {
     long calls;        /* allocations attempted */

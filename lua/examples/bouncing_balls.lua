@@ -4,7 +4,6 @@
 -- slower than the world's 1 m/s restitution threshold do not bounce), so each arc is e^2 as
 -- high as the one before.  Prints every bounce of the 0.5 ball.
 --   build/rigid lua/examples/bouncing_balls.lua --svg build/bouncing_balls.svg
--- needs: collision
 duration = 6
 
 local R, DROP, VX, GAP = 0.25, 3, 1.3, 4

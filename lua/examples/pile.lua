@@ -2,7 +2,6 @@
 -- moving along the top; they heap up, settle and fall asleep.  Prints, each second, how many bodies are awake
 -- and the fastest one.
 --   build/rigid lua/examples/pile.lua --svg build/pile.svg
--- needs: collision
 duration = 10
 
 local W, H = 4, 6                  -- inner half width and height of the bin (m)

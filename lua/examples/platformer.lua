@@ -3,7 +3,6 @@
 -- presses jump at fixed places and also mashes it in the air; presses in the air do
 -- nothing.  Prints a line per second and a summary.  This is `make run`.
 --   build/rigid lua/examples/platformer.lua --svg build/run.svg
--- needs: collision
 duration = 9
 
 local G = 25                       -- m/s^2: arcade gravity, snappy jumps

@@ -17,7 +17,7 @@ function setup(world)
   end
   world:body{ type = "static", x = 0, y = 0, name = "cannon" }
   world:body{ type = "static", x = 20, y = -0.25, name = "ground",
-              aabb = require("rigid").collision and { 22, 0.25 } or nil }
+              aabb = { 22, 0.25 } }
 end
 
 local steps = 0

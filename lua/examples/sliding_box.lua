@@ -2,7 +2,6 @@
 -- gravity in the picture: surface friction F = mu * N against the motion).  Each stops
 -- at v0^2 / (2 mu g), less half a step of travel, and never creeps backwards.
 --   build/rigid lua/examples/sliding_box.lua --svg build/sliding_box.svg
-local rigid = require "rigid"
 duration = 3
 
 local V0, G, DT = 8, 9.81, 1 / 60
@@ -14,14 +13,13 @@ function setup(world)
     local lane = (i - 1) * -1.5
     local c = world:body{ mass = 20, y = lane, vx = V0, name = string.format("mu %.1f", mu),
                           surface_friction = { mu, 20 * G },
-                          aabb = rigid.collision and { 0.4, 0.4 } or nil }
+                          aabb = { 0.4, 0.4 } }
     crates[i] = { body = c, mu = mu, min_vx = V0 }
     -- Where the continuous law says it stops: v0^2 / (2 mu g).
     world:body{ type = "static", x = V0 * V0 / (2 * mu * G), y = lane, name = "v0^2/(2 mu g)" }
     -- The floor strip each crate slides on.
     world:body{ type = "static", x = 6, y = lane - 0.6, name = "floor",
-                aabb = rigid.collision and { 6.5, 0.1 } or nil, category = rigid.collision and 2 or nil,
-                mask = rigid.collision and 0 or nil }
+                aabb = { 6.5, 0.1 }, category = 2, mask = 0 }
   end
 end
 

@@ -107,9 +107,6 @@ do
   end
 end
 
--- Does this build have collision?  The hostile scripts and examples that need it say so.
-local collision = run(stock .. " -e " .. q('io.write(tostring(require("rigid").collision))')) == "true"
-
 print("-- hostile scripts in the host")
 local canary = opts.out .. "/canary.txt"
 -- A hang must fail the test, not stall `make test`.
@@ -121,29 +118,25 @@ for _, path in ipairs(list("tests/lua/hostile/*.lua")) do
   for e in src:gmatch("%-%- expect: ([^\n]+)") do expects[#expects + 1] = e end
   args = (src:match("%-%- args: ([^\n]+)") or ""):gsub("%$OUT", opts.out)
   local want_traceback = not src:find("-- traceback: no", 1, true)
-  if src:find("-- needs: collision", 1, true) and not collision then
-    print("skip  " .. name .. " (needs collision)")
-  else
-    write(canary, "canary " .. name)
-    local out, how, code = run(limit .. q(opts.host) .. " " .. q(path) .. " " .. args .. " -- " .. q(canary))
-    local problems = {}
-    if how ~= "exit" or code ~= 1 then
-      problems[#problems + 1] = "exit: " .. tostring(how) .. " " .. tostring(code) .. " (want exit 1)"
-    end
-    for _, e in ipairs(expects) do
-      if not out:find(e, 1, true) then problems[#problems + 1] = "missing: " .. e end
-    end
-    if not out:find(name .. ".lua:%d+") then problems[#problems + 1] = "no file:line of the script" end
-    if want_traceback and not out:find("stack traceback:", 1, true) then
-      problems[#problems + 1] = "no traceback"
-    end
-    if read(canary) ~= "canary " .. name then problems[#problems + 1] = "the canary file was changed" end
-    if out:find("AddressSanitizer", 1, true) or out:find("runtime error:", 1, true) then
-      problems[#problems + 1] = "sanitizer report"
-    end
-    result(#problems == 0, "hostile " .. name,
-           #problems > 0 and (table.concat(problems, "\n") .. "\n--- output:\n" .. out:sub(1, 1500)) or nil)
+  write(canary, "canary " .. name)
+  local out, how, code = run(limit .. q(opts.host) .. " " .. q(path) .. " " .. args .. " -- " .. q(canary))
+  local problems = {}
+  if how ~= "exit" or code ~= 1 then
+    problems[#problems + 1] = "exit: " .. tostring(how) .. " " .. tostring(code) .. " (want exit 1)"
   end
+  for _, e in ipairs(expects) do
+    if not out:find(e, 1, true) then problems[#problems + 1] = "missing: " .. e end
+  end
+  if not out:find(name .. ".lua:%d+") then problems[#problems + 1] = "no file:line of the script" end
+  if want_traceback and not out:find("stack traceback:", 1, true) then
+    problems[#problems + 1] = "no traceback"
+  end
+  if read(canary) ~= "canary " .. name then problems[#problems + 1] = "the canary file was changed" end
+  if out:find("AddressSanitizer", 1, true) or out:find("runtime error:", 1, true) then
+    problems[#problems + 1] = "sanitizer report"
+  end
+  result(#problems == 0, "hostile " .. name,
+         #problems > 0 and (table.concat(problems, "\n") .. "\n--- output:\n" .. out:sub(1, 1500)) or nil)
 end
 
 print("-- scripts that must run cleanly in the host")
@@ -155,23 +148,18 @@ end
 print("-- examples in the host, each drawing its picture")
 for _, path in ipairs(list("lua/examples/*.lua")) do
   local name = path:match("([^/]+)%.lua$")
-  local src = read(path)
-  if src:find("-- needs: collision", 1, true) and not collision then
-    print("skip  " .. name .. " (needs collision)")
-  else
-    local svg = opts.out .. "/examples/" .. name .. ".svg"
-    os.remove(svg)
-    local out, how, code = run(q(opts.host) .. " " .. q(path) .. " --svg " .. q(svg))
-    local pic = read(svg) or ""
-    local problems = {}
-    if how ~= "exit" or code ~= 0 then problems[#problems + 1] = "exit " .. tostring(code) end
-    if not (pic:find("^<%?xml") and pic:find("</svg>%s*$")) then problems[#problems + 1] = "no complete SVG" end
-    if not (pic:find("<polyline", 1, true) and (pic:find("<circle", 1, true) or pic:find("<rect x", 1, true))) then
-      problems[#problems + 1] = "the SVG draws no trail or body"
-    end
-    result(#problems == 0, "example " .. name .. " -> " .. svg,
-           #problems > 0 and (table.concat(problems, "\n") .. "\n--- output:\n" .. out:sub(1, 1500)) or nil)
+  local svg = opts.out .. "/examples/" .. name .. ".svg"
+  os.remove(svg)
+  local out, how, code = run(q(opts.host) .. " " .. q(path) .. " --svg " .. q(svg))
+  local pic = read(svg) or ""
+  local problems = {}
+  if how ~= "exit" or code ~= 0 then problems[#problems + 1] = "exit " .. tostring(code) end
+  if not (pic:find("^<%?xml") and pic:find("</svg>%s*$")) then problems[#problems + 1] = "no complete SVG" end
+  if not (pic:find("<polyline", 1, true) and (pic:find("<circle", 1, true) or pic:find("<rect x", 1, true))) then
+    problems[#problems + 1] = "the SVG draws no trail or body"
   end
+  result(#problems == 0, "example " .. name .. " -> " .. svg,
+         #problems > 0 and (table.concat(problems, "\n") .. "\n--- output:\n" .. out:sub(1, 1500)) or nil)
 end
 
 print(passed .. " passed, " .. failed .. " failed")

@@ -1,0 +1,137 @@
+/* lrigid_int.h: what the files of the Lua binding share; a host sees lrigid.h only.
+ *
+ * The files and what each may use (no circle):
+ *   lcheck.c   argument and option checks, errors                 (nothing of the binding)
+ *   lworld.c   the world value and its settings, the host hooks    lcheck
+ *   lbody.c    body identity and the body methods, world:body/bodies   lcheck, lworld
+ *   lspring.c  springs, world:spring                               lcheck, lworld, lbody
+ *   lquery.c   contact events and queries                          lcheck, lworld, lbody
+ *   lrigid.c   luaopen_rigid (metatables) and the host interface    all of the above
+ *
+ * Every method gets its class's metatable as upvalue 1 (lrigid.c), which lcheck_self
+ * compares with the argument's. */
+#ifndef LRIGID_INT_H
+#define LRIGID_INT_H
+
+#include <lauxlib.h>
+#include <lua.h>
+
+#include "lrigid.h"
+
+#define LWORLD_MT  "rigid.world"
+#define LBODY_MT   "rigid.body"
+#define LSPRING_MT "rigid.spring"
+
+/* ---------------------------------------------------------------- lcheck.c */
+
+/* The userdata at i when its metatable is upvalue 1 of the running method (a pointer
+ * compare, no registry lookup); else raises "tname expected". */
+void *lcheck_self(lua_State *L, int i, const char *tname);
+/* A number argument that is finite (numeric strings are refused). */
+lua_Number lcheck_finite(lua_State *L, int i);
+/* A finite number that fits rg_real (float builds refuse |v| > FLT_MAX). */
+rg_real lcheck_real(lua_State *L, int i);
+rg_real lcheck_optreal(lua_State *L, int i, rg_real def);
+rg_vec2 lcheck_vec2(lua_State *L, int i);        /* arguments i and i + 1 */
+/* An integer in [0, 0xFFFFFFFF] (categories and masks); the optional one defaults to all. */
+uint32_t lcheck_mask(lua_State *L, int i);
+uint32_t lcheck_optmask(lua_State *L, int i);
+/* An integer in [lo, hi]; msg says what is wrong when it is outside. */
+int32_t lcheck_int32(lua_State *L, int i, int32_t lo, int32_t hi, const char *msg);
+int lcheck_boolean(lua_State *L, int i);
+/* One of names (a NULL-terminated list); returns its index.  what names the kind. */
+int lcheck_enum(lua_State *L, int i, const char *const names[], const char *what);
+
+void lcheck_pushreal(lua_State *L, rg_real v);
+void lcheck_pushvec2(lua_State *L, rg_vec2 v);   /* pushes x, y */
+
+/* Raises for a failed call: names the call (what) and says what was wrong (hint, which may
+ * be NULL, for RG_ERR_INVALID_ARGUMENT). */
+int lcheck_status(lua_State *L, rg_status s, const char *what, const char *hint);
+#define LCHECK(L, call, what, hint)                                             \
+    do {                                                                        \
+        rg_status st_ = (call);                                                 \
+        if (st_ != RG_OK) lcheck_status((L), st_, (what), (hint));              \
+    } while (0)
+
+/* Option tables (the table at index t; what names the call in messages).  Every key must
+ * be one of names; each option_* returns 1 when the option is present (and valid), 0 when
+ * absent, and raises when it is present and wrong. */
+void lcheck_option_names(lua_State *L, int t, const char *const names[], const char *what);
+int lcheck_getoption(lua_State *L, int t, const char *key);   /* pushes t[key] when present */
+int lcheck_option_error(lua_State *L, const char *what, const char *key, const char *expected);
+int lcheck_option_real(lua_State *L, int t, const char *key, const char *what, rg_real *out);
+int lcheck_option_integer(lua_State *L, int t, const char *key, const char *what,
+                          lua_Integer lo, lua_Integer hi, lua_Integer *out);
+int lcheck_option_pair(lua_State *L, int t, const char *key, const char *what, rg_real out[2]);
+int lcheck_option_boolean(lua_State *L, int t, const char *key, const char *what, int *out);
+int lcheck_option_enum(lua_State *L, int t, const char *key, const char *what,
+                       const char *const names[], int *out);
+
+/* Lua names of RG_INTEGRATOR_* and RG_BODY_*, indexed by value. */
+extern const char *const lcheck_integrator_names[];
+extern const char *const lcheck_type_names[];
+
+/* ---------------------------------------------------------------- lworld.c */
+
+/* Uservalues of a world: the bodies created through Lua, by handle.  `live` holds every
+ * live one strongly (a body lives in its world whether or not a script keeps its value),
+ * `dead` holds destroyed ones weakly, so a body keeps its identity for as long as anyone
+ * holds it. */
+#define LWORLD_UV_LIVE 1
+#define LWORLD_UV_DEAD 2
+
+typedef struct lworld {
+    rg_world *w;             /* NULL once closed */
+    lua_Integer next_serial;
+} lworld;
+
+lworld *lworld_test(lua_State *L, int i);       /* NULL when i is not a world */
+lworld *lworld_check(lua_State *L, int i);      /* methods only: compares with upvalue 1 */
+rg_world *lworld_checkopen(lua_State *L, int i);
+/* Reports work done in C for the script (see lrigid_hooks.charge). */
+void lworld_charge(lua_State *L, double units);
+void lworld_sethooks(lua_State *L, const lrigid_hooks *hooks);
+/* rigid.world{...}; upvalue 1 is the world metatable. */
+int lworld_new(lua_State *L);
+int lworld_gc(lua_State *L);
+extern const luaL_Reg lworld_methods[];
+extern const luaL_Reg lworld_meta[];
+
+/* ---------------------------------------------------------------- lbody.c */
+
+/* Uservalues of a body: its world value, which keeps the world alive, and its name. */
+#define LBODY_UV_WORLD 1
+#define LBODY_UV_NAME  2
+
+typedef struct lbody {
+    rg_body h;
+    lworld *world;           /* kept alive by uservalue LBODY_UV_WORLD */
+    lua_Integer serial;
+    int32_t type;
+    int32_t shape;           /* LRIGID_SHAPE_*, as the binding last set it */
+    double size[2];
+    int32_t sensor;
+} lbody;
+
+lbody *lbody_test(lua_State *L, int i);         /* NULL when i is not a body */
+/* Pushes the body value for handle h of the world at world_idx (see lrigid_pushbody). */
+void lbody_push(lua_State *L, int world_idx, rg_body h);
+int lbody_info(lua_State *L, int idx, lrigid_body_info *out);
+extern const luaL_Reg lbody_world_methods[];    /* world:body, world:bodies */
+extern const luaL_Reg lbody_methods[];
+extern const luaL_Reg lbody_meta[];
+
+/* ---------------------------------------------------------------- lspring.c */
+
+extern const luaL_Reg lspring_world_methods[];  /* world:spring */
+extern const luaL_Reg lspring_methods[];
+extern const luaL_Reg lspring_meta[];
+
+/* ---------------------------------------------------------------- lquery.c */
+
+/* Pushes the contact events of the last step of the open world at idx (world:events). */
+void lquery_pushevents(lua_State *L, int idx);
+extern const luaL_Reg lquery_world_methods[];   /* events, raycast, query_aabb */
+
+#endif

@@ -1,0 +1,171 @@
+/* collide.c: the collide stage's settings, per-step scratch and lifetime, and its settings
+ * API (solver iterations, contact tuning, continuous collision). */
+#include <string.h>
+
+#include "island.h"
+#include "narrow.h"
+#include "resolve.h"
+#include "vec2.h"
+#include "world.h"
+
+void collide_init(rg_world *w)
+{
+    collide_world *cw = &w->coll;
+    memset(cw, 0, sizeof *cw);
+    contact_init(&cw->contacts);
+    cw->iterations = 8;
+    cw->position = 3;
+    cw->sleeping = 1;
+    cw->sleep_speed = RG_R(0.05);
+    cw->sleep_time = RG_R(0.5);
+    cw->continuous = 1;
+    cw->slop = RG_R(0.005);
+    cw->bias_rate = RG_R(0.2);
+    cw->max_push = RG_R(2);
+    cw->restitution_threshold = RG_R(1);
+}
+
+/* The per-body scratch of the stages, for cw->scap bodies. */
+static void collide_layout(mem_layout *l, void *ctx)
+{
+    collide_world *cw = ctx;
+    narrow_layout(l, &cw->narrow, cw->scap);
+    island_layout(l, &cw->island, cw->scap);
+    resolve_layout(l, &cw->resolve, cw->scap);
+}
+
+void collide_release(rg_world *w)
+{
+    collide_world *cw = &w->coll;
+    broadphase_release(&cw->bp, &w->mem);
+    contact_release(w);
+    mem_free(&w->mem, cw->scratch, cw->scratch_size);
+    cw->scratch = NULL;
+    cw->scratch_size = 0;
+    cw->scap = 0;
+}
+
+rg_status collide_prepare(rg_world *w)
+{
+    collide_world *cw = &w->coll;
+    if (cw->shape_count == 0) return RG_OK;
+    int32_t n = w->b.capacity + 1;
+    if (cw->scap >= n) return RG_OK;
+    collide_world grown = *cw;
+    grown.scap = n;
+    grown.scratch = mem_block(&w->mem, collide_layout, &grown, &grown.scratch_size);
+    if (grown.scratch == NULL) return RG_ERR_OUT_OF_MEMORY;
+    mem_free(&w->mem, cw->scratch, cw->scratch_size);
+    cw->narrow = grown.narrow;
+    cw->island.umin = grown.island.umin;
+    cw->island.uf = grown.island.uf;
+    cw->island.ihead = grown.island.ihead;
+    cw->island.itail = grown.island.itail;
+    cw->island.list = grown.island.list;
+    cw->resolve = grown.resolve;
+    cw->scratch = grown.scratch;
+    cw->scratch_size = grown.scratch_size;
+    cw->scap = n;
+    memset(cw->resolve.sstamp, 0, (size_t)n * sizeof *cw->resolve.sstamp);
+    cw->resolve.gen = 0;
+    return RG_OK;
+}
+
+int collide_needed(const rg_world *w)
+{
+    const collide_world *cw = &w->coll;
+    return cw->shape_count > 0 || cw->events.n_pend > 0;
+}
+
+void collide_step_begin(rg_world *w, collide_step *x, rg_real dt)
+{
+    collide_world *cw = &w->coll;
+    cw->resolve.pv_valid = 0;
+    resolve_next_gen(&cw->resolve, cw->scap);
+    x->n = w->b.n_active;
+    x->na = cw->bp.n_active;
+    x->nc = 0;
+    x->ns = 0;
+    x->nimp = 0;
+    x->woke = 0;
+    x->unite = cw->sleeping && cw->island.near_sleep;
+    x->p.dt = dt;
+    x->p.inv_dt = 1 / dt;
+    x->p.slop = cw->slop;
+    x->p.bias_rate = cw->bias_rate;
+    x->p.max_push = cw->max_push;
+    x->p.restitution_threshold = cw->restitution_threshold;
+    /* where the integrator's velocities sit in time (solver_vout) */
+    x->p.stagger = w->integrator == RG_INTEGRATOR_SEMI_IMPLICIT_EULER ? RG_R(0.5)
+                 : w->integrator == RG_INTEGRATOR_EXPLICIT_EULER     ? RG_R(-0.5)
+                                                                     : 0;
+}
+
+/* ---------------------------------------------------------------- API */
+
+RG_API int32_t rg_world_touching_count(const rg_world *world)
+{
+    return world != NULL ? world->coll.contacts.n_touching : 0;
+}
+
+RG_API rg_status rg_world_set_solver_iterations(rg_world *world, int32_t velocity, int32_t position)
+{
+    if (world == NULL || velocity < 1 || velocity > 64 || position < 0 || position > 64)
+        return RG_ERR_INVALID_ARGUMENT;
+    world->coll.iterations = velocity;
+    world->coll.position = position;
+    return RG_OK;
+}
+
+RG_API rg_status rg_world_get_solver_iterations(const rg_world *world, int32_t *out_velocity,
+                                                int32_t *out_position)
+{
+    if (world == NULL || out_velocity == NULL || out_position == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out_velocity = world->coll.iterations;
+    *out_position = world->coll.position;
+    return RG_OK;
+}
+
+RG_API rg_status rg_world_set_contact_tuning(rg_world *world, rg_real slop, rg_real bias_rate,
+                                             rg_real max_push, rg_real restitution_threshold)
+{
+    if (world == NULL || !rg_finite(slop) || !rg_finite(bias_rate) || !rg_finite(max_push) ||
+        !rg_finite(restitution_threshold) || slop < 0 || !(bias_rate > 0) || bias_rate > 1 ||
+        !(max_push > 0) || restitution_threshold < 0)
+        return RG_ERR_INVALID_ARGUMENT;
+    collide_world *cw = &world->coll;
+    cw->slop = slop;
+    cw->bias_rate = bias_rate;
+    cw->max_push = max_push;
+    cw->restitution_threshold = restitution_threshold;
+    return RG_OK;
+}
+
+RG_API rg_status rg_world_get_contact_tuning(const rg_world *world, rg_real *out_slop,
+                                             rg_real *out_bias_rate, rg_real *out_max_push,
+                                             rg_real *out_restitution_threshold)
+{
+    if (world == NULL || out_slop == NULL || out_bias_rate == NULL || out_max_push == NULL ||
+        out_restitution_threshold == NULL)
+        return RG_ERR_INVALID_ARGUMENT;
+    const collide_world *cw = &world->coll;
+    *out_slop = cw->slop;
+    *out_bias_rate = cw->bias_rate;
+    *out_max_push = cw->max_push;
+    *out_restitution_threshold = cw->restitution_threshold;
+    return RG_OK;
+}
+
+RG_API rg_status rg_world_set_continuous(rg_world *world, int32_t enabled)
+{
+    if (world == NULL || (enabled != 0 && enabled != 1)) return RG_ERR_INVALID_ARGUMENT;
+    world->coll.continuous = enabled;
+    return RG_OK;
+}
+
+RG_API rg_status rg_world_get_continuous(const rg_world *world, int32_t *out_enabled)
+{
+    if (world == NULL || out_enabled == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out_enabled = world->coll.continuous;
+    return RG_OK;
+}

@@ -1,0 +1,127 @@
+/* continuous.c: timed impacts and the post-solve sweep (see continuous.h). */
+#include <string.h>
+
+#include "collision.h"
+#include "continuous.h"
+#include "vec2.h"
+#include "world.h"
+
+/* Impacts of one body within this fraction of the step of each other count as one (a box
+ * across a tile seam meets both tiles at once, to rounding). */
+#define SAME_IMPACT RG_R(1e-4)
+
+/* The fraction of the step at which movable body i (dense) meets what it meets, if it can be
+ * timed, else 0.  It can when its solved rows are impacts at one moment and rows with
+ * immovable bodies that stay apart, with at most one of them with another movable body, an
+ * impact (*partner: that body, else -1).  No body in contact with it, and no body near it
+ * but that partner, then has a velocity that depends on the moment of its impact. */
+static rg_real continuous_impact_time(const rg_world *w, int32_t i, int32_t n, int32_t *partner)
+{
+    const contact_store *cs = &w->coll.contacts;
+    const body_store *b = &w->b;
+    int32_t s = b->slot[i];
+    rg_real t0 = RG_HUGE, t1 = 0;
+    *partner = -1;
+    for (int32_t id = b->chead[i] - 1; id >= 0; id = contact_next(&cs->c[id], s)) {
+        const contact *c = &cs->c[id];
+        if (!(c->flags & CT_SOLVE)) continue;
+        int32_t j = body_dense(w, contact_other(c, s));
+        int impact = c->toi > 0;
+        if (c->toi >= 0) {
+            if (!impact) return 0;
+            t0 = rg_min(t0, c->toi);
+            t1 = rg_max(t1, c->toi);
+        }
+        if (j < n && b->inv_mass[j] > 0) {
+            if (!impact || *partner >= 0) return 0;
+            *partner = j;
+        }
+    }
+    return t0 <= t1 && t1 - t0 <= SAME_IMPACT ? t0 : 0;
+}
+
+/* Whether movable body i is timed, at *t: it can be, and so can the partner of its impact with
+ * another movable body (whose only such row is that impact). */
+static int continuous_timed_body(const rg_world *w, int32_t i, int32_t n, rg_real *t)
+{
+    int32_t p, q;
+    *t = continuous_impact_time(w, i, n, &p);
+    return *t > 0 && (p < 0 || continuous_impact_time(w, p, n, &q) > 0);
+}
+
+int continuous_time_impacts(rg_world *w, collide_step *x)
+{
+    collide_world *cw = &w->coll;
+    resolve_state *rs = &cw->resolve;
+    solver_rows *rows = &cw->rows;
+    const body_store *b = &w->b;
+    if (x->nimp == 0) return 0;
+    memset(rs->stoi, 0, (size_t)(x->ns + 1) * sizeof *rs->stoi);
+    int any = 0;
+    for (int32_t k = 0; k < x->nimp; k++) {
+        solver_constraint *r = &rows->stage[rows->imp[k]];
+        int32_t ia = r->a > 0 ? rs->sbody[r->a] : -1, ib = r->b > 0 ? rs->sbody[r->b] : -1;
+        rg_real ta = 0, tb = 0;
+        if (r->ima > 0 && !continuous_timed_body(w, ia, x->n, &ta)) continue;
+        if (r->imb > 0 && !continuous_timed_body(w, ib, x->n, &tb)) continue;
+        rg_real v1n = 0;
+        if (ib >= 0) v1n += b->vx[ib] * r->nx + b->vy[ib] * r->ny;
+        if (ia >= 0) v1n -= b->vx[ia] * r->nx + b->vy[ia] * r->ny;
+        const contact *c = &cw->contacts.c[r->cid];
+        r->vmin = solver_vout(c->vn0, v1n, r->toi, c->e, &x->p);
+        if (r->ima > 0) rs->stoi[r->a] = ta;
+        if (r->imb > 0) rs->stoi[r->b] = tb;
+        any = 1;
+    }
+    return any;
+}
+
+void continuous_sweep(rg_world *w, const collide_step *x)
+{
+    collide_world *cw = &w->coll;
+    const contact_store *cs = &cw->contacts;
+    const narrow_state *ns = &cw->narrow;
+    body_store *b = &w->b;
+    if (!cw->continuous) return;
+    for (int32_t k = 0; k < x->na; k++) {
+        int32_t i = ns->adense[k];
+        if (b->type[i] != RG_BODY_DYNAMIC) continue;
+        rg_vec2 p0 = rg_v2(ns->sx0[k], ns->sy0[k]), p1 = rg_v2(b->x[i], b->y[i]);
+        rg_vec2 D = rg_v2_sub(p1, p0), hf = rg_v2(b->hx[i], b->hy[i]);
+        rg_real h = rg_min(hf.x, hf.y);
+        if (!(D.x * D.x + D.y * D.y > RG_R(0.25) * h * h)) continue;
+        int32_t s = b->slot[i];
+        rg_real tmin = 1;
+        rg_vec2 nbest = rg_v2(0, 0), vbest = rg_v2(0, 0);
+        for (int32_t id = b->chead[i] - 1; id >= 0; id = contact_next(&cs->c[id], s)) {
+            const contact *c = &cs->c[id];
+            if (c->flags & CT_SENSOR) continue;
+            int32_t j = body_dense(w, contact_other(c, s));
+            int active = j < b->n_active;
+            if (b->type[j] == RG_BODY_DYNAMIC && active) continue;
+            rg_vec2 ho = rg_v2(b->hx[j], b->hy[j]);
+            rg_vec2 o1 = rg_v2(b->x[j], b->y[j]);
+            rg_vec2 dob = active ? rg_v2(b->dx[j], b->dy[j]) : rg_v2(0, 0);
+            rg_vec2 o0 = rg_v2_sub(o1, dob);
+            rg_real t;
+            coll_manifold hit, end;
+            if (!coll_sweep(b->shape[j], o0, ho, b->shape[i], p0, hf, rg_v2_sub(D, dob), &t, &hit)) continue;
+            if (!(t > 0 && t < tmin)) continue;
+            coll_manifold_of(b->shape[j], o1, ho, b->shape[i], p1, hf, &end);
+            if (end.depth >= 0 && end.depth <= cw->slop) continue; /* resting at the end */
+            tmin = t;
+            nbest = hit.normal;
+            vbest = active ? rg_v2(b->vx[j], b->vy[j]) : rg_v2(0, 0);
+        }
+        if (tmin >= 1) continue;
+        rg_real len = rg_v2_len(D);
+        rg_real tb = len > 0 ? rg_max(tmin - RG_R(0.5) * cw->slop / len, 0) : 0;
+        b->x[i] = p0.x + D.x * tb;
+        b->y[i] = p0.y + D.y * tb;
+        rg_real vn = (b->vx[i] - vbest.x) * nbest.x + (b->vy[i] - vbest.y) * nbest.y;
+        if (vn < 0) {
+            b->vx[i] -= vn * nbest.x;
+            b->vy[i] -= vn * nbest.y;
+        }
+    }
+}

@@ -1,0 +1,33 @@
+/* narrow.h: the narrowphase: the step's view of each awake shaped body, manifolds at the
+ * start of the step extrapolated over it, touching (events, grounded flags, islands),
+ * waking, and the solver rows.
+ *
+ * The manifold is taken at the start of the step (positions minus the step's displacement)
+ * and extrapolated linearly: s0 is the start separation along the normal and the solver
+ * keeps s0 + vn*dt >= 0 (speculative contacts), so a body moving less than its size stops
+ * exactly at a surface.  A pair whose relative motion exceeds half the smaller shape uses
+ * the time of impact instead (continuous collision).  A pair is solved when it could close
+ * within the step, counting each body's own motion toward the other (the solver may stop
+ * either).  Touching (events, grounded, islands) means the step's free motion ends in
+ * contact, with a slop of hysteresis. */
+#ifndef RG_NARROW_H
+#define RG_NARROW_H
+
+#include <stdint.h>
+
+#include "collide.h"
+#include "mem.h"
+
+struct rg_world;
+
+/* The narrowphase scratch arrays for n bodies. */
+void narrow_layout(mem_layout *l, narrow_state *s, int32_t n);
+/* Before integration: remembers where the awake shaped bodies start. */
+void narrow_record_start(struct rg_world *w);
+/* After integration: the displacements, the step's view of each awake shaped body, and its
+ * fat box refreshed when its swept box left it. */
+void narrow_views(struct rg_world *w, collide_step *x, rg_real dt);
+/* Updates every awake contact from the step's motion and stages the rows to solve. */
+void narrow_run(struct rg_world *w, collide_step *x);
+
+#endif

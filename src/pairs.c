@@ -1,0 +1,175 @@
+/* pairs.c: fat boxes, the collision filter and the pair search (see pairs.h). */
+#include "island.h"
+#include "pairs.h"
+#include "vec2.h"
+#include "world.h"
+
+/* Fat boxes grow by a margin of FAT_FRACTION of the shape's larger half extent, at least the
+ * slop (so that two touching shapes held apart by up to the slop keep their contact) and at
+ * most FAT_MARGIN.  A small margin keeps pairs few: neighbours a tenth of their size apart
+ * (a settled pile, a spawn grid) are no contact until the look-ahead of their motion brings
+ * them closer; it costs more refreshes only for bodies that drift without moving, which
+ * sleep. */
+#ifndef FAT_MARGIN
+#define FAT_MARGIN       RG_R(0.1)  /* m */
+#endif
+#ifndef FAT_FRACTION
+#define FAT_FRACTION     RG_R(0.02)
+#endif
+#ifndef LOOKAHEAD
+#define LOOKAHEAD        RG_R(4)    /* fat boxes reach this many steps of motion ahead */
+#endif
+
+static inline rg_real pairs_margin(const collide_world *cw, const body_store *b, int32_t i)
+{
+    return rg_min(FAT_MARGIN, rg_max(cw->slop, FAT_FRACTION * rg_max(b->hx[i], b->hy[i])));
+}
+
+/* The fat box of a body at rest: its box grown by the margin. */
+static void pairs_rest_box(const collide_world *cw, const body_store *b, int32_t i, rg_real box[4])
+{
+    rg_real m = pairs_margin(cw, b, i);
+    box[0] = b->x[i] - b->hx[i] - m;
+    box[1] = b->y[i] - b->hy[i] - m;
+    box[2] = b->x[i] + b->hx[i] + m;
+    box[3] = b->y[i] + b->hy[i] + m;
+}
+
+void pairs_refresh_now(rg_world *w, int32_t i, rg_real lx, rg_real ly, rg_real ux, rg_real uy,
+                       rg_real mx, rg_real my, rg_real ax, rg_real ay)
+{
+    broadphase *bp = &w->coll.bp;
+    int32_t slot = w->b.slot[i];
+    rg_real m = pairs_margin(&w->coll, &w->b, i);
+    mx *= LOOKAHEAD;
+    my *= LOOKAHEAD;
+    ax = mx + ax * (LOOKAHEAD * (LOOKAHEAD + 1) / 2);
+    ay = my + ay * (LOOKAHEAD * (LOOKAHEAD + 1) / 2);
+    rg_real flx = rg_min(lx, rg_min(lx + mx, lx + ax)) - m, fly = rg_min(ly, rg_min(ly + my, ly + ay)) - m;
+    rg_real fux = rg_max(ux, rg_max(ux + mx, ux + ax)) + m, fuy = rg_max(uy, rg_max(uy + my, uy + ay)) + m;
+    broadphase_move(bp, slot, flx, fly, fux, fuy);
+    broadphase_mark_moved(bp, slot);
+}
+
+typedef struct pairs_query {
+    rg_world *w;
+    int32_t s, is;
+    uint32_t mark;    /* the bodies s has a contact with carry it */
+    int teleported;
+    int failed;
+    int woke;
+} pairs_query;
+
+static void pairs_visit(void *p, int32_t t)
+{
+    pairs_query *q = p;
+    rg_world *w = q->w;
+    collide_world *cw = &w->coll;
+    int32_t s = q->s;
+    if (t == s) return;
+    bp_entry *et = &cw->bp.e[t];
+    if (et->moved && t < s) return;     /* t's own query finds the pair */
+    if (et->mark == q->mark) return;    /* s has a contact with t */
+    int32_t it = body_dense(w, t);
+    if (!pairs_admitted(w, q->is, it)) return;
+    if (contact_create(w, s, t) < 0) {
+        q->failed = 1;
+        return;
+    }
+    et->mark = q->mark;
+    /* a teleported body landing on a sleeping one wakes it */
+    if (q->teleported && body_partition(w, it) == BODY_PART_ASLEEP) {
+        island_wake(w, t);
+        q->is = body_dense(w, s);
+        q->woke = 1;
+    }
+}
+
+int pairs_find(rg_world *w)
+{
+    collide_world *cw = &w->coll;
+    contact_store *cs = &cw->contacts;
+    broadphase *bp = &cw->bp;
+    int32_t n = bp->n_moved, kept = 0;
+    int woke = 0;
+    for (int32_t k = 0; k < n; k++) {
+        int32_t s = bp->moved[k];
+        const bp_entry *e = &bp->e[s];
+        /* contacts whose fat boxes no longer overlap end; the others' bodies are marked,
+         * so the query knows its existing pairs in O(1) */
+        uint32_t mark = broadphase_new_mark(bp);
+        for (int32_t id = w->b.chead[body_dense(w, s)] - 1; id >= 0;) {
+            int32_t next = contact_next(&cs->c[id], s), t = contact_other(&cs->c[id], s);
+            if (!broadphase_overlap(bp, s, t))
+                contact_destroy(w, id);
+            else
+                bp->e[t].mark = mark;
+            id = next;
+        }
+        pairs_query q;
+        q.w = w;
+        q.s = s;
+        q.mark = mark;
+        q.is = body_dense(w, s);
+        q.teleported = (w->b.cflags[q.is] & CF_TELEPORTED) != 0;
+        q.failed = 0;
+        q.woke = 0;
+        broadphase_query(bp, e->lx, e->ly, e->ux, e->uy, pairs_visit, &q);
+        woke |= q.woke;
+        if (q.failed)
+            bp->e[s].moved = 2; /* out of memory: search again next step */
+        else
+            w->b.cflags[body_dense(w, s)] &= ~CF_TELEPORTED;
+    }
+    for (int32_t k = 0; k < n; k++) {
+        int32_t s = bp->moved[k];
+        if (bp->e[s].moved == 2) {
+            bp->e[s].moved = 1;
+            bp->moved[kept++] = s;
+        } else {
+            bp->e[s].moved = 0;
+        }
+    }
+    bp->n_moved = kept;
+    return woke;
+}
+
+void pairs_refit(rg_world *w, const collide_step *x, rg_real dt)
+{
+    collide_world *cw = &w->coll;
+    const narrow_state *ns = &cw->narrow;
+    body_store *b = &w->b;
+    broadphase *bp = &cw->bp;
+    int32_t na = x->na;
+    for (int32_t k = 0; k < bp->n_active; k++) {
+        int32_t s = bp->active[k];
+        int32_t i = body_dense(w, s);
+        rg_real x1 = b->x[i], y1 = b->y[i], hx = b->hx[i], hy = b->hy[i];
+        /* bodies woken during the step (k >= na) have no start velocity: no trend */
+        rg_real ax = k < na ? (b->vx[i] - ns->svx0[k]) * dt : 0, ay = k < na ? (b->vy[i] - ns->svy0[k]) * dt : 0;
+        pairs_refresh(w, &bp->e[s], i, x1 - hx, y1 - hy, x1 + hx, y1 + hy, b->vx[i] * dt, b->vy[i] * dt, ax, ay);
+    }
+}
+
+void pairs_insert(rg_world *w, int32_t slot)
+{
+    collide_world *cw = &w->coll;
+    int32_t i = body_dense(w, slot);
+    rg_real box[4];
+    pairs_rest_box(cw, &w->b, i, box);
+    broadphase_insert(&cw->bp, slot, box[0], box[1], box[2], box[3]);
+    if (w->b.type[i] != RG_BODY_STATIC) broadphase_activate(&cw->bp, slot);
+}
+
+void pairs_teleported(rg_world *w, int32_t slot)
+{
+    body_store *b = &w->b;
+    int32_t i = body_dense(w, slot);
+    if (b->shape[i] == RG_SHAPE_NONE) return;
+    rg_real box[4];
+    pairs_rest_box(&w->coll, b, i, box);
+    broadphase_move(&w->coll.bp, slot, box[0], box[1], box[2], box[3]);
+    broadphase_mark_moved(&w->coll.bp, slot);
+    b->cflags[i] |= CF_TELEPORTED;
+    island_wake_touching(w, slot);
+}

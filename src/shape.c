@@ -1,0 +1,201 @@
+/* shape.c: the shape, material, sensor, filter and grounded API of bodies. */
+#include "island.h"
+#include "pairs.h"
+#include "shape.h"
+#include "vec2.h"
+#include "world.h"
+
+/* Ends every contact of slot s (end events reported with the next step), waking the
+ * sleeping bodies on the other side. */
+static void shape_end_contacts(rg_world *w, int32_t s)
+{
+    contact_store *cs = &w->coll.contacts;
+    for (;;) {
+        int32_t id = w->b.chead[body_dense(w, s)] - 1;
+        if (id < 0) return;
+        int32_t other = contact_other(&cs->c[id], s);
+        if (body_partition(w, body_dense(w, other)) == BODY_PART_ASLEEP) island_wake(w, other);
+        contact_destroy(w, id);
+    }
+}
+
+static void shape_clear(rg_world *w, int32_t s)
+{
+    body_store *b = &w->b;
+    shape_end_contacts(w, s);
+    int32_t i = body_dense(w, s);
+    broadphase_remove(&w->coll.bp, s);
+    w->coll.shape_count--;
+    b->shape[i] = RG_SHAPE_NONE;
+    b->hx[i] = b->hy[i] = 0;
+    b->cflags[i] &= ~(CF_GROUNDED | CF_TELEPORTED);
+}
+
+void shape_remove(rg_world *w, int32_t slot)
+{
+    island_touch(w, slot);
+    if (w->b.shape[body_dense(w, slot)] != RG_SHAPE_NONE) shape_clear(w, slot);
+}
+
+static int shape_size_ok(rg_real v) { return rg_finite(v) && v > 0 && v <= (rg_real)RG_MAX_SHAPE_SIZE; }
+
+static rg_status shape_set(rg_world *w, int32_t i, int32_t kind, rg_real hx, rg_real hy)
+{
+    collide_world *cw = &w->coll;
+    body_store *b = &w->b;
+    int32_t s = b->slot[i];
+    int fresh = b->shape[i] == RG_SHAPE_NONE;
+    if (fresh) {
+        rg_status st = broadphase_reserve(&cw->bp, &w->mem, w->body_pool.slot_count, cw->bp.count + 1);
+        if (st != RG_OK) return st;
+    }
+    island_touch(w, s);
+    i = body_dense(w, s);
+    b->shape[i] = kind;
+    b->hx[i] = hx;
+    b->hy[i] = hy;
+    if (fresh) {
+        pairs_insert(w, s);
+        cw->shape_count++;
+    }
+    pairs_teleported(w, s);
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_set_circle(rg_world *world, rg_body body, rg_real radius)
+{
+    BODY_GET(world, body, i);
+    if (!shape_size_ok(radius)) return RG_ERR_INVALID_ARGUMENT;
+    return shape_set(world, i, RG_SHAPE_CIRCLE, radius, radius);
+}
+
+RG_API rg_status rg_body_set_aabb(rg_world *world, rg_body body, rg_real half_width,
+                                  rg_real half_height)
+{
+    BODY_GET(world, body, i);
+    if (!shape_size_ok(half_width) || !shape_size_ok(half_height)) return RG_ERR_INVALID_ARGUMENT;
+    return shape_set(world, i, RG_SHAPE_AABB, half_width, half_height);
+}
+
+RG_API rg_status rg_body_clear_shape(rg_world *world, rg_body body)
+{
+    BODY_GET(world, body, i);
+    if (world->b.shape[i] == RG_SHAPE_NONE) return RG_OK;
+    shape_remove(world, world->b.slot[i]);
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_get_shape(const rg_world *world, rg_body body, int32_t *out_kind,
+                                   rg_vec2 *out_half_extents)
+{
+    BODY_GET(world, body, i);
+    if (out_kind == NULL && out_half_extents == NULL) return RG_ERR_INVALID_ARGUMENT;
+    if (out_kind != NULL) *out_kind = world->b.shape[i];
+    if (out_half_extents != NULL) *out_half_extents = rg_v2(world->b.hx[i], world->b.hy[i]);
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_set_restitution(rg_world *world, rg_body body, rg_real restitution)
+{
+    BODY_GET(world, body, i);
+    if (!rg_finite(restitution) || restitution < 0 || restitution > 1) return RG_ERR_INVALID_ARGUMENT;
+    world->b.rest[i] = restitution;
+    contact_refresh_materials(world, world->b.slot[i]);
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_get_restitution(const rg_world *world, rg_body body, rg_real *out)
+{
+    BODY_GET(world, body, i);
+    if (out == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out = world->b.rest[i];
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_set_friction(rg_world *world, rg_body body, rg_real mu)
+{
+    BODY_GET(world, body, i);
+    if (!rg_finite(mu) || mu < 0) return RG_ERR_INVALID_ARGUMENT;
+    world->b.mu[i] = mu;
+    contact_refresh_materials(world, world->b.slot[i]);
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_get_friction(const rg_world *world, rg_body body, rg_real *out)
+{
+    BODY_GET(world, body, i);
+    if (out == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out = world->b.mu[i];
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_set_sensor(rg_world *world, rg_body body, int32_t is_sensor)
+{
+    BODY_GET(world, body, i);
+    if (is_sensor != 0 && is_sensor != 1) return RG_ERR_INVALID_ARGUMENT;
+    body_store *b = &world->b;
+    if (((b->cflags[i] & CF_SENSOR) != 0) == (is_sensor != 0)) return RG_OK;
+    int32_t s = b->slot[i];
+    island_touch(world, s);
+    if (b->shape[body_dense(world, s)] != RG_SHAPE_NONE) {
+        shape_end_contacts(world, s);
+        broadphase_mark_moved(&world->coll.bp, s);
+    }
+    b->cflags[body_dense(world, s)] ^= CF_SENSOR;
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_is_sensor(const rg_world *world, rg_body body, int32_t *out_is_sensor)
+{
+    BODY_GET(world, body, i);
+    if (out_is_sensor == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out_is_sensor = (world->b.cflags[i] & CF_SENSOR) != 0;
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_set_filter(rg_world *world, rg_body body, uint32_t category, uint32_t mask)
+{
+    BODY_GET(world, body, i);
+    body_store *b = &world->b;
+    contact_store *cs = &world->coll.contacts;
+    if (b->cat[i] == category && b->mask[i] == mask) return RG_OK;
+    int32_t s = b->slot[i];
+    b->cat[i] = category;
+    b->mask[i] = mask;
+    island_touch(world, s);
+    if (b->shape[body_dense(world, s)] == RG_SHAPE_NONE) return RG_OK;
+    /* end the contacts the new filter rejects; new pairs are searched at the next step */
+    int32_t id = b->chead[body_dense(world, s)] - 1;
+    while (id >= 0) {
+        int32_t next = contact_next(&cs->c[id], s);
+        int32_t other = contact_other(&cs->c[id], s);
+        if (!pairs_admitted(world, body_dense(world, s), body_dense(world, other))) {
+            if (body_partition(world, body_dense(world, other)) == BODY_PART_ASLEEP) {
+                island_wake(world, other);
+                next = contact_next(&cs->c[id], s);
+            }
+            contact_destroy(world, id);
+        }
+        id = next;
+    }
+    broadphase_mark_moved(&world->coll.bp, s);
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_get_filter(const rg_world *world, rg_body body, uint32_t *out_category,
+                                    uint32_t *out_mask)
+{
+    BODY_GET(world, body, i);
+    if (out_category == NULL || out_mask == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out_category = world->b.cat[i];
+    *out_mask = world->b.mask[i];
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_is_grounded(const rg_world *world, rg_body body, int32_t *out_grounded)
+{
+    BODY_GET(world, body, i);
+    if (out_grounded == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out_grounded = world->b.type[i] == RG_BODY_DYNAMIC && (world->b.cflags[i] & CF_GROUNDED) != 0;
+    return RG_OK;
+}

@@ -1,0 +1,126 @@
+/* step.c: the step as one pipeline, rg_world_step, and the fixed-step accumulator. */
+#include <math.h>
+#include <string.h>
+
+#include "continuous.h"
+#include "integrator.h"
+#include "island.h"
+#include "speed_limits.h"
+#include "narrow.h"
+#include "pairs.h"
+#include "resolve.h"
+#include "step.h"
+#include "vec2.h"
+#include "world.h"
+
+/* The collide stage, in order: views and fat boxes, pairs, narrowphase, solve, the
+ * continuous sweep, fat boxes refit, sleep.  Only with shapes. */
+static void step_collide(rg_world *w, rg_real dt)
+{
+    collide_step x;
+    collide_step_begin(w, &x, dt);
+    STEP_PROF(-1);
+    narrow_views(w, &x, dt);
+    STEP_PROF(0);
+    STEP_PROF_MOVED(w->coll.bp.n_moved);
+    x.woke = pairs_find(w);
+    STEP_PROF(1);
+    narrow_run(w, &x);
+    STEP_PROF(2);
+    resolve_run(w, &x);
+    STEP_PROF(3);
+    continuous_sweep(w, &x);
+    pairs_refit(w, &x, dt);
+    STEP_PROF(4);
+    island_sleep(w, dt, x.unite && !x.woke);
+    STEP_PROF(5);
+    STEP_PROF_REPORT(w, x);
+}
+
+/* One step after validation and preparation; cannot fail.  The pipeline of the header's
+ * rg_world_step: forces, integrate, limits, collide (and sleep), events, clear. */
+static void step_run(rg_world *w, rg_real dt)
+{
+    body_store *b = &w->b;
+    int collide = collide_needed(w);
+    int shapes = w->coll.shape_count > 0;
+    if (shapes) narrow_record_start(w);  /* where the step begins, for the collide stage */
+    force_begin(w);
+    integrator_step(w, dt);
+    speed_limits_apply(w);
+    if (collide) {
+        events_begin_step(&w->coll.events);
+        if (shapes) step_collide(w, dt);
+        events_end_step(&w->coll.events);
+    }
+    /* Applied forces last one step.  (An empty world has no arrays: memset(NULL, 0, 0) is
+     * undefined.) */
+    if (b->n_moving > 0) {
+        memset(b->fx, 0, (size_t)b->n_moving * sizeof *b->fx);
+        memset(b->fy, 0, (size_t)b->n_moving * sizeof *b->fy);
+    }
+    w->step_count++;
+}
+
+/* What a step allocates, before anything changes, so that a failing step changes nothing. */
+static rg_status step_prepare(rg_world *w)
+{
+    rg_status st = integrator_prepare(w);
+    if (st == RG_OK) st = collide_prepare(w);
+    return st;
+}
+
+RG_API rg_status rg_world_step(rg_world *world, rg_real dt)
+{
+    if (world == NULL || !rg_finite(dt) || !(dt > 0)) return RG_ERR_INVALID_ARGUMENT;
+    rg_status st = step_prepare(world);
+    if (st != RG_OK) return st;
+    events_clear(&world->coll.events);
+    step_run(world, dt);
+    world->prev_valid = 0;
+    return RG_OK;
+}
+
+RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *out_steps)
+{
+    if (world == NULL || !rg_finite(frame_time) || frame_time < 0) return RG_ERR_INVALID_ARGUMENT;
+    rg_status st = step_prepare(world);
+    if (st != RG_OK) return st;
+    body_store *b = &world->b;
+    rg_real dt = (rg_real)world->fixed_dt;
+    int32_t steps = 0;
+    int cut = 0;
+    /* The events readable after an advance are those of all its steps, in step order. */
+    events_clear(&world->coll.events);
+    world->accumulator += (double)frame_time;
+    while (world->accumulator >= world->fixed_dt && steps < world->max_steps) {
+        /* The first step's events always fit (their room comes with the contact storage);
+         * a later one needs room after the events held.  Without it the advance stops here
+         * and the steps not taken wait in the accumulator for the next advance: no event
+         * is lost and the simulation is the same, only later. */
+        if (steps > 0 && events_reserve(world) != RG_OK) {
+            cut = 1;
+            break;
+        }
+        if (b->n_moving > 0) {
+            memcpy(b->px, b->x, (size_t)b->n_moving * sizeof *b->x);
+            memcpy(b->py, b->y, (size_t)b->n_moving * sizeof *b->y);
+        }
+        step_run(world, dt);
+        world->accumulator -= world->fixed_dt;
+        steps++;
+    }
+    /* Past the cap, whole steps are dropped (no spiral of death); the fraction stays. */
+    if (!cut && world->accumulator >= world->fixed_dt)
+        world->accumulator = fmod(world->accumulator, world->fixed_dt);
+    if (steps > 0) world->prev_valid = 1;
+    if (out_steps != NULL) *out_steps = steps;
+    return RG_OK;
+}
+
+RG_API rg_status rg_world_get_alpha(const rg_world *world, rg_real *out_alpha)
+{
+    if (world == NULL || out_alpha == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out_alpha = (rg_real)(world->accumulator / world->fixed_dt);
+    return RG_OK;
+}

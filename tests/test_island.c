@@ -1,0 +1,187 @@
+/* test_island.c: islands and sleeping: falling asleep, costing nothing asleep, waking when touched,
+ * pushed or left without support, springs joining islands, kinematic and static bodies. */
+#include "testutil.h"
+
+static void test_a_body_at_rest_sleeps_and_wakes_when_pushed(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-10);
+    floor_of(w);
+    rg_body b = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
+    step_n(w, 60, DT);
+    assert_int_equal(flag(rg_body_is_awake, w, b), 0);
+    assert_int_equal(rg_world_awake_body_count(w), 0);
+    assert_int_equal(flag(rg_body_is_grounded, w, b), 1); /* kept while asleep */
+    /* each way of pushing it wakes it */
+    for (int how = 0; how < 5; how++) {
+        step_n(w, 60, DT);
+        assert_int_equal(flag(rg_body_is_awake, w, b), 0);
+        switch (how) {
+        case 0: assert_ok(rg_body_apply_force(w, b, v2(1, 0))); break;
+        case 1: assert_ok(rg_body_apply_impulse(w, b, v2(0.1f, 0))); break;
+        case 2: assert_ok(rg_body_set_velocity(w, b, v2(0.2f, 0))); break;
+        case 3: assert_ok(rg_body_set_position(w, b, v2(PX(w, b), 0.5))); break;
+        default: assert_ok(rg_body_wake(w, b)); break;
+        }
+        assert_int_equal(flag(rg_body_is_awake, w, b), 1);
+    }
+    rg_world_destroy(w);
+}
+
+static void test_sleeping_bodies_do_not_move_and_cost_no_steps(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-10);
+    floor_of(w);
+    rg_body b[10];
+    for (int i = 0; i < 10; i++) b[i] = box_body(w, RG_BODY_DYNAMIC, 1, i * 1.5, 0.5, 0.5, 0.5);
+    step_n(w, 60, DT);
+    assert_int_equal(rg_world_awake_body_count(w), 0);
+    rg_vec2 p[10];
+    for (int i = 0; i < 10; i++) p[i] = pos_of(w, b[i]);
+    step_n(w, 100, DT);
+    for (int i = 0; i < 10; i++) {
+        assert_true(pos_of(w, b[i]).x == p[i].x && pos_of(w, b[i]).y == p[i].y);
+        assert_near(VY(w, b[i]), 0, 0);
+    }
+    rg_world_destroy(w);
+}
+
+static void test_a_body_landing_on_a_sleeping_pile_wakes_it(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-10);
+    floor_of(w);
+    rg_body base = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
+    rg_body mid = box_body(w, RG_BODY_DYNAMIC, 1, 0, 1.5, 0.5, 0.5);
+    step_n(w, 60, DT);
+    assert_int_equal(flag(rg_body_is_awake, w, base), 0);
+    rg_body drop = circle_body(w, RG_BODY_DYNAMIC, 5, 0, 6, 0.5);
+    int woke = 0;
+    for (int i = 0; i < 120; i++) {
+        assert_ok(rg_world_step(w, (rg_real)DT));
+        woke |= flag(rg_body_is_awake, w, mid) && flag(rg_body_is_awake, w, base);
+    }
+    assert_true(woke);
+    assert_true(PY(w, drop) > 2.4); /* it rests on the pile, which held */
+    assert_near(PY(w, base), 0.5, 0.01);
+    rg_world_destroy(w);
+}
+
+static void test_removing_or_moving_a_support_wakes_what_rests_on_it(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-10);
+    rg_body shelf = box_body(w, RG_BODY_STATIC, 0, 0, -0.5, 3, 0.5);
+    rg_body b = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
+    step_n(w, 60, DT);
+    assert_int_equal(flag(rg_body_is_awake, w, b), 0);
+    assert_ok(rg_body_set_position(w, shelf, v2(0, -3))); /* the static shelf drops away */
+    assert_int_equal(flag(rg_body_is_awake, w, b), 1);
+    step_n(w, 60, DT);
+    assert_true(PY(w, b) < -1.9 && PY(w, b) > -2.1); /* fell onto the shelf's new place */
+    /* a sleeping body on a dynamic support that is destroyed */
+    rg_body b2 = box_body(w, RG_BODY_DYNAMIC, 1, 10, 0.5, 0.5, 0.5);
+    box_body(w, RG_BODY_STATIC, 0, 10, -1.5, 3, 0.5);
+    rg_body support = box_body(w, RG_BODY_DYNAMIC, 1, 10, -0.5, 0.5, 0.5);
+    step_n(w, 60, DT);
+    assert_int_equal(flag(rg_body_is_awake, w, b2), 0);
+    assert_ok(rg_body_destroy(w, support));
+    assert_int_equal(flag(rg_body_is_awake, w, b2), 1);
+    /* a body teleported into a sleeping one wakes it */
+    step_n(w, 90, DT);
+    assert_int_equal(flag(rg_body_is_awake, w, b2), 0);
+    rg_body intruder = circle_body(w, RG_BODY_DYNAMIC, 1, 30, 30, 0.5);
+    assert_ok(rg_body_set_position(w, intruder, v2(10, PY(w, b2) + 0.8)));
+    assert_ok(rg_world_step(w, (rg_real)DT));
+    assert_int_equal(flag(rg_body_is_awake, w, b2), 1);
+    rg_world_destroy(w);
+}
+
+static void test_disabling_sleep_wakes_everything_and_thresholds_apply(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-10);
+    floor_of(w);
+    rg_body b = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
+    step_n(w, 60, DT);
+    assert_int_equal(rg_world_awake_body_count(w), 0);
+    assert_ok(rg_world_set_sleeping(w, 0));
+    assert_int_equal(rg_world_awake_body_count(w), 1);
+    step_n(w, 120, DT);
+    assert_int_equal(flag(rg_body_is_awake, w, b), 1);
+    /* sleep after 2 s of rest, not 0.5 */
+    assert_ok(rg_world_set_sleeping(w, 1));
+    assert_ok(rg_world_set_sleep_thresholds(w, 0.05f, 2));
+    step_n(w, 100, DT);
+    assert_int_equal(flag(rg_body_is_awake, w, b), 1);
+    step_n(w, 30, DT);
+    assert_int_equal(flag(rg_body_is_awake, w, b), 0);
+    /* a sleep time shorter than a step: asleep after one step at rest */
+    assert_ok(rg_world_set_sleep_thresholds(w, 0.05f, 0.001f));
+    assert_ok(rg_body_wake(w, b));
+    assert_ok(rg_world_step(w, (rg_real)DT));
+    assert_int_equal(flag(rg_body_is_awake, w, b), 0);
+    rg_world_destroy(w);
+}
+
+/* Springs join islands: two boxes tied together rest and sleep together; a box tied to a
+ * body without a shape that keeps moving never sleeps. */
+static void test_springs_join_islands(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-10);
+    floor_of(w);
+    rg_body a = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5), b = box_body(w, RG_BODY_DYNAMIC, 1, 3, 0.5, 0.5, 0.5);
+    uint64_t sp;
+    assert_ok(rg_spring_create(w, a, b, v2(0, 0), 3, 10, 1, &sp));
+    step_n(w, 60, DT);
+    assert_int_equal(flag(rg_body_is_awake, w, a), 0);
+    assert_int_equal(flag(rg_body_is_awake, w, b), 0);
+    /* waking one wakes the other: they are one island */
+    assert_ok(rg_body_wake(w, a));
+    assert_int_equal(flag(rg_body_is_awake, w, b), 1);
+    /* a box tied to a swinging weight without a shape stays awake */
+    rg_body c = box_body(w, RG_BODY_DYNAMIC, 1, 10, 0.5, 0.5, 0.5);
+    rg_body weight = make_body(w, 1, 12, 3);
+    assert_ok(rg_body_set_gravity_scale(w, weight, 0));
+    assert_ok(rg_body_set_velocity(w, weight, v2(0, 1)));
+    uint64_t sp2;
+    assert_ok(rg_spring_create(w, c, weight, v2(0, 0), 2, 0.5f, 0, &sp2));
+    step_n(w, 120, DT);
+    assert_int_equal(flag(rg_body_is_awake, w, c), 1);
+    rg_world_destroy(w);
+}
+
+static void test_kinematic_and_static_bodies_never_sleep_and_a_moving_platform_wakes_riders(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-10);
+    rg_body k = box_body(w, RG_BODY_KINEMATIC, 0, 0, -0.5, 3, 0.5);
+    rg_body rider = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
+    step_n(w, 60, DT);
+    assert_int_equal(flag(rg_body_is_awake, w, k), 1);
+    assert_int_equal(flag(rg_body_is_awake, w, rider), 0);
+    assert_ok(rg_body_set_velocity(w, k, v2(0, 1))); /* the platform rises */
+    step_n(w, 30, DT);
+    assert_int_equal(flag(rg_body_is_awake, w, rider), 1);
+    assert_true(PY(w, rider) > 0.9); /* carried up */
+    assert_ok(rg_body_set_velocity(w, k, v2(0, -1))); /* and goes down: the rider follows */
+    step_n(w, 60, DT);
+    assert_true(PY(w, rider) < 0.6);
+    rg_world_destroy(w);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_a_body_at_rest_sleeps_and_wakes_when_pushed),
+        cmocka_unit_test(test_sleeping_bodies_do_not_move_and_cost_no_steps),
+        cmocka_unit_test(test_a_body_landing_on_a_sleeping_pile_wakes_it),
+        cmocka_unit_test(test_removing_or_moving_a_support_wakes_what_rests_on_it),
+        cmocka_unit_test(test_disabling_sleep_wakes_everything_and_thresholds_apply),
+        cmocka_unit_test(test_springs_join_islands),
+        cmocka_unit_test(test_kinematic_and_static_bodies_never_sleep_and_a_moving_platform_wakes_riders),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
