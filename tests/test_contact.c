@@ -101,7 +101,7 @@ static void test_bodies_far_away_or_thrown_to_infinity_do_no_harm(void **state)
     rg_body far = circle_body(w, RG_BODY_DYNAMIC, 1, 3e37, -3e37, 0.5);
     rg_body fast = box_body(w, RG_BODY_DYNAMIC, 1e-30, 5, 5, 0.5, 0.5);
     assert_ok(rg_body_apply_impulse(w, fast, v2(1e8, 0))); /* 1e38 m/s */
-    rg_body huge = box_body(w, RG_BODY_STATIC, 0, 0, -1e6, (rg_real)RG_MAX_SHAPE_SIZE, 1);
+    rg_body huge = box_body(w, RG_BODY_STATIC, 0, 0, -1e6, (double)(rg_real)RG_MAX_SHAPE_SIZE, 1);
     (void)huge;
     step_n(w, 200, DT);
     assert_near(PY(w, ok), 0.5, 0.006);
