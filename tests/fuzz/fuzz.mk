@@ -49,7 +49,7 @@ $(B)/fuzz/fuzz_api: tests/fuzz/fuzz_api.c tests/fuzz/fuzz_api_model.c tests/fuzz
 FUZZ_LUA_OBJ := $(B)/lua/lsandbox.o $(B)/lua/lpattern.o $(LUA_BIND_OBJ)
 $(B)/fuzz/fuzz_lua: tests/fuzz/fuzz_lua.c $(FUZZ_LUA_OBJ) $(LIB_A)
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) $(LUA_COLLISION) $(LUA_PKG_CFLAGS) -Ilua -fsanitize=fuzzer $(LDFLAGS) -o $@ $< \
+	$(CC) $(CFLAGS) $(LUA_PKG_CFLAGS) -Ilua -fsanitize=fuzzer $(LDFLAGS) -o $@ $< \
 	  $(FUZZ_LUA_OBJ) $(LIB_A) $(LUA_PKG_LIBS) $(LDLIBS)
 
 # The pending tests run against the library built by clang with ASan + UBSan and without the

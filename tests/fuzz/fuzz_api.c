@@ -379,8 +379,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         op_name = op_names[op];
         snap_all(&before);
         op_max_real = 0;
+        op_min_real = (double)INFINITY;
         int32_t st = run_op(&in, op, &is_step, &is_const);
-        if (st >= 0 && op_max_real > FUZZ_BIG && op_world->w != NULL) op_world->big = 1;
+        if (st >= 0 && op_world->w != NULL && (op_max_real > FUZZ_TAME_MAX || op_min_real < FUZZ_TAME_MIN))
+            op_world->big = 1;
         if (trace) fprintf(stderr, "op %d %s -> %d\n", op_no, op_name, st);
         if (st < 0 || is_const) {
             snap_all(&after);

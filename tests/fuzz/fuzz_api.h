@@ -22,13 +22,16 @@
  * one is then valid in the other.  Tolerated when the two tags are equal.  Pending:
  * test_handles_of_a_destroyed_world_*, test_worlds_16_mib_apart_*. */
 #define FUZZ_KNOWN_SHARED_TAG 1
-/* No range is validated: a world that accepted a real beyond 1e18 in magnitude (where the
- * square of a float overflows) may derive inf from it: interpolated positions, draw output,
- * ray hits, event fields.  Tolerated there.  Pending: test_state_near_the_float_range_*,
+/* No range is validated: a world that accepted a real outside the tame envelope (0, or a
+ * magnitude in [1e-6, 1e6]), or whose state grew past 1e12, may derive inf from it
+ * (interpolated positions, fat boxes in the draw output, ray hits, event fields).
+ * Tolerated there.  Pending: test_state_near_the_float_range_*, test_huge_step_*,
  * test_interpolated_position_*. */
 #define FUZZ_KNOWN_NO_RANGES 1
 #endif
-#define FUZZ_BIG 1e18
+#define FUZZ_TAME_MAX 1e6
+#define FUZZ_TAME_MIN 1e-6
+#define FUZZ_STATE_MAX 1e12
 
 #define NW       3     /* world slots */
 #define MAXB     40    /* live bodies per world */
@@ -70,7 +73,7 @@ typedef struct fworld {
     rg_body issued[MAXISSUE];  /* every handle it issued, for events of destroyed bodies */
     int nissued;
     int tainted;               /* FUZZ_KNOWN_STEP_NOT_TOTAL: a step left a non-finite body */
-    int big;                   /* FUZZ_KNOWN_NO_RANGES: it accepted a real beyond FUZZ_BIG */
+    int big;                   /* FUZZ_KNOWN_NO_RANGES: it left the tame envelope */
     int tag_known;
     uint32_t tag;
 } fworld;
@@ -86,7 +89,7 @@ typedef struct snap {
 } snap;
 
 extern int trace, op_no, ndead, dead_next, next_serial;
-extern double op_max_real;
+extern double op_max_real, op_min_real;
 extern const char *op_name;
 extern fworld W[NW], *op_world;
 extern dead_handle dead[NDEAD];

@@ -28,7 +28,7 @@ uint64_t u64(input *in)
 }
 
 int trace = -1;   /* FUZZ_API_TRACE set: print each op and its reals (reproducers) */
-double op_max_real; /* largest |real| the current op was given (NaN never counts) */
+double op_max_real, op_min_real; /* largest and smallest non-zero |real| of the current op */
 
 static rg_real real_value(input *in);
 
@@ -36,6 +36,7 @@ rg_real real_arg(input *in)
 {
     rg_real r = real_value(in);
     if (fabs((double)r) > op_max_real) op_max_real = fabs((double)r);
+    if (r != 0 && fabs((double)r) < op_min_real) op_min_real = fabs((double)r);
     if (trace > 0) fprintf(stderr, "  real %.9g\n", (double)r);
     return r;
 }
@@ -344,7 +345,7 @@ int derived_checked(const fworld *fw)
 }
 
 /* 1 when every live body of fw reads finite. */
-static int world_finite(const fworld *fw)
+static int world_finite(fworld *fw)
 {
     for (int k = 0; k < fw->nlive; k++) {
         rg_vec2 p, v, ip, a;
@@ -354,6 +355,9 @@ static int world_finite(const fworld *fw)
             rg_body_get_acceleration(fw->w, b, &a) != RG_OK)
             FAIL("a getter failed on live body %llx", (unsigned long long)b);
         if (!finite2(p) || !finite2(v)) return 0;
+        if (fabs((double)p.x) > FUZZ_STATE_MAX || fabs((double)p.y) > FUZZ_STATE_MAX ||
+            fabs((double)v.x) > FUZZ_STATE_MAX || fabs((double)v.y) > FUZZ_STATE_MAX)
+            fw->big = 1;
         if (derived_checked(fw) && (!finite2(ip) || !finite2(a))) return 0;
     }
     return 1;
