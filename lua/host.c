@@ -25,7 +25,8 @@ static const char usage[] =
     "  --svg FILE     draw the world (bodies, trails, contact points) into FILE\n"
     "  --memory MiB   memory cap of the script, physics included (default 64)\n"
     "  --budget N     instructions per call into the script: the main chunk, setup, each\n"
-    "                 update and each contact (default 100000000; 0: no limit)\n"
+    "                 frame (update and the contact calls after its step share one) and\n"
+    "                 finish (default 100000000; 0: no limit)\n"
     "A scene script defines setup(world), update(world, dt) (before each fixed step),\n"
     "contact(world, event) (for each contact event after a step) and/or finish(world);\n"
     "the host makes the world and steps it.  Other scripts run as they are.\n";
@@ -211,18 +212,21 @@ static double global_number(lua_State *L, const char *name)
     return isfinite(v) ? v : -1;
 }
 
-/* The host's own step: update -> one fixed step through the accumulator -> contacts. */
+/* The host's own step: update -> one fixed step through the accumulator -> contacts.  The
+ * frame is one entry: update and every contact call after the step share one budget (a
+ * fresh budget per event would let each of thousands of events spend all of it). */
 static int scene_step(host *h, double dt)
 {
     lua_State *L = h->L;
     rg_world *w;
     int32_t taken = 0;
-    int has_contact;
+    int has_contact, fresh = 1;
     if (global_function(L, "update")) {
         lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
         lua_pushnumber(L, dt);
         int st = lsandbox_call(L, h->sb, 2, 0);
         if (st != LUA_OK) return report(h, "update", st);
+        fresh = 0;
     }
     lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
     w = lrigid_toworld(L, -1);
@@ -254,7 +258,8 @@ static int scene_step(host *h, double dt)
             if (!global_function(L, "contact")) break;
             lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
             lua_rawgeti(L, events, i);
-            int st = lsandbox_call(L, h->sb, 2, 0);
+            int st = fresh ? lsandbox_call(L, h->sb, 2, 0) : lsandbox_continue(L, h->sb, 2, 0);
+            fresh = 0;
             if (st != LUA_OK) {
                 report(h, "contact", st);
                 lua_pop(L, 2);

@@ -1,4 +1,5 @@
 /* lsandbox.c: memory cap, uncatchable instruction budget and safe libraries for scripts. */
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,12 +10,20 @@
 
 #include "lpattern.h"
 #include "lsandbox.h"
+#include "lutf8.h"
 
 #define HOOK_EVERY      1000            /* instructions between count hooks */
 #define BYTES_PER_UNIT  64              /* allocation charged to the budget */
 #define REPORT_HEADROOM (1u << 20)      /* memory the error report may use past the cap */
 #define LOOP_BATCH      1024            /* C loop iterations between budget checks */
 #define NORMAL_MASK     (LUA_MASKCOUNT | LUA_MASKCALL)
+/* Each block is counted as malloc sizes it: glibc's chunk is the request plus one size
+ * word, rounded to 16, at least 32 bytes. */
+#define CHUNK_OVERHEAD  8
+#define LONG_STRING_MIN 66              /* the smallest long-string block: 24 + 41 + 1 bytes */
+#define NCLASS          64
+#define COMPARE_BYTES_PER_UNIT 64       /* memcmp: 90 bytes in the 1.8 ns of one instruction */
+#define PARSE_BYTES_PER_UNIT   1        /* the lexer skips a blank in 1.4 ns */
 
 struct lsandbox {
     size_t used, peak, limit;
@@ -25,9 +34,23 @@ struct lsandbox {
     int count;               /* instructions per count hook */
     lpattern_meter meter;
     char where[200];         /* "file:line" of the script at the last count hook */
+    /* Long strings compare with memcmp inside one instruction (short ones are interned and
+     * compare by address), and only two of the same length cost more than a length check:
+     * live long strings per size class (block size in [2^k, 2^(k+1))), the most bytes one
+     * == (or rawequal, or a table lookup) may compare now, and the most since the last
+     * hook.  Every instruction and call is charged that many bytes more. */
+    int32_t lstr[NCLASS];
+    size_t pair_bound, pair_peak;
+    /* The live long-string blocks and their classes (open addressing; a freed block is
+     * looked up here when it is big enough to be one).  Counted in `used`. */
+    void **lkey;
+    unsigned char *lcls;
+    size_t lcap, lused;      /* slots, slots taken (live or deleted) */
 };
 
+
 static const char modules_key = 'm';
+static char lset_deleted;                     /* its address marks a deleted slot */
 
 static lsandbox *getsb(lua_State *L)
 {
@@ -38,25 +61,139 @@ static lsandbox *getsb(lua_State *L)
 
 /* ---------------------------------------------------------------- memory */
 
+static size_t block_cost(size_t n)
+{
+    size_t c = (n + CHUNK_OVERHEAD + 15) & ~(size_t)15;
+    return c < 32 ? 32 : c;
+}
+
+static int size_class(size_t n)
+{
+    int k = 0;
+    while (n > 1 && k < NCLASS - 1) {
+        n >>= 1;
+        k++;
+    }
+    return k;
+}
+
+static size_t lset_hash(const lsandbox *sb, const void *p)
+{
+    return (size_t)(((uint64_t)(uintptr_t)p >> 4) * 0x9E3779B97F4A7C15u) & (sb->lcap - 1);
+}
+
+/* Rebuilds the set with cap slots (a power of two); 0 when out of memory or over the cap. */
+static int lset_rehash(lsandbox *sb, size_t cap)
+{
+    size_t bytes = cap * (sizeof(void *) + 1), old_bytes = sb->lcap * (sizeof(void *) + 1), i;
+    void **key = NULL, **old_key = sb->lkey;
+    unsigned char *cls = NULL, *old_cls = sb->lcls;
+    size_t old_cap = sb->lcap;
+    if (sb->limit != 0 && bytes > old_bytes && sb->used + (bytes - old_bytes) > sb->limit) return 0;
+    key = (void **)calloc(cap, sizeof *key);
+    cls = (unsigned char *)malloc(cap);
+    if (key == NULL || cls == NULL) {
+        free(key);
+        free(cls);
+        return 0;
+    }
+    sb->lkey = key;
+    sb->lcls = cls;
+    sb->lcap = cap;
+    sb->lused = 0;
+    for (i = 0; i < old_cap; i++)
+        if (old_key[i] != NULL && old_key[i] != (void *)&lset_deleted) {
+            size_t h = lset_hash(sb, old_key[i]);
+            while (key[h] != NULL) h = (h + 1) & (cap - 1);
+            key[h] = old_key[i];
+            cls[h] = old_cls[i];
+            sb->lused++;
+        }
+    free(old_key);
+    free(old_cls);
+    sb->used = sb->used + bytes - old_bytes;
+    return 1;
+}
+
+static int lset_insert(lsandbox *sb, void *p, int cls)
+{
+    size_t h;
+    if ((sb->lused + 1) * 4 > sb->lcap * 3 && !lset_rehash(sb, sb->lcap < 64 ? 64 : sb->lcap * 2))
+        return 0;
+    h = lset_hash(sb, p);
+    while (sb->lkey[h] != NULL && sb->lkey[h] != (void *)&lset_deleted) h = (h + 1) & (sb->lcap - 1);
+    if (sb->lkey[h] == NULL) sb->lused++;
+    sb->lkey[h] = p;
+    sb->lcls[h] = (unsigned char)cls;
+    return 1;
+}
+
+/* Removes p and returns its class, or -1 when p is not a long string. */
+static int lset_remove(lsandbox *sb, const void *p)
+{
+    size_t h;
+    if (sb->lcap == 0) return -1;
+    for (h = lset_hash(sb, p); sb->lkey[h] != NULL; h = (h + 1) & (sb->lcap - 1))
+        if (sb->lkey[h] == p) {
+            sb->lkey[h] = (void *)&lset_deleted;
+            return sb->lcls[h];
+        }
+    return -1;
+}
+
+static void lstr_add(lsandbox *sb, int cls)
+{
+    if (++sb->lstr[cls] >= 2) {
+        size_t bound = (size_t)2 << cls;
+        if (bound > sb->pair_bound) sb->pair_bound = bound;
+        if (bound > sb->pair_peak) sb->pair_peak = bound;
+    }
+}
+
+static void lstr_forget(lsandbox *sb, int cls)
+{
+    if (--sb->lstr[cls] == 1 && ((size_t)2 << cls) == sb->pair_bound) {
+        int k = cls;
+        while (k >= 0 && sb->lstr[k] < 2) k--;
+        sb->pair_bound = k >= 0 ? (size_t)2 << k : 0;
+    }
+}
+
 static void *sb_alloc(void *ud, void *ptr, size_t osize, size_t nsize)
 {
     lsandbox *sb = (lsandbox *)ud;
-    size_t old = ptr != NULL ? osize : 0;   /* for a new block, osize is a type tag */
+    size_t old = ptr != NULL ? block_cost(osize) : 0;   /* for a new block, osize is a type tag */
+    size_t cost;
     void *p;
     if (nsize == 0) {
+        if (ptr != NULL && osize >= LONG_STRING_MIN) {
+            int cls = lset_remove(sb, ptr);
+            if (cls >= 0) lstr_forget(sb, cls);
+        }
         free(ptr);
         sb->used -= old;
         return NULL;
     }
-    if (nsize > old) {
-        size_t grow = nsize - old;
+    if (nsize > ((size_t)-1) / 2) return NULL;
+    cost = block_cost(nsize);
+    if (cost > old) {
+        size_t grow = cost - old;
         size_t limit = sb->limit + (sb->reporting ? REPORT_HEADROOM : 0);
         if (sb->limit != 0 && (grow > limit || sb->used > limit - grow)) return NULL;
-        if (sb->budget > 0) sb->spent += (double)(grow / BYTES_PER_UNIT);
+        if (sb->budget > 0 && nsize > (ptr != NULL ? osize : 0))
+            sb->spent += (double)((nsize - (ptr != NULL ? osize : 0)) / BYTES_PER_UNIT);
     }
     p = realloc(ptr, nsize);
-    if (p == NULL) return nsize <= old ? ptr : NULL;   /* a shrink may keep the block */
-    sb->used = sb->used - old + nsize;
+    if (p == NULL) return ptr != NULL && nsize <= osize ? ptr : NULL;   /* a shrink may keep it */
+    if (ptr == NULL && osize == LUA_TSTRING && nsize >= LONG_STRING_MIN) {
+        int cls = size_class(nsize);
+        if (!lset_insert(sb, p, cls)) {
+            free(p);
+            return NULL;
+        }
+        lstr_add(sb, cls);
+    }
+    sb->used = sb->used - old + cost;
     if (sb->used > sb->peak) sb->peak = sb->used;
     return p;
 }
@@ -102,14 +239,17 @@ static void arm(lua_State *L, const lsandbox *sb)
 static void hook(lua_State *L, lua_Debug *ar)
 {
     lsandbox *sb = getsb(L);
+    /* Each instruction or call may have compared two long strings of pair_peak bytes. */
+    double per = 1.0 + (double)(sb->pair_peak / COMPARE_BYTES_PER_UNIT);
+    sb->pair_peak = sb->pair_bound;
     if (ar->event == LUA_HOOKCOUNT) {
-        sb->spent += (double)lua_gethookcount(L);
+        sb->spent += (double)lua_gethookcount(L) * per;
         /* Where the script is, for a memory error (Lua reports those without a handler,
          * so without a position); once per count hook, which is cheap. */
         if (lua_getinfo(L, "Sl", ar) && ar->currentline > 0)
             snprintf(sb->where, sizeof sb->where, "%s:%d", ar->short_src, ar->currentline);
     } else {
-        sb->spent += 1.0;
+        sb->spent += per;
     }
     if (!sb->exhausted && sb->spent <= sb->budget) {
         if (lua_gethookmask(L) != NORMAL_MASK) arm(L, sb);   /* from an earlier entry */
@@ -156,12 +296,32 @@ static void meter_charge(lua_State *L, void *ud, size_t units)
 
 /* ---------------------------------------------------------------- safe library functions */
 
-/* load(chunk [, chunkname [, mode [, env]]]) with mode forced to "t": no bytecode. */
+/* The reader of a load(function): the script's reader (upvalue 1), its pieces charged to
+ * the budget by size before the parser reads them. */
+static int metered_reader(lua_State *L)
+{
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_call(L, 0, 1);
+    if (lua_type(L, -1) == LUA_TSTRING)
+        charge_now(L, getsb(L), (double)(lua_rawlen(L, -1) / PARSE_BYTES_PER_UNIT));
+    return 1;
+}
+
+/* load(chunk [, chunkname [, mode [, env]]]) with mode forced to "t": no bytecode.  The
+ * parser runs in C, so its input is charged by size: a string chunk before parsing, a reader
+ * function's pieces as they come. */
 static int safe_load(lua_State *L)
 {
     int top = lua_gettop(L), n;
     int t = lua_type(L, 1);
     luaL_argexpected(L, t == LUA_TSTRING || t == LUA_TFUNCTION, 1, "string or function");
+    if (t == LUA_TSTRING) {
+        charge_now(L, getsb(L), (double)(lua_rawlen(L, 1) / PARSE_BYTES_PER_UNIT));
+    } else {
+        lua_pushvalue(L, 1);
+        lua_pushcclosure(L, metered_reader, 1);
+        lua_replace(L, 1);
+    }
     if (!lua_isnoneornil(L, 2)) luaL_checkstring(L, 2);
     if (!lua_isnoneornil(L, 3)) luaL_checkstring(L, 3);
     lua_settop(L, 4);
@@ -473,6 +633,9 @@ static int open_libraries(lua_State *L)
     lua_getglobal(L, LUA_STRLIBNAME);
     lpattern_open(L, -1, &sb->meter);
     lua_pop(L, 1);
+    lua_getglobal(L, LUA_UTF8LIBNAME);
+    lutf8_open(L, -1, &sb->meter);
+    lua_pop(L, 1);
     replace(L, LUA_TABLIBNAME, "insert", safe_insert, 0);
     replace(L, LUA_TABLIBNAME, "remove", safe_remove, 0);
     replace(L, LUA_TABLIBNAME, "move", safe_move, 0);
@@ -501,6 +664,13 @@ static int open_libraries(lua_State *L)
     return 0;
 }
 
+static void sb_free(lsandbox *sb)
+{
+    free(sb->lkey);
+    free(sb->lcls);
+    free(sb);
+}
+
 lua_State *lsandbox_new(size_t memory_limit, long long budget, lsandbox **out)
 {
     lsandbox *sb = (lsandbox *)calloc(1, sizeof *sb);
@@ -513,13 +683,13 @@ lua_State *lsandbox_new(size_t memory_limit, long long budget, lsandbox **out)
     sb->meter.ud = sb;
     L = lua_newstate(sb_alloc, sb);
     if (L == NULL) {
-        free(sb);
+        sb_free(sb);
         return NULL;
     }
     lua_pushcfunction(L, open_libraries);
     if (lua_pcall(L, 0, 0, 0) != LUA_OK) {
         lua_close(L);
-        free(sb);
+        sb_free(sb);
         return NULL;
     }
     *out = sb;
@@ -535,7 +705,7 @@ void lsandbox_close(lua_State *L, lsandbox *sb)
         arm(L, sb);
         lua_close(L);
     }
-    free(sb);
+    sb_free(sb);
 }
 
 void lsandbox_provide(lua_State *L, const char *name, lua_CFunction openf)
@@ -567,11 +737,16 @@ static int msgh(lua_State *L)
 
 int lsandbox_call(lua_State *L, lsandbox *sb, int nargs, int nresults)
 {
-    int base = lua_gettop(L) - nargs, status;
     sb->spent = 0;
     sb->exhausted = 0;
-    sb->reporting = 0;
     sb->where[0] = '\0';
+    return lsandbox_continue(L, sb, nargs, nresults);
+}
+
+int lsandbox_continue(lua_State *L, lsandbox *sb, int nargs, int nresults)
+{
+    int base = lua_gettop(L) - nargs, status;
+    sb->reporting = 0;
     arm(L, sb);
     lua_pushcfunction(L, msgh);
     lua_insert(L, base);
