@@ -189,18 +189,6 @@ static int report(host *h, const char *what, int status)
     return 0;
 }
 
-/* Looks a global function up without metamethods; pushes it or nothing. */
-static int global_function(lua_State *L, const char *name)
-{
-    lua_pushglobaltable(L);
-    lua_pushstring(L, name);
-    lua_rawget(L, -2);
-    lua_remove(L, -2);
-    if (lua_type(L, -1) == LUA_TFUNCTION) return 1;
-    lua_pop(L, 1);
-    return 0;
-}
-
 static double global_number(lua_State *L, const char *name)
 {
     double v = -1;
@@ -221,7 +209,7 @@ static int scene_step(host *h, double dt)
     rg_world *w;
     int32_t taken = 0;
     int has_contact, fresh = 1;
-    if (global_function(L, "update")) {
+    if (lsandbox_getfunction(L, "update")) {
         lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
         lua_pushnumber(L, dt);
         int st = lsandbox_call(L, h->sb, 2, 0);
@@ -247,7 +235,7 @@ static int scene_step(host *h, double dt)
         lsvg_record(h->rec, L, -1, h->sim_time);
         record_contacts(h, L, lua_gettop(L));
     }
-    has_contact = global_function(L, "contact");
+    has_contact = lsandbox_getfunction(L, "contact");
     if (has_contact) lua_pop(L, 1);
     if (has_contact) {
         int events, i, n;
@@ -255,7 +243,7 @@ static int scene_step(host *h, double dt)
         events = lua_gettop(L);
         n = (int)lua_rawlen(L, events);
         for (i = 1; i <= n; i++) {
-            if (!global_function(L, "contact")) break;
+            if (!lsandbox_getfunction(L, "contact")) break;
             lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
             lua_rawgeti(L, events, i);
             int st = fresh ? lsandbox_call(L, h->sb, 2, 0) : lsandbox_continue(L, h->sb, 2, 0);
@@ -302,7 +290,7 @@ static int run_scene(host *h)
         int32_t m;
         if (rg_world_get_fixed_step(w, &d, &m) == RG_OK) rg_world_set_fixed_step(w, d, m);
     }
-    if (global_function(L, "setup")) {
+    if (lsandbox_getfunction(L, "setup")) {
         lua_pushvalue(L, -2);
         st = lsandbox_call(L, h->sb, 1, 0);
         if (st != LUA_OK) {
@@ -342,7 +330,7 @@ static int run_scene(host *h)
         }
         if (!scene_step(h, d)) return 0;
     }
-    if (global_function(L, "finish")) {
+    if (lsandbox_getfunction(L, "finish")) {
         lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
         st = lsandbox_call(L, h->sb, 1, 0);
         if (st != LUA_OK) return report(h, "finish", st);
@@ -413,8 +401,8 @@ int main(int argc, char **argv)
         st = lsandbox_call(L, h.sb, h.nargs, 0);
         if (st != LUA_OK) {
             report(&h, h.script, st);
-        } else if (global_function(L, "setup") + global_function(L, "update") +
-                   global_function(L, "contact") + global_function(L, "finish") > 0) {
+        } else if (lsandbox_getfunction(L, "setup") + lsandbox_getfunction(L, "update") +
+                   lsandbox_getfunction(L, "contact") + lsandbox_getfunction(L, "finish") > 0) {
             lua_settop(L, 0);
             ok = run_scene(&h);
         } else {

@@ -756,6 +756,17 @@ int lsandbox_continue(lua_State *L, lsandbox *sb, int nargs, int nresults)
     return status;
 }
 
+int lsandbox_getfunction(lua_State *L, const char *name)
+{
+    lua_pushglobaltable(L);
+    lua_pushstring(L, name);
+    lua_rawget(L, -2);
+    lua_remove(L, -2);
+    if (lua_type(L, -1) == LUA_TFUNCTION) return 1;
+    lua_pop(L, 1);
+    return 0;
+}
+
 const char *lsandbox_where(const lsandbox *sb)
 {
     return sb->where;

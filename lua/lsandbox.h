@@ -40,6 +40,10 @@ int lsandbox_call(lua_State *L, lsandbox *sb, int nargs, int nresults);
  * spent, the call raises at its first instruction. */
 int lsandbox_continue(lua_State *L, lsandbox *sb, int nargs, int nresults);
 
+/* Pushes the global function `name`, looked up without metamethods, and returns 1; pushes
+ * nothing and returns 0 when that global is not a function. */
+int lsandbox_getfunction(lua_State *L, const char *name);
+
 /* Adds units of work done in C on the script's behalf.  Never raises: when the budget runs
  * out the script stops at its next instruction. */
 void lsandbox_charge(lua_State *L, lsandbox *sb, double units);

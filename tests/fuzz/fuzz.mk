@@ -1,7 +1,8 @@
 # The libFuzzer harnesses (make fuzz) and the pending reliability tests (make pending).
 #   make fuzz                 builds tests/fuzz/fuzz_*.c with clang under ASan + UBSan (the
 #                             library and the Lua host objects too) and runs each harness for
-#                             FUZZ_SECONDS (default 60) from its seed corpus
+#                             FUZZ_SECONDS (default 60) from its seed corpus (for fuzz_lua
+#                             also every hostile script of tests/lua/hostile)
 #   make fuzz FUZZ=api        one harness (fuzz_api, fuzz_lua)
 #   make pending              tests/fuzz/pending/test_*.c: library findings awaiting their fix
 #                             (each fails today; they move into tests/ when the fix lands)
@@ -31,7 +32,8 @@ fuzz:
 	  $(FUZZ_B)/fuzz/fuzz_$$h -max_total_time=$(FUZZ_SECONDS) -timeout=120 -max_len=4096 \
 	    -print_final_stats=1 -artifact_prefix=$(FUZZ_B)/artifacts/$$h- \
 	    $$(test -f tests/fuzz/$$h.dict && echo -dict=tests/fuzz/$$h.dict) \
-	    $(FUZZ_B)/corpus/$$h tests/fuzz/corpus/$$h > $(FUZZ_B)/fuzz_$$h.log 2>&1 \
+	    $(FUZZ_B)/corpus/$$h tests/fuzz/corpus/$$h $$(test $$h = lua && echo tests/lua/hostile) \
+	    > $(FUZZ_B)/fuzz_$$h.log 2>&1 \
 	    || { fail=1; echo "fuzz_$$h FAILED (log: $(FUZZ_B)/fuzz_$$h.log)"; tail -n 40 $(FUZZ_B)/fuzz_$$h.log; }; \
 	  grep -E '^#[0-9]+ +DONE|^stat::number_of_executed_units|^stat::peak_rss_mb' $(FUZZ_B)/fuzz_$$h.log || true; \
 	done; \

@@ -40,18 +40,6 @@ static int quiet(lua_State *L)
     return 0;
 }
 
-/* Looks a global function up without metamethods; pushes it and returns 1, or nothing. */
-static int global_function(lua_State *L, const char *name)
-{
-    lua_pushglobaltable(L);
-    lua_pushstring(L, name);
-    lua_rawget(L, -2);
-    lua_remove(L, -2);
-    if (lua_type(L, -1) == LUA_TFUNCTION) return 1;
-    lua_pop(L, 1);
-    return 0;
-}
-
 /* update(world, dt), one fixed step, then contact(world, event) for each event. */
 static void frames(lua_State *L, lsandbox *sb)
 {
@@ -64,7 +52,7 @@ static void frames(lua_State *L, lsandbox *sb)
     for (int f = 0; f < FRAMES; f++) {
         rg_world *w = lrigid_toworld(L, world);
         int fresh = 1;
-        if (global_function(L, "update")) {
+        if (lsandbox_getfunction(L, "update")) {
             lua_pushvalue(L, world);
             lua_pushnumber(L, 1.0 / 60);
             if (lsandbox_call(L, sb, 2, 0) != LUA_OK) return;
@@ -75,7 +63,7 @@ static void frames(lua_State *L, lsandbox *sb)
         lrigid_pushevents(L, world);
         int events = lua_gettop(L);
         for (lua_Integer i = 1; i <= (lua_Integer)lua_rawlen(L, events); i++) {
-            if (!global_function(L, "contact")) break;
+            if (!lsandbox_getfunction(L, "contact")) break;
             lua_pushvalue(L, world);
             lua_rawgeti(L, events, i);
             int st = fresh ? lsandbox_call(L, sb, 2, 0) : lsandbox_continue(L, sb, 2, 0);
