@@ -1,5 +1,4 @@
 /* lsandbox.c: memory cap, uncatchable instruction budget and safe libraries for scripts. */
-#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,6 +8,8 @@
 #include <lualib.h>
 
 #include "lpattern.h"
+#include "lcount.h"
+#include "llong.h"
 #include "lsandbox.h"
 #include "lutf8.h"
 
@@ -20,8 +21,6 @@
 /* Each block is counted as malloc sizes it: glibc's chunk is the request plus one size
  * word, rounded to 16, at least 32 bytes. */
 #define CHUNK_OVERHEAD  8
-#define LONG_STRING_MIN 66              /* the smallest long-string block: 24 + 41 + 1 bytes */
-#define NCLASS          64
 #define COMPARE_BYTES_PER_UNIT 64       /* memcmp: 90 bytes in the 1.8 ns of one instruction */
 #define PARSE_BYTES_PER_UNIT   1        /* the lexer skips a blank in 1.4 ns */
 
@@ -34,23 +33,12 @@ struct lsandbox {
     int count;               /* instructions per count hook */
     lpattern_meter meter;
     char where[200];         /* "file:line" of the script at the last count hook */
-    /* Long strings compare with memcmp inside one instruction (short ones are interned and
-     * compare by address), and only two of the same length cost more than a length check:
-     * live long strings per size class (block size in [2^k, 2^(k+1))), the most bytes one
-     * == (or rawequal, or a table lookup) may compare now, and the most since the last
-     * hook.  Every instruction and call is charged that many bytes more. */
-    int32_t lstr[NCLASS];
-    size_t pair_bound, pair_peak;
-    /* The live long-string blocks and their classes (open addressing; a freed block is
-     * looked up here when it is big enough to be one).  Counted in `used`. */
-    void **lkey;
-    unsigned char *lcls;
-    size_t lcap, lused;      /* slots, slots taken (live or deleted) */
+    llong longs;             /* live long strings: every instruction and call is charged
+                                what one comparison of two of them may read */
 };
 
 
 static const char modules_key = 'm';
-static char lset_deleted;                     /* its address marks a deleted slot */
 
 static lsandbox *getsb(lua_State *L)
 {
@@ -67,109 +55,14 @@ static size_t block_cost(size_t n)
     return c < 32 ? 32 : c;
 }
 
-static int size_class(size_t n)
-{
-    int k = 0;
-    while (n > 1 && k < NCLASS - 1) {
-        n >>= 1;
-        k++;
-    }
-    return k;
-}
-
-static size_t lset_hash(const lsandbox *sb, const void *p)
-{
-    return (size_t)(((uint64_t)(uintptr_t)p >> 4) * 0x9E3779B97F4A7C15u) & (sb->lcap - 1);
-}
-
-/* Rebuilds the set with cap slots (a power of two); 0 when out of memory or over the cap. */
-static int lset_rehash(lsandbox *sb, size_t cap)
-{
-    size_t bytes = cap * (sizeof(void *) + 1), old_bytes = sb->lcap * (sizeof(void *) + 1), i;
-    void **key = NULL, **old_key = sb->lkey;
-    unsigned char *cls = NULL, *old_cls = sb->lcls;
-    size_t old_cap = sb->lcap;
-    if (sb->limit != 0 && bytes > old_bytes && sb->used + (bytes - old_bytes) > sb->limit) return 0;
-    key = (void **)calloc(cap, sizeof *key);
-    cls = (unsigned char *)malloc(cap);
-    if (key == NULL || cls == NULL) {
-        free(key);
-        free(cls);
-        return 0;
-    }
-    sb->lkey = key;
-    sb->lcls = cls;
-    sb->lcap = cap;
-    sb->lused = 0;
-    for (i = 0; i < old_cap; i++)
-        if (old_key[i] != NULL && old_key[i] != (void *)&lset_deleted) {
-            size_t h = lset_hash(sb, old_key[i]);
-            while (key[h] != NULL) h = (h + 1) & (cap - 1);
-            key[h] = old_key[i];
-            cls[h] = old_cls[i];
-            sb->lused++;
-        }
-    free(old_key);
-    free(old_cls);
-    sb->used = sb->used + bytes - old_bytes;
-    return 1;
-}
-
-static int lset_insert(lsandbox *sb, void *p, int cls)
-{
-    size_t h;
-    if ((sb->lused + 1) * 4 > sb->lcap * 3 && !lset_rehash(sb, sb->lcap < 64 ? 64 : sb->lcap * 2))
-        return 0;
-    h = lset_hash(sb, p);
-    while (sb->lkey[h] != NULL && sb->lkey[h] != (void *)&lset_deleted) h = (h + 1) & (sb->lcap - 1);
-    if (sb->lkey[h] == NULL) sb->lused++;
-    sb->lkey[h] = p;
-    sb->lcls[h] = (unsigned char)cls;
-    return 1;
-}
-
-/* Removes p and returns its class, or -1 when p is not a long string. */
-static int lset_remove(lsandbox *sb, const void *p)
-{
-    size_t h;
-    if (sb->lcap == 0) return -1;
-    for (h = lset_hash(sb, p); sb->lkey[h] != NULL; h = (h + 1) & (sb->lcap - 1))
-        if (sb->lkey[h] == p) {
-            sb->lkey[h] = (void *)&lset_deleted;
-            return sb->lcls[h];
-        }
-    return -1;
-}
-
-static void lstr_add(lsandbox *sb, int cls)
-{
-    if (++sb->lstr[cls] >= 2) {
-        size_t bound = (size_t)2 << cls;
-        if (bound > sb->pair_bound) sb->pair_bound = bound;
-        if (bound > sb->pair_peak) sb->pair_peak = bound;
-    }
-}
-
-static void lstr_forget(lsandbox *sb, int cls)
-{
-    if (--sb->lstr[cls] == 1 && ((size_t)2 << cls) == sb->pair_bound) {
-        int k = cls;
-        while (k >= 0 && sb->lstr[k] < 2) k--;
-        sb->pair_bound = k >= 0 ? (size_t)2 << k : 0;
-    }
-}
-
 static void *sb_alloc(void *ud, void *ptr, size_t osize, size_t nsize)
 {
     lsandbox *sb = (lsandbox *)ud;
     size_t old = ptr != NULL ? block_cost(osize) : 0;   /* for a new block, osize is a type tag */
-    size_t cost;
+    size_t cost, limit = sb->limit + (sb->reporting ? REPORT_HEADROOM : 0);
     void *p;
     if (nsize == 0) {
-        if (ptr != NULL && osize >= LONG_STRING_MIN) {
-            int cls = lset_remove(sb, ptr);
-            if (cls >= 0) lstr_forget(sb, cls);
-        }
+        if (ptr != NULL) llong_forget(&sb->longs, ptr, osize);
         free(ptr);
         sb->used -= old;
         return NULL;
@@ -178,20 +71,20 @@ static void *sb_alloc(void *ud, void *ptr, size_t osize, size_t nsize)
     cost = block_cost(nsize);
     if (cost > old) {
         size_t grow = cost - old;
-        size_t limit = sb->limit + (sb->reporting ? REPORT_HEADROOM : 0);
         if (sb->limit != 0 && (grow > limit || sb->used > limit - grow)) return NULL;
         if (sb->budget > 0 && nsize > (ptr != NULL ? osize : 0))
             sb->spent += (double)((nsize - (ptr != NULL ? osize : 0)) / BYTES_PER_UNIT);
     }
     p = realloc(ptr, nsize);
     if (p == NULL) return ptr != NULL && nsize <= osize ? ptr : NULL;   /* a shrink may keep it */
-    if (ptr == NULL && osize == LUA_TSTRING && nsize >= LONG_STRING_MIN) {
-        int cls = size_class(nsize);
-        if (!lset_insert(sb, p, cls)) {
+    if (ptr == NULL && osize == LUA_TSTRING && nsize >= LLONG_MIN_BLOCK) {
+        size_t before = sb->longs.bytes;
+        size_t room = sb->limit == 0 ? (size_t)-1 : limit - (sb->used < limit ? sb->used : limit);
+        if (!llong_add(&sb->longs, p, nsize, room)) {
             free(p);
             return NULL;
         }
-        lstr_add(sb, cls);
+        sb->used += sb->longs.bytes - before;   /* the table counts against the cap */
     }
     sb->used = sb->used - old + cost;
     if (sb->used > sb->peak) sb->peak = sb->used;
@@ -239,9 +132,8 @@ static void arm(lua_State *L, const lsandbox *sb)
 static void hook(lua_State *L, lua_Debug *ar)
 {
     lsandbox *sb = getsb(L);
-    /* Each instruction or call may have compared two long strings of pair_peak bytes. */
-    double per = 1.0 + (double)(sb->pair_peak / COMPARE_BYTES_PER_UNIT);
-    sb->pair_peak = sb->pair_bound;
+    /* Each instruction or call since the last hook may have compared two long strings. */
+    double per = 1.0 + (double)(llong_take_peak(&sb->longs) / COMPARE_BYTES_PER_UNIT);
     if (ar->event == LUA_HOOKCOUNT) {
         sb->spent += (double)lua_gethookcount(L) * per;
         /* Where the script is, for a memory error (Lua reports those without a handler,
@@ -636,6 +528,7 @@ static int open_libraries(lua_State *L)
     lua_getglobal(L, LUA_UTF8LIBNAME);
     lutf8_open(L, -1, &sb->meter);
     lua_pop(L, 1);
+    lcount_open(L, &sb->meter);
     replace(L, LUA_TABLIBNAME, "insert", safe_insert, 0);
     replace(L, LUA_TABLIBNAME, "remove", safe_remove, 0);
     replace(L, LUA_TABLIBNAME, "move", safe_move, 0);
@@ -666,8 +559,7 @@ static int open_libraries(lua_State *L)
 
 static void sb_free(lsandbox *sb)
 {
-    free(sb->lkey);
-    free(sb->lcls);
+    llong_free(&sb->longs);
     free(sb);
 }
 

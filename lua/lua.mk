@@ -6,7 +6,7 @@ LUA_BIN ?= lua5.4
 
 LUA_MOD := $(B)/rigid.so
 LUA_HOST := $(B)/rigid
-LUA_HOST_SRC := lua/host.c lua/lsandbox.c lua/lpattern.c lua/lutf8.c lua/lsvg.c
+LUA_HOST_SRC := lua/host.c lua/lsandbox.c lua/llong.c lua/lcount.c lua/lpattern.c lua/lutf8.c lua/lsvg.c
 LUA_HOST_OBJ := $(patsubst lua/%.c,$(B)/lua/%.o,$(LUA_HOST_SRC))
 # The binding: checks, world, body, springs, events and queries, registration.
 LUA_BIND_SRC := lua/lcheck.c lua/lworld.c lua/lbody.c lua/lspring.c lua/lquery.c lua/lrigid.c

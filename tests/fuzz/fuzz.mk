@@ -47,7 +47,7 @@ $(B)/fuzz/fuzz_api: tests/fuzz/fuzz_api.c tests/fuzz/fuzz_api_model.c tests/fuzz
 	$(CC) $(CFLAGS) -fsanitize=fuzzer $(LDFLAGS) -o $@ tests/fuzz/fuzz_api.c tests/fuzz/fuzz_api_model.c \
 	  $(LIB_A) $(LDLIBS)
 
-FUZZ_LUA_OBJ := $(B)/lua/lsandbox.o $(B)/lua/lpattern.o $(B)/lua/lutf8.o $(LUA_BIND_OBJ)
+FUZZ_LUA_OBJ := $(B)/lua/lsandbox.o $(B)/lua/llong.o $(B)/lua/lcount.o $(B)/lua/lpattern.o $(B)/lua/lutf8.o $(LUA_BIND_OBJ)
 $(B)/fuzz/fuzz_lua: tests/fuzz/fuzz_lua.c $(FUZZ_LUA_OBJ) $(LIB_A)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(LUA_PKG_CFLAGS) -Ilua -fsanitize=fuzzer $(LDFLAGS) -o $@ $< \
