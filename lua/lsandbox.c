@@ -7,9 +7,9 @@
 #include <lua.h>
 #include <lualib.h>
 
-#include "lpattern.h"
 #include "lcount.h"
 #include "llong.h"
+#include "lpattern.h"
 #include "lsandbox.h"
 #include "lutf8.h"
 
@@ -36,7 +36,6 @@ struct lsandbox {
     llong longs;             /* live long strings: every instruction and call is charged
                                 what one comparison of two of them may read */
 };
-
 
 static const char modules_key = 'm';
 

@@ -35,14 +35,14 @@ void lworld_charge(lua_State *L, double units)
     if (h != NULL && h->charge != NULL) h->charge(L, h->ud, units);
 }
 
-/* Units one step costs, from the counts the step leaves: each touching pair is narrowphase
- * and solver rows (measured 30 units for circles in a pile, 180 for 300 overlapping circles
- * of radius 1e7, a unit being one VM instruction, about 1.8 ns here), each awake body its
- * integration and broadphase (0.5 to 55), each spring its force.  Sleeping and static
- * bodies cost nothing, and neither are they charged. */
+/* Units one step costs, from the counts the step leaves, each at the most measured (a unit
+ * is one VM instruction, about 1.8 ns here): a touching pair is narrowphase and solver rows
+ * (30 units for circles in a pile, 180 for 300 overlapping circles of radius 1e7), an awake
+ * body its integration and broadphase (0.5 without a shape, 60 for a falling circle), a
+ * spring its force.  Sleeping and static bodies cost nothing and are not charged. */
 #define LWORLD_UNITS_PAIR   200
-#define LWORLD_UNITS_BODY   4
-#define LWORLD_UNITS_SPRING 4
+#define LWORLD_UNITS_BODY   64
+#define LWORLD_UNITS_SPRING 8
 
 static double lworld_step_units(const rg_world *w)
 {
