@@ -39,7 +39,9 @@ fuzz:
 	done; \
 	if [ $$fail -ne 0 ]; then echo "make fuzz: FAILED"; exit 1; fi; echo "make fuzz: no findings"
 
-# Only in the submake above, where B is $(FUZZ_B) and CC is clang.
+# Only in the submake above, where B is $(FUZZ_B) and CC is clang.  A new harness (the
+# snapshot reader, fuzz_snapshot.c over rg_world_restore, once snapshots exist) is a file
+# tests/fuzz/fuzz_<name>.c, a rule below, its name in FUZZ and its seeds in corpus/<name>/.
 fuzz-build: $(patsubst %,$(B)/fuzz/fuzz_%,$(FUZZ))
 
 $(B)/fuzz/fuzz_api: tests/fuzz/fuzz_api.c tests/fuzz/fuzz_api_model.c tests/fuzz/fuzz_api.h $(LIB_A)
