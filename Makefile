@@ -2,22 +2,26 @@
 #   make                 build/librigid.a and build/librigid.so (float build)
 #   make test            build everything and run every test (installs what is missing)
 #   make run             the main job
-#   make REAL=double     the double-precision build, in build/double/
+#   make REAL=double     the double-precision build, in build/double/ (librigid-double)
 #   make sanitize        the tests under AddressSanitizer + UndefinedBehaviorSanitizer
 #                        (CC=clang for clang's; each compiler builds in its own folder)
 #   make fuzz            the libFuzzer harnesses of tests/fuzz, FUZZ_SECONDS each (clang)
-#   make install PREFIX=/usr/local
+#   make install PREFIX=/usr/local   (and make uninstall; DESTDIR for staging)
 REAL ?= float
 PREFIX ?= /usr/local
 CC ?= cc
 PYTHON ?= python3
 
+# The double build has names of its own (library, SONAME, pc), so that no float program
+# ever loads it, nor a double program the float library.
 ifeq ($(REAL),double)
 REAL_FLAGS := -DRG_DOUBLE
 DEFAULT_B := build/double
+LIB_NAME := rigid-double
 else ifeq ($(REAL),float)
 REAL_FLAGS :=
 DEFAULT_B := build
+LIB_NAME := rigid
 else
 $(error REAL must be float or double)
 endif
@@ -33,11 +37,11 @@ LDFLAGS := $(EXTRA_LDFLAGS)
 LDLIBS := -lm
 
 VERSION := 0.1.0
-SONAME := librigid.so.0
+SONAME := lib$(LIB_NAME).so.0
 LIB_SRC := $(wildcard src/*.c)
 LIB_OBJ := $(patsubst src/%.c,$(B)/obj/%.o,$(LIB_SRC))
-LIB_A := $(B)/librigid.a
-LIB_SO := $(B)/librigid.so
+LIB_A := $(B)/lib$(LIB_NAME).a
+LIB_SO := $(B)/lib$(LIB_NAME).so
 
 CMOCKA_LIBS := -lcmocka
 TEST_SRC := $(wildcard tests/test_*.c)
@@ -46,11 +50,12 @@ TEST_BINS := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_SRC))
 # Fragments append to these; they are included here, before any rule uses the lists
 # (a prerequisite list is expanded when make reads the rule).
 ALL_TARGETS := $(LIB_A) $(LIB_SO)
-TEST_RUNS := check-c check-ffi check-readme check-exports check-modules
+TEST_RUNS := check-c check-ffi check-readme check-exports check-modules check-install
 .DEFAULT_GOAL := all
 include $(sort $(wildcard lua/*.mk tools/*.mk tests/fuzz/*.mk))
 
-.PHONY: all test test-all deps sanitize install clean run run-main bench charts $(TEST_RUNS)
+.PHONY: all test test-all deps sanitize install uninstall FORCE clean run run-main bench charts \
+        $(TEST_RUNS)
 all: $(ALL_TARGETS)
 
 # The main job; a fragment defines run-main.  `bench` and `charts` gather prerequisites
@@ -133,19 +138,41 @@ sanitize: deps
 	  FFI_ENV="LD_PRELOAD=$$($(CC) -print-file-name=$(SAN_RT)) ASAN_OPTIONS=detect_leaks=0"
 
 # ---------------------------------------------------------------- install
-$(B)/rigid.pc: Makefile
+# The header, the library (static, shared with its SONAME and links) and its pc file; the
+# Lua parts come from lua/lua.mk.  The pc file is rebuilt whenever what it says changes
+# (PREFIX among it): $(B)/pc.vars holds that and is rewritten only when it differs.
+PC := $(B)/$(LIB_NAME).pc
+PC_VARS := $(PREFIX) $(VERSION) $(LIB_NAME) $(REAL_FLAGS)
+OTHER_LIB := $(if $(filter double,$(REAL)),rigid,rigid-double)
+FORCE:
+$(B)/pc.vars: FORCE
 	@mkdir -p $(@D)
-	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: rigid\nDescription: 2D game physics in C99\nVersion: %s\nCflags: -I$${includedir} %s\nLibs: -L$${libdir} -lrigid\nLibs.private: -lm\n' \
-	  '$(PREFIX)' '$(VERSION)' '$(REAL_FLAGS)' > $@
+	@echo '$(PC_VARS)' | cmp -s - $@ || echo '$(PC_VARS)' > $@
 
-install: $(LIB_A) $(LIB_SO) $(B)/rigid.pc
+$(PC): $(B)/pc.vars
+	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: %s\nDescription: 2D game physics in C99 (%s)\nVersion: %s\nCflags: -I$${includedir} %s\nLibs: -L$${libdir} -l%s\nLibs.private: -lm\n' \
+	  '$(PREFIX)' '$(LIB_NAME)' '$(REAL)' '$(VERSION)' '$(REAL_FLAGS)' '$(LIB_NAME)' > $@
+
+install: $(LIB_A) $(LIB_SO) $(PC)
 	install -d $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig
 	install -m 644 include/rigid.h $(DESTDIR)$(PREFIX)/include/
 	install -m 644 $(LIB_A) $(DESTDIR)$(PREFIX)/lib/
-	install -m 755 $(LIB_SO) $(DESTDIR)$(PREFIX)/lib/librigid.so.$(VERSION)
-	ln -sf librigid.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/$(SONAME)
-	ln -sf $(SONAME) $(DESTDIR)$(PREFIX)/lib/librigid.so
-	install -m 644 $(B)/rigid.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/
+	install -m 755 $(LIB_SO) $(DESTDIR)$(PREFIX)/lib/lib$(LIB_NAME).so.$(VERSION)
+	ln -sf lib$(LIB_NAME).so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/$(SONAME)
+	ln -sf $(SONAME) $(DESTDIR)$(PREFIX)/lib/lib$(LIB_NAME).so
+	install -m 644 $(PC) $(DESTDIR)$(PREFIX)/lib/pkgconfig/
+
+# The header stays while the other build's library is installed.  The directories are
+# the usual ones of a prefix (bin, include, lib...), which other packages share: they stay.
+uninstall:
+	rm -f $(addprefix $(DESTDIR)$(PREFIX)/lib/,lib$(LIB_NAME).a lib$(LIB_NAME).so.$(VERSION) \
+	  $(SONAME) lib$(LIB_NAME).so pkgconfig/$(LIB_NAME).pc)
+	[ -e $(DESTDIR)$(PREFIX)/lib/lib$(OTHER_LIB).so.$(VERSION) ] || rm -f $(DESTDIR)$(PREFIX)/include/rigid.h
+
+# Install and uninstall into a temporary DESTDIR, programs built against the installed pc.
+check-install: $(LIB_A) $(LIB_SO) $(ALL_TARGETS)
+	@echo "== tests/test_install.sh ($(REAL))"
+	@RUN_ENV="$(FFI_ENV)" tests/test_install.sh "$(MAKE)" $(REAL) $(B) "$(CC)"
 
 clean:
 	rm -rf build

@@ -67,27 +67,34 @@ typedef struct rg_world rg_world;   /* opaque; created and destroyed by the libr
  * body; a destroyed body's handle never becomes valid again in that world. */
 typedef uint64_t rg_body;
 
+/* The integer constants are enumerators, so that FFI hosts which read the preprocessed
+ * header (LuaJIT's ffi.cdef, cffi) see them too; the values are fixed. */
 typedef int32_t rg_status;
-#define RG_OK                    0
-#define RG_ERR_INVALID_ARGUMENT (-1) /* NULL, NaN/inf, negative mass or size, dt <= 0, bad enum */
-#define RG_ERR_STALE_HANDLE     (-2) /* destroyed, forged, zero or another world's handle */
-#define RG_ERR_OUT_OF_MEMORY    (-3)
-#define RG_ERR_CAPACITY         (-4) /* more bodies or springs than a world can hold */
-#define RG_ERR_LOCKED           (-5) /* not allowed at this moment: a call that would change
-                                        the world, made from a callback inside its step */
+enum {
+    RG_OK                   =  0,
+    RG_ERR_INVALID_ARGUMENT = -1,  /* NULL, NaN/inf, negative mass or size, dt <= 0, bad enum */
+    RG_ERR_STALE_HANDLE     = -2,  /* destroyed, forged, zero or another world's handle */
+    RG_ERR_OUT_OF_MEMORY    = -3,
+    RG_ERR_CAPACITY         = -4,  /* more bodies or springs than a world can hold */
+    RG_ERR_LOCKED           = -5   /* not allowed at this moment: a call that would change
+                                      the world, made from a callback inside its step */
+};
 
-#define RG_INTEGRATOR_EXPLICIT_EULER      0
-#define RG_INTEGRATOR_SEMI_IMPLICIT_EULER 1   /* the default */
-#define RG_INTEGRATOR_VELOCITY_VERLET     2
-#define RG_INTEGRATOR_RK4                 3
+enum {
+    RG_INTEGRATOR_EXPLICIT_EULER      = 0,
+    RG_INTEGRATOR_SEMI_IMPLICIT_EULER = 1,   /* the default */
+    RG_INTEGRATOR_VELOCITY_VERLET     = 2,
+    RG_INTEGRATOR_RK4                 = 3
+};
 
-#define RG_BODY_STATIC    0   /* never moves; infinite mass */
-#define RG_BODY_KINEMATIC 1   /* moves by its velocity only; pushes, is never pushed */
-#define RG_BODY_DYNAMIC   2   /* moved by forces, impulses and contacts */
+enum {
+    RG_BODY_STATIC    = 0,   /* never moves; infinite mass */
+    RG_BODY_KINEMATIC = 1,   /* moves by its velocity only; pushes, is never pushed */
+    RG_BODY_DYNAMIC   = 2    /* moved by forces, impulses and contacts */
+};
 
 /* Most bodies and most springs one world holds (slot indices are 24 bits). */
-#define RG_MAX_BODIES  16777215
-#define RG_MAX_SPRINGS 16777215
+enum { RG_MAX_BODIES = 16777215, RG_MAX_SPRINGS = 16777215 };
 
 /* Human-readable text for a status; never NULL. */
 RG_API const char *rg_status_string(rg_status s);
@@ -95,6 +102,9 @@ RG_API const char *rg_status_string(rg_status s);
 RG_API int32_t rg_version(void);
 /* sizeof(rg_real) of the loaded library: 4 (float build) or 8 (double build). */
 RG_API int32_t rg_real_size(void);
+/* 1 when the loaded library's rg_real is this program's (a float program linked against
+ * the double library reads garbage); check it once at start. */
+#define RG_REAL_MATCHES() (rg_real_size() == (int32_t)sizeof(rg_real))
 
 /* ---------------------------------------------------------------- world */
 
@@ -252,9 +262,7 @@ RG_API int32_t rg_spring_is_valid(const rg_world *world, uint64_t spring);
  * touching, its velocity into the surface reads until the next step, and a bounce turns it
  * up to one step's travel short of the surface. */
 
-#define RG_SHAPE_NONE   0
-#define RG_SHAPE_CIRCLE 1
-#define RG_SHAPE_AABB   2
+enum { RG_SHAPE_NONE = 0, RG_SHAPE_CIRCLE = 1, RG_SHAPE_AABB = 2 };
 
 /* Largest radius or half extent a shape may have, in m. */
 #define RG_MAX_SHAPE_SIZE 1.0e7
@@ -355,8 +363,7 @@ RG_API int32_t rg_world_touching_count(const rg_world *world);
 
 /* ---- contact events of the last step or advance, read after it */
 
-#define RG_CONTACT_BEGIN 0
-#define RG_CONTACT_END   1
+enum { RG_CONTACT_BEGIN = 0, RG_CONTACT_END = 1 };
 
 typedef struct rg_contact_event {
     rg_body a, b;       /* a < b */
@@ -403,6 +410,142 @@ RG_API int32_t rg_world_raycast(const rg_world *world, rg_vec2 origin, rg_vec2 t
  * bounds, lower > upper in x or y, capacity < 0, or out NULL with capacity > 0. */
 RG_API int32_t rg_world_query_aabb(const rg_world *world, rg_vec2 lower, rg_vec2 upper,
                                    uint32_t mask, rg_body *out, int32_t capacity);
+
+/* ---------------------------------------------------------------- gameplay collision */
+
+/* One-way shapes: the body blocks only motion that goes against `normal` (unit; (0,1) is a
+   platform stood on from above and passed from below). (0,0) makes it two-way (the default).
+   A body that overlaps it when the contact would begin, or moves along it, is not pushed.
+   In detail: when a contact with a one-way body would begin (the pair is about to touch or
+   be solved), it blocks only if the contact normal from the one-way body toward the other
+   points into the half-space of `normal` (dot > 0) and the shapes do not overlap by more
+   than the slop at the start of the step; otherwise the pair passes (no solve, no touching,
+   no events) until a step ends with the shapes apart.  A blocking contact keeps blocking
+   while it touches.  normal must be finite and of length 1 within 1e-3, or (0, 0); it is
+   stored normalised.  Raycasts and queries see one-way shapes as any other; the mover
+   (rg_body_move) and the post-solve sweep respect them. */
+RG_API rg_status rg_body_set_one_way(rg_world *world, rg_body body, rg_vec2 normal);
+RG_API rg_status rg_body_get_one_way(const rg_world *world, rg_body body, rg_vec2 *out_normal);
+
+/* The pair stops colliding now, and collides again from the first step that ends with their
+   shapes apart (dropping down through a platform).  Until then it is neither solved nor
+   touching (a touching pair reports its end with the next step).  RG_ERR_INVALID_ARGUMENT
+   when body == other or either has no shape; RG_OK and no effect when the shapes are
+   apart (beyond the slop) already. */
+RG_API rg_status rg_body_pass_through(rg_world *world, rg_body body, rg_body other);
+
+/* Called inside the step for every touching, non-sensor pair before it is solved; return 0
+   to skip the pair for this step. While it runs, calls that change the world return
+   RG_ERR_LOCKED and change nothing; getters and queries work. NULL removes the hook.
+   "Touching" here: the narrowphase would solve the pair or find it touching this step.  A
+   skipped pair is neither solved nor touching in this step (no begin event, no grounded
+   flag), exactly as if it were apart.  The calls come in a fixed order (the order of the
+   awake contacts, which the same history always gives), a < b as in events, separation
+   at the start of the step (< 0 when overlapping).  rg_world_destroy from inside is a
+   no-op. */
+typedef int32_t rg_pre_solve_fn(rg_body a, rg_body b, rg_vec2 normal, rg_real separation,
+                                void *user);   /* normal from a toward b, m */
+RG_API rg_status rg_world_set_pre_solve(rg_world *world, rg_pre_solve_fn *fn, void *user);
+
+/* The contacts a body has after the last step: its touching pairs (sensor overlaps
+   included, sensor = 1), in ascending order of the other body's handle.  Returns the count
+   and copies min(count, capacity); out may be NULL with capacity 0; -1
+   (RG_ERR_INVALID_ARGUMENT) or RG_ERR_STALE_HANDLE on bad input.  normal, point and
+   separation describe the shapes as they are now; the impulses are what the last step's
+   solve applied to the pair (0 for sensors). */
+typedef struct rg_contact {
+    rg_body other;
+    rg_vec2 normal;          /* unit, from body toward other */
+    rg_vec2 point;           /* m */
+    rg_real separation;      /* m, < 0 when overlapping */
+    rg_real normal_impulse;  /* N s, what the last step's solve applied along the normal */
+    rg_real tangent_impulse; /* N s, friction (signed along the tangent (-normal.y, normal.x)) */
+    int32_t sensor;
+} rg_contact;
+RG_API int32_t rg_body_get_contacts(const rg_world *world, rg_body body, rg_contact *out,
+                                    int32_t capacity);   /* count, copies min(count, capacity) */
+
+/* More queries (see bodies as they are now; sensors included; -1 on bad input).
+   Every shape the segment origin + t * translation, t in [0, 1], enters, among bodies with
+   (category & mask) != 0 (shapes containing the origin are not entered, as for
+   rg_world_raycast), sorted by fraction then handle; returns the count and copies
+   min(count, capacity) (the first ones in that order). */
+RG_API int32_t rg_world_raycast_all(const rg_world *world, rg_vec2 origin, rg_vec2 translation,
+                                    uint32_t mask, rg_ray_hit *out, int32_t capacity);
+/* The bodies whose shape contains point (its boundary included), in ascending handle
+   order; returns the count and copies min(count, capacity). */
+RG_API int32_t rg_world_query_point(const rg_world *world, rg_vec2 point, uint32_t mask,
+                                    rg_body *out, int32_t capacity);
+/* Sweeps a circle (shape RG_SHAPE_CIRCLE, size = (radius, 0)) or a box (RG_SHAPE_AABB,
+   size = half extents) from origin along translation: 1 and the first hit, 0 none.  The
+   hit's fraction is the time of impact in [0, 1], point the contact point then, normal the
+   hit surface's, facing the cast shape; ties go to the lower handle.  A shape the cast
+   shape overlaps at the start is hit at fraction 0 when the translation goes into it
+   (against the normal of least penetration) and ignored otherwise, so a shape resting on a
+   surface can cast along it.  Sizes as for rg_body_set_circle / rg_body_set_aabb. */
+RG_API int32_t rg_world_cast_shape(const rg_world *world, int32_t shape, rg_vec2 size,
+                                   rg_vec2 origin, rg_vec2 translation, uint32_t mask,
+                                   rg_ray_hit *out_hit);
+
+/* Character mover: moves a body's shape from where it is toward target at once (no step,
+   velocity unchanged), against shapes of bodies other than itself and sensors whose
+   category & mask != 0, and sets its position to where it stops. */
+#define RG_MOVE_SLIDE 0   /* stop at a surface, go on along it (as bump.lua's "slide") */
+#define RG_MOVE_TOUCH 1   /* stop at the first surface */
+#define RG_MOVE_CROSS 2   /* reach the target, report what was crossed */
+/* out_hits: the surfaces met, in order (may be NULL with capacity 0); one-way shapes block
+   only against their normal.  In detail: sensors never block; CROSS reports every shape the
+   path enters, sensors included, SLIDE and TOUCH the solid surfaces that stopped the body.
+   A hit's fraction is the part of the whole requested path (|target - start|) travelled
+   when it was met, normal the surface's, facing the body.  The body ends flush against what
+   stopped it (within rounding; never overlapping it by more than the slop), and a box or
+   circle sliding over a row of flush boxes (a tile floor) does not catch on their seams;
+   SLIDE takes at most 8 legs.  *out_count (may be NULL) gets the number of hits, of which
+   min(count, capacity) are copied.  The body must have a shape (else
+   RG_ERR_INVALID_ARGUMENT); it is woken, and rendering interpolates from where it was at
+   the last step (the previous position is kept). */
+RG_API rg_status rg_body_move(rg_world *world, rg_body body, rg_vec2 target, uint32_t mask,
+                              int32_t response, rg_vec2 *out_position, rg_ray_hit *out_hits,
+                              int32_t capacity, int32_t *out_count);
+
+/* ---------------------------------------------------------------- snapshots (rollback)
+ *
+ * A snapshot is the whole simulation state in a portable format: one byte order
+ * (little-endian) and fixed field sizes, so a snapshot saved on one machine restores on
+ * another (x86-64 and aarch64 alike) of the same rg_real, and both continue to the same
+ * bytes.  It holds no pointer and carries a 64-bit checksum.  Typical rollback use:
+ *   size_t n; rg_world_save(w, NULL, 0, &n);         the size (it changes with the scene)
+ *   rg_world_save(w, buf, cap, &n);                   at frame k
+ *   ...                                               a late input arrives for frame k
+ *   rg_world_restore(w, buf, n);                      back to frame k
+ *   step the frames again with the corrected inputs.
+ * Saving and hashing allocate nothing; restoring allocates only when the world must grow. */
+
+/* Writes the whole simulation state (bodies, shapes, springs, contacts and warm-start
+   impulses, islands and sleep timers, accumulator, settings, handle generations) to out.
+   With out == NULL and capacity == 0 it only reports the size. RG_ERR_CAPACITY when
+   capacity is too small (nothing written beyond it).  *out_size receives the size in every
+   case but a NULL world or out_size.  Also the contact events readable now (and the ends
+   held for the next step) are saved, so a restored world reads the same events. */
+RG_API rg_status rg_world_save(const rg_world *world, void *out, size_t capacity, size_t *out_size);
+
+/* Replaces the world's state with a saved one. Afterwards every handle the saving world
+   gave out names the same body or spring here (a world restored from another world's
+   snapshot takes that world's handle identity, so a clone answers the original's handles),
+   and stepping continues exactly as the saving world would have. A truncated, corrupted or
+   forged snapshot, or one from a build with another rg_real, is RG_ERR_INVALID_ARGUMENT and
+   changes nothing. The pre-solve hook and allocator are the world's own, not saved.
+   RG_ERR_OUT_OF_MEMORY when the world cannot grow to hold it (nothing changed either);
+   RG_ERR_LOCKED from inside a step's callback.  Every structural invariant of the state is
+   checked before anything is changed, so no snapshot, however forged, can make a later call
+   misbehave. */
+RG_API rg_status rg_world_restore(rg_world *world, const void *data, size_t size);
+
+/* A 64-bit hash of the simulation state: equal states give equal hashes, and the same
+   scene gives the same hash on any compiler, optimisation level and SIMD path.  It covers
+   what a snapshot holds but the world's handle tag, so two worlds built by the same calls
+   (or a world and its restored clone) hash alike on any machine of the same rg_real. */
+RG_API rg_status rg_world_hash(const rg_world *world, uint64_t *out_hash);
 
 /* ---------------------------------------------------------------- debug draw
  *

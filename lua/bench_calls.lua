@@ -2,9 +2,11 @@
 --   LUA_CPATH="build/?.so" lua5.4 lua/bench_calls.lua       stock Lua + the module
 --   build/rigid lua/bench_calls.lua --budget 0               the sandboxed host, no budget hooks
 --   build/rigid lua/bench_calls.lua --budget 100000000000    the host with its hooks running
+--   LUA_PATH="lua/?.lua;;" RIGID_LIBRARY=build/librigid.so luajit lua/bench_calls.lua
+--                                                            LuaJIT + lua/rigid_jit.lua
 -- Medians of 7 runs of N calls; CPU time from os.clock.  Timings on a shared machine are
 -- noisy: compare figures from one run, not across runs.
-local rigid = require "rigid"
+local rigid = require(jit and "rigid_jit" or "rigid")
 local N = tonumber((...)) or 2000000
 local RUNS = 7
 
@@ -14,7 +16,7 @@ for i = 1, 999 do world:body{ x = i } end     -- a world with some bodies in it
 
 local function median(t)
   table.sort(t)
-  return t[(#t + 1) // 2]
+  return t[math.floor((#t + 1) / 2)]
 end
 
 local function time(f)
@@ -42,7 +44,8 @@ local cases = {
 }
 
 print(string.format("rigid %s (rg_real of %d bytes), %s, %d calls x %d runs, loop overhead %.1f ns",
-  rigid.version, rigid.real_size, io and "stock Lua" or "sandboxed host", N, RUNS, empty / N * 1e9))
+  rigid.version, rigid.real_size, jit and jit.version or io and "stock Lua" or "sandboxed host",
+  N, RUNS, empty / N * 1e9))
 for _, c in ipairs(cases) do
   local t = time(c[2])
   print(string.format("  %-28s %7.1f ns per call", c[1], (t - empty) / N * 1e9))

@@ -24,12 +24,12 @@ lbody *lbody_test(lua_State *L, int i)
     return (lbody *)luaL_testudata(L, i, LBODY_MT);
 }
 
-static lbody *lbody_check(lua_State *L, int i)
+lbody *lbody_check(lua_State *L, int i)
 {
     return (lbody *)lcheck_self(L, i, LBODY_MT);
 }
 
-static rg_world *lbody_world_of(lua_State *L, const lbody *b)
+rg_world *lbody_world_of(lua_State *L, const lbody *b)
 {
     if (b->world->w == NULL) luaL_error(L, "attempt to use a body of a closed world");
     return b->world->w;
@@ -118,7 +118,7 @@ static int lbody_rawset3(lua_State *L)
 static const char *const lbody_options[] = {
     "type", "mass", "x", "y", "vx", "vy", "gravity_scale", "drag", "surface_friction",
     "min_speed", "max_speed", "user_data", "name",
-    "circle", "aabb", "restitution", "friction", "sensor", "category", "mask",
+    "circle", "aabb", "restitution", "friction", "sensor", "category", "mask", "one_way",
     NULL
 };
 
@@ -132,8 +132,8 @@ static int lbody_create(lua_State *L)
     rg_real drag[2], sfric[2];
     int has_v, has_gscale, has_drag, has_sfric, has_limits, has_ud;
     lua_Integer user_data = 0;
-    rg_real circle = 0, aabb[2], restitution = 0, friction = 0;
-    int has_circle, has_aabb, has_rest, has_fric, has_sensor, has_filter, sensor = 0;
+    rg_real circle = 0, aabb[2], restitution = 0, friction = 0, one_way[2];
+    int has_circle, has_aabb, has_rest, has_fric, has_sensor, has_filter, has_one_way, sensor = 0;
     lua_Integer category = 1, mask = 0xFFFFFFFF;
     rg_body h = 0;
     rg_status st;
@@ -172,6 +172,7 @@ static int lbody_create(lua_State *L)
     has_sensor = lcheck_option_boolean(L, 2, "sensor", what, &sensor);
     has_filter = lcheck_option_integer(L, 2, "category", what, 0, 0xFFFFFFFF, &category);
     has_filter |= lcheck_option_integer(L, 2, "mask", what, 0, 0xFFFFFFFF, &mask);
+    has_one_way = lcheck_option_pair(L, 2, "one_way", what, one_way);
     if (has_circle && has_aabb)
         luaL_error(L, "%s: options 'circle' and 'aabb' exclude each other", what);
     /* Stack: world, options, name.  The value first, so that nothing after the body exists
@@ -209,6 +210,8 @@ static int lbody_create(lua_State *L)
     TRY(has_sensor, rg_body_set_sensor(w, h, sensor), "sensor", NULL)
     TRY(has_filter, rg_body_set_filter(w, h, (uint32_t)category, (uint32_t)mask),
         "category/mask", NULL)
+    TRY(has_one_way, rg_body_set_one_way(w, h, (rg_vec2){ one_way[0], one_way[1] }), "one_way",
+        "a unit normal, or {0, 0}")
 #undef TRY
     if (st != RG_OK) {
         rg_body_destroy(w, h);

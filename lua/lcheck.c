@@ -94,6 +94,20 @@ int lcheck_boolean(lua_State *L, int i)
     return lua_toboolean(L, i);
 }
 
+/* Pushes "a, b, c" for the NULL-terminated list names. */
+static const char *lcheck_pushnames(lua_State *L, const char *const names[])
+{
+    luaL_Buffer b;
+    int i;
+    luaL_buffinit(L, &b);
+    for (i = 0; names[i] != NULL; i++) {
+        if (i > 0) luaL_addstring(&b, ", ");
+        luaL_addstring(&b, names[i]);
+    }
+    luaL_pushresult(&b);
+    return lua_tostring(L, -1);
+}
+
 int lcheck_enum(lua_State *L, int i, const char *const names[], const char *what)
 {
     const char *s;
@@ -102,7 +116,8 @@ int lcheck_enum(lua_State *L, int i, const char *const names[], const char *what
     s = lua_tostring(L, i);
     for (k = 0; names[k] != NULL; k++)
         if (strcmp(names[k], s) == 0) return k;
-    return luaL_argerror(L, i, lua_pushfstring(L, "invalid %s '%s'", what, s));
+    return luaL_argerror(L, i, lua_pushfstring(L, "invalid %s '%s' (%s)", what, s,
+                                               lcheck_pushnames(L, names)));
 }
 
 void lcheck_pushreal(lua_State *L, rg_real v)
@@ -140,16 +155,9 @@ void lcheck_option_names(lua_State *L, int t, const char *const names[], const c
         k = lua_tostring(L, -1);
         for (i = 0; names[i] != NULL; i++)
             if (strcmp(names[i], k) == 0) found = 1;
-        if (!found) {
-            luaL_Buffer b;
-            luaL_buffinit(L, &b);
-            for (i = 0; names[i] != NULL; i++) {
-                if (i > 0) luaL_addstring(&b, ", ");
-                luaL_addstring(&b, names[i]);
-            }
-            luaL_pushresult(&b);
-            luaL_error(L, "%s: unknown option '%s' (known: %s)", what, k, lua_tostring(L, -1));
-        }
+        if (!found)
+            luaL_error(L, "%s: unknown option '%s' (known: %s)", what, k,
+                       lcheck_pushnames(L, names));
     }
 }
 
@@ -258,5 +266,6 @@ int lcheck_option_enum(lua_State *L, int t, const char *key, const char *what,
             return 1;
         }
     }
-    return luaL_error(L, "%s: option '%s' has no value '%s'", what, key, s);
+    return luaL_error(L, "%s: option '%s' has no value '%s' (%s)", what, key, s,
+                      lcheck_pushnames(L, names));
 }

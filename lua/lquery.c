@@ -1,6 +1,7 @@
 /* lquery.c: what the Lua binding reads out of a world after a step: contact events
- * (world:events) and queries (world:raycast, world:query_aabb).  Bodies come back as the
- * values scripts hold (lbody_push); the bodies visited are charged to the host. */
+ * (world:events) and queries (world:raycast, raycast_all, query_aabb, query_point,
+ * cast_circle, cast_box).  Bodies come back as the values scripts hold (lbody_push); the
+ * bodies visited are charged to the host. */
 #include "lrigid_int.h"
 
 static void lquery_setreal(lua_State *L, rg_real v, const char *field)
@@ -95,9 +96,100 @@ static int lquery_aabb(lua_State *L)
     return 1;
 }
 
+void lquery_pushhit(lua_State *L, int world_idx, const rg_ray_hit *hit)
+{
+    world_idx = lua_absindex(L, world_idx);
+    lua_createtable(L, 0, 6);
+    lbody_push(L, world_idx, hit->body);
+    lua_setfield(L, -2, "body");
+    lquery_setreal(L, hit->point.x, "x");
+    lquery_setreal(L, hit->point.y, "y");
+    lquery_setreal(L, hit->normal.x, "nx");
+    lquery_setreal(L, hit->normal.y, "ny");
+    lquery_setreal(L, hit->fraction, "fraction");
+}
+
+static int lquery_raycast_all(lua_State *L)
+{
+    rg_world *w = lworld_checkopen(L, 1);
+    rg_vec2 o = lcheck_vec2(L, 2), d = lcheck_vec2(L, 4);
+    uint32_t mask = lcheck_optmask(L, 6);
+    int32_t n = rg_world_raycast_all(w, o, d, mask, NULL, 0), i;
+    rg_ray_hit *out;
+    lua_settop(L, 1);
+    if (n < 0) return lcheck_status(L, n, "raycast_all", NULL);
+    out = (rg_ray_hit *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *out, 0);
+    if (n > 0) n = rg_world_raycast_all(w, o, d, mask, out, n);
+    lworld_charge(L, rg_world_body_count(w));
+    lua_createtable(L, n, 0);
+    for (i = 0; i < n; i++) {
+        lquery_pushhit(L, 1, &out[i]);
+        lua_rawseti(L, -2, i + 1);
+    }
+    return 1;
+}
+
+static int lquery_point(lua_State *L)
+{
+    rg_world *w = lworld_checkopen(L, 1);
+    rg_vec2 p = lcheck_vec2(L, 2);
+    uint32_t mask = lcheck_optmask(L, 4);
+    int32_t n = rg_world_query_point(w, p, mask, NULL, 0), i;
+    rg_body *out;
+    lua_settop(L, 1);
+    if (n < 0) return lcheck_status(L, n, "query_point", NULL);
+    out = (rg_body *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *out, 0);
+    if (n > 0) n = rg_world_query_point(w, p, mask, out, n);
+    lworld_charge(L, n);
+    lua_createtable(L, n, 0);
+    for (i = 0; i < n; i++) {
+        lbody_push(L, 1, out[i]);
+        lua_rawseti(L, -2, i + 1);
+    }
+    return 1;
+}
+
+/* world:cast_circle(r, x, y, dx, dy [, mask]) and world:cast_box(hw, hh, x, y, dx, dy
+ * [, mask]): the returns of world:raycast. */
+static int lquery_cast(lua_State *L, int32_t shape, rg_vec2 size, int at, const char *what)
+{
+    rg_world *w = lworld_checkopen(L, 1);
+    rg_vec2 o = lcheck_vec2(L, at), d = lcheck_vec2(L, at + 2);
+    uint32_t mask = lcheck_optmask(L, at + 4);
+    rg_ray_hit hit;
+    int32_t r = rg_world_cast_shape(w, shape, size, o, d, mask, &hit);
+    if (r < 0) return lcheck_status(L, r, what, NULL);
+    lworld_charge(L, rg_world_body_count(w));
+    if (r == 0) {
+        lua_pushnil(L);
+        return 1;
+    }
+    lbody_push(L, 1, hit.body);
+    lcheck_pushvec2(L, hit.point);
+    lcheck_pushvec2(L, hit.normal);
+    lcheck_pushreal(L, hit.fraction);
+    return 6;
+}
+
+static int lquery_cast_circle(lua_State *L)
+{
+    rg_vec2 size = { lcheck_real(L, 2), 0 };
+    return lquery_cast(L, RG_SHAPE_CIRCLE, size, 3, "cast_circle");
+}
+
+static int lquery_cast_box(lua_State *L)
+{
+    rg_vec2 size = lcheck_vec2(L, 2);
+    return lquery_cast(L, RG_SHAPE_AABB, size, 4, "cast_box");
+}
+
 const luaL_Reg lquery_world_methods[] = {
     { "events", lquery_events },
     { "raycast", lquery_raycast },
+    { "raycast_all", lquery_raycast_all },
     { "query_aabb", lquery_aabb },
+    { "query_point", lquery_point },
+    { "cast_circle", lquery_cast_circle },
+    { "cast_box", lquery_cast_box },
     { NULL, NULL }
 };

@@ -101,7 +101,7 @@ LRIGID_API int luaopen_rigid(lua_State *L)
     static const luaL_Reg *const world[] = { lworld_methods, lbody_world_methods,
                                              lspring_world_methods, lquery_world_methods,
                                              NULL };
-    static const luaL_Reg *const body[] = { lbody_methods, NULL };
+    static const luaL_Reg *const body[] = { lbody_methods, lcontact_methods, NULL };
     static const luaL_Reg *const spring[] = { lspring_methods, NULL };
     int32_t v = rg_version();
     luaL_checkversion(L);

@@ -6,6 +6,7 @@
  *   lbody.c    body identity and the body methods, world:body/bodies   lcheck, lworld
  *   lspring.c  springs, world:spring                               lcheck, lworld, lbody
  *   lquery.c   contact events and queries                          lcheck, lworld, lbody
+ *   lcontact.c a body's contacts, one-way, passing through, moving  lcheck, lbody, lquery
  *   lrigid.c   luaopen_rigid (metatables) and the host interface    all of the above
  *
  * Every method gets its class's metatable as upvalue 1 (lrigid.c), which lcheck_self
@@ -39,7 +40,8 @@ uint32_t lcheck_optmask(lua_State *L, int i);
 /* An integer in [lo, hi]; msg says what is wrong when it is outside. */
 int32_t lcheck_int32(lua_State *L, int i, int32_t lo, int32_t hi, const char *msg);
 int lcheck_boolean(lua_State *L, int i);
-/* One of names (a NULL-terminated list); returns its index.  what names the kind. */
+/* One of names (a NULL-terminated list); returns its index.  what names the kind; the
+ * error lists the names. */
 int lcheck_enum(lua_State *L, int i, const char *const names[], const char *what);
 
 void lcheck_pushreal(lua_State *L, rg_real v);
@@ -115,6 +117,9 @@ typedef struct lbody {
 } lbody;
 
 lbody *lbody_test(lua_State *L, int i);         /* NULL when i is not a body */
+lbody *lbody_check(lua_State *L, int i);        /* methods only: compares with upvalue 1 */
+/* The open world of body b; raises when it is closed. */
+rg_world *lbody_world_of(lua_State *L, const lbody *b);
 /* Pushes the body value for handle h of the world at world_idx (see lrigid_pushbody). */
 void lbody_push(lua_State *L, int world_idx, rg_body h);
 int lbody_info(lua_State *L, int idx, lrigid_body_info *out);
@@ -132,6 +137,14 @@ extern const luaL_Reg lspring_meta[];
 
 /* Pushes the contact events of the last step of the open world at idx (world:events). */
 void lquery_pushevents(lua_State *L, int idx);
-extern const luaL_Reg lquery_world_methods[];   /* events, raycast, query_aabb */
+/* Pushes a ray hit as { body, x, y, nx, ny, fraction } (the world value at world_idx). */
+void lquery_pushhit(lua_State *L, int world_idx, const rg_ray_hit *hit);
+/* events, raycast, raycast_all, query_aabb, query_point, cast_circle, cast_box */
+extern const luaL_Reg lquery_world_methods[];
+
+/* ---------------------------------------------------------------- lcontact.c */
+
+/* body:contacts, body:pass_through, body:set_one_way, body:one_way, body:move */
+extern const luaL_Reg lcontact_methods[];
 
 #endif

@@ -1,7 +1,8 @@
 /* body.c: body storage: the structure of arrays in one block, partitions, lookup. */
 #include <string.h>
 
-#include "world.h"
+#include "body.h"
+#include "state.h"
 
 int32_t body_lookup(const rg_world *w, rg_body body)
 {
@@ -19,13 +20,19 @@ static void body_layout(mem_layout *l, void *ctx)
 
 rg_status body_reserve(rg_world *w)
 {
-    body_store *b = &w->b;
     rg_status st = pool_reserve(&w->body_pool, &w->mem);
     if (st != RG_OK) return st;
-    if (b->count < b->capacity) return RG_OK;
+    return body_reserve_count(w, w->b.count + 1);
+}
+
+rg_status body_reserve_count(rg_world *w, int32_t n)
+{
+    body_store *b = &w->b;
+    if (n <= b->capacity) return RG_OK;
+    if (n > RG_MAX_BODIES) return RG_ERR_CAPACITY;
     body_store grown = *b;
-    grown.capacity = b->capacity < 64 ? 64 : b->capacity * 2;
-    if (grown.capacity > RG_MAX_BODIES) grown.capacity = RG_MAX_BODIES;
+    grown.capacity = b->capacity < 64 ? 64 : b->capacity;
+    while (grown.capacity < n) grown.capacity = grown.capacity > RG_MAX_BODIES / 2 ? RG_MAX_BODIES : grown.capacity * 2;
     grown.block = mem_block(&w->mem, body_layout, &grown, &grown.block_size);
     if (grown.block == NULL) return RG_ERR_OUT_OF_MEMORY;
     if (b->count > 0) {

@@ -1,13 +1,16 @@
 /* body_api.c: the rg_body_* API of body lifetime, state and forces. */
+#include "body.h"
 #include "island.h"
 #include "pairs.h"
 #include "shape.h"
+#include "spring.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 RG_API rg_status rg_body_create(rg_world *world, int32_t type, rg_real mass, rg_vec2 position,
                                 rg_body *out_body)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL || out_body == NULL || !rg_vec2_finite(position) || !rg_finite(mass))
         return RG_ERR_INVALID_ARGUMENT;
     if (type != RG_BODY_STATIC && type != RG_BODY_KINEMATIC && type != RG_BODY_DYNAMIC)
@@ -21,6 +24,7 @@ RG_API rg_status rg_body_create(rg_world *world, int32_t type, rg_real mass, rg_
 
 RG_API rg_status rg_body_destroy(rg_world *world, rg_body body)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL) return RG_ERR_INVALID_ARGUMENT;
     int32_t i = body_lookup(world, body);
     if (i < 0) return RG_ERR_STALE_HANDLE;
@@ -54,7 +58,7 @@ RG_API rg_status rg_body_get_mass(const rg_world *world, rg_body body, rg_real *
 
 RG_API rg_status rg_body_set_mass(rg_world *world, rg_body body, rg_real mass)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     if (!rg_finite(mass) || !(mass > 0) || world->b.type[i] != RG_BODY_DYNAMIC)
         return RG_ERR_INVALID_ARGUMENT;
     world->b.mass[i] = mass;
@@ -109,7 +113,7 @@ RG_API rg_status rg_body_get_interpolated_position(const rg_world *world, rg_bod
 
 RG_API rg_status rg_body_set_position(rg_world *world, rg_body body, rg_vec2 position)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     if (!rg_vec2_finite(position)) return RG_ERR_INVALID_ARGUMENT;
     body_store *b = &world->b;
     int32_t s = b->slot[i];
@@ -122,7 +126,7 @@ RG_API rg_status rg_body_set_position(rg_world *world, rg_body body, rg_vec2 pos
 
 RG_API rg_status rg_body_set_velocity(rg_world *world, rg_body body, rg_vec2 velocity)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     if (!rg_vec2_finite(velocity)) return RG_ERR_INVALID_ARGUMENT;
     body_store *b = &world->b;
     if (b->type[i] == RG_BODY_STATIC && (velocity.x != 0 || velocity.y != 0))
@@ -135,7 +139,7 @@ RG_API rg_status rg_body_set_velocity(rg_world *world, rg_body body, rg_vec2 vel
 
 RG_API rg_status rg_body_apply_force(rg_world *world, rg_body body, rg_vec2 force)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     if (!rg_vec2_finite(force)) return RG_ERR_INVALID_ARGUMENT;
     body_store *b = &world->b;
     if (b->type[i] != RG_BODY_DYNAMIC) return RG_OK;
@@ -149,7 +153,7 @@ RG_API rg_status rg_body_apply_force(rg_world *world, rg_body body, rg_vec2 forc
 
 RG_API rg_status rg_body_apply_impulse(rg_world *world, rg_body body, rg_vec2 impulse)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     if (!rg_vec2_finite(impulse)) return RG_ERR_INVALID_ARGUMENT;
     body_store *b = &world->b;
     if (b->type[i] != RG_BODY_DYNAMIC) return RG_OK;
@@ -164,7 +168,7 @@ RG_API rg_status rg_body_apply_impulse(rg_world *world, rg_body body, rg_vec2 im
 
 RG_API rg_status rg_body_set_gravity_scale(rg_world *world, rg_body body, rg_real scale)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     if (!rg_finite(scale)) return RG_ERR_INVALID_ARGUMENT;
     if (world->b.type[i] == RG_BODY_DYNAMIC) world->b.gscale[i] = scale;
     return RG_OK;
@@ -172,7 +176,7 @@ RG_API rg_status rg_body_set_gravity_scale(rg_world *world, rg_body body, rg_rea
 
 RG_API rg_status rg_body_set_drag(rg_world *world, rg_body body, rg_real linear, rg_real quadratic)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     if (!rg_finite(linear) || !rg_finite(quadratic) || linear < 0 || quadratic < 0)
         return RG_ERR_INVALID_ARGUMENT;
     world->b.drag_lin[i] = linear;
@@ -184,7 +188,7 @@ RG_API rg_status rg_body_set_drag(rg_world *world, rg_body body, rg_real linear,
 RG_API rg_status rg_body_set_surface_friction(rg_world *world, rg_body body, rg_real mu,
                                               rg_real normal_force)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     if (!rg_finite(mu) || !rg_finite(normal_force) || mu < 0 || normal_force < 0)
         return RG_ERR_INVALID_ARGUMENT;
     rg_real f = mu * normal_force;
@@ -197,7 +201,7 @@ RG_API rg_status rg_body_set_surface_friction(rg_world *world, rg_body body, rg_
 RG_API rg_status rg_body_set_speed_limits(rg_world *world, rg_body body, rg_real min_speed,
                                           rg_real max_speed)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     if (!rg_finite(min_speed) || !rg_finite(max_speed) || min_speed < 0 || max_speed < 0 ||
         (max_speed > 0 && max_speed < min_speed))
         return RG_ERR_INVALID_ARGUMENT;
@@ -209,7 +213,7 @@ RG_API rg_status rg_body_set_speed_limits(rg_world *world, rg_body body, rg_real
 
 RG_API rg_status rg_body_set_user_data(rg_world *world, rg_body body, uint64_t user_data)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     world->b.user[i] = user_data;
     return RG_OK;
 }

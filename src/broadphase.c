@@ -149,66 +149,79 @@ static void set_box(broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_rea
     }
 }
 
-rg_status broadphase_reserve(broadphase *bp, const rg_mem *m, int32_t slots, int32_t members)
+/* Room for slots [0, cap): the per-slot arrays grown, their contents kept. */
+static rg_status bp_grow_slots(broadphase *bp, const rg_mem *m, int32_t cap)
+{
+    if (cap <= bp->cap) return RG_OK;
+    bp_entry *e = mem_alloc(m, mem_array_size((size_t)cap, sizeof *e));
+    int32_t *mem_ = mem_alloc(m, mem_array_size((size_t)cap, sizeof *mem_));
+    int32_t *huge = mem_alloc(m, mem_array_size((size_t)cap, sizeof *huge));
+    int32_t *moved = mem_alloc(m, mem_array_size((size_t)cap, sizeof *moved));
+    int32_t *act = mem_alloc(m, mem_array_size((size_t)cap, sizeof *act));
+    if (e == NULL || mem_ == NULL || huge == NULL || moved == NULL || act == NULL) {
+        mem_free(m, e, (size_t)cap * sizeof *e);
+        mem_free(m, mem_, (size_t)cap * sizeof *mem_);
+        mem_free(m, huge, (size_t)cap * sizeof *huge);
+        mem_free(m, moved, (size_t)cap * sizeof *moved);
+        mem_free(m, act, (size_t)cap * sizeof *act);
+        return RG_ERR_OUT_OF_MEMORY;
+    }
+    if (bp->cap == 0)
+        for (int li = 0; li < BP_LEVELS; li++) bp->level_head[li] = -1;
+    if (bp->cap > 0) {
+        memcpy(e, bp->e, (size_t)bp->cap * sizeof *e);
+        memcpy(mem_, bp->members, (size_t)bp->count * sizeof *mem_);
+        memcpy(huge, bp->huge, (size_t)bp->n_huge * sizeof *huge);
+        memcpy(moved, bp->moved, (size_t)bp->n_moved * sizeof *moved);
+        memcpy(act, bp->active, (size_t)bp->n_active * sizeof *act);
+    }
+    for (int32_t s = bp->cap; s < cap; s++) {
+        memset(&e[s], 0, sizeof e[s]);
+        e[s].member = -1;
+        e[s].next = e[s].prev = -1;
+        e[s].lnext = e[s].lprev = -1;
+        e[s].apos = -1;
+    }
+    mem_free(m, bp->e, (size_t)bp->cap * sizeof *bp->e);
+    mem_free(m, bp->members, (size_t)bp->cap * sizeof *bp->members);
+    mem_free(m, bp->huge, (size_t)bp->cap * sizeof *bp->huge);
+    mem_free(m, bp->moved, (size_t)bp->cap * sizeof *bp->moved);
+    mem_free(m, bp->active, (size_t)bp->cap * sizeof *bp->active);
+    bp->e = e;
+    bp->members = mem_;
+    bp->huge = huge;
+    bp->moved = moved;
+    bp->active = act;
+    bp->cap = cap;
+    return RG_OK;
+}
+
+/* The slot capacity that holds `slots`: doubling from 64. */
+static int32_t bp_slot_cap(const broadphase *bp, int32_t slots)
 {
     int32_t cap = bp->cap;
     if (slots > cap) {
         cap = cap < 64 ? 64 : cap;
         while (cap < slots) cap = cap > (INT32_MAX / 2) ? INT32_MAX : cap * 2;
     }
+    return cap;
+}
+
+rg_status broadphase_reserve(broadphase *bp, const rg_mem *m, int32_t slots, int32_t members)
+{
+    int32_t cap = bp_slot_cap(bp, slots);
     int bits = bp->bucket_bits < BP_MIN_BUCKET_BITS ? BP_MIN_BUCKET_BITS : bp->bucket_bits;
     while (((int64_t)1 << bits) < 2 * (int64_t)members) bits++;
     if (cap == bp->cap && bits == bp->bucket_bits) return RG_OK;
-
-    bp_entry *e = NULL;
-    int32_t *mem_ = NULL, *huge = NULL, *moved = NULL, *act = NULL, *head = NULL;
     size_t nb = (size_t)1 << bits;
-    if (cap != bp->cap) {
-        e = mem_alloc(m, mem_array_size((size_t)cap, sizeof *e));
-        mem_ = mem_alloc(m, mem_array_size((size_t)cap, sizeof *mem_));
-        huge = mem_alloc(m, mem_array_size((size_t)cap, sizeof *huge));
-        moved = mem_alloc(m, mem_array_size((size_t)cap, sizeof *moved));
-        act = mem_alloc(m, mem_array_size((size_t)cap, sizeof *act));
+    int32_t *head = NULL;
+    if (bits != bp->bucket_bits) {
+        head = mem_alloc(m, nb * sizeof *head);
+        if (head == NULL) return RG_ERR_OUT_OF_MEMORY;
     }
-    if (bits != bp->bucket_bits) head = mem_alloc(m, nb * sizeof *head);
-    if ((cap != bp->cap && (e == NULL || mem_ == NULL || huge == NULL || moved == NULL || act == NULL)) ||
-        (bits != bp->bucket_bits && head == NULL)) {
-        mem_free(m, e, (size_t)cap * sizeof *e);
-        mem_free(m, mem_, (size_t)cap * sizeof *mem_);
-        mem_free(m, huge, (size_t)cap * sizeof *huge);
-        mem_free(m, moved, (size_t)cap * sizeof *moved);
-        mem_free(m, act, (size_t)cap * sizeof *act);
+    if (bp_grow_slots(bp, m, cap) != RG_OK) {
         mem_free(m, head, nb * sizeof *head);
         return RG_ERR_OUT_OF_MEMORY;
-    }
-    if (cap != bp->cap) {
-        if (bp->cap == 0)
-            for (int li = 0; li < BP_LEVELS; li++) bp->level_head[li] = -1;
-        if (bp->cap > 0) {
-            memcpy(e, bp->e, (size_t)bp->cap * sizeof *e);
-            memcpy(mem_, bp->members, (size_t)bp->count * sizeof *mem_);
-            memcpy(huge, bp->huge, (size_t)bp->n_huge * sizeof *huge);
-            memcpy(moved, bp->moved, (size_t)bp->n_moved * sizeof *moved);
-            memcpy(act, bp->active, (size_t)bp->n_active * sizeof *act);
-        }
-        for (int32_t s = bp->cap; s < cap; s++) {
-            memset(&e[s], 0, sizeof e[s]);
-            e[s].member = -1;
-            e[s].next = e[s].prev = -1;
-            e[s].lnext = e[s].lprev = -1;
-            e[s].apos = -1;
-        }
-        mem_free(m, bp->e, (size_t)bp->cap * sizeof *bp->e);
-        mem_free(m, bp->members, (size_t)bp->cap * sizeof *bp->members);
-        mem_free(m, bp->huge, (size_t)bp->cap * sizeof *bp->huge);
-        mem_free(m, bp->moved, (size_t)bp->cap * sizeof *bp->moved);
-        mem_free(m, bp->active, (size_t)bp->cap * sizeof *bp->active);
-        bp->e = e;
-        bp->members = mem_;
-        bp->huge = huge;
-        bp->moved = moved;
-        bp->active = act;
-        bp->cap = cap;
     }
     if (head != NULL) {
         mem_free(m, bp->head, ((size_t)1 << bp->bucket_bits) * sizeof *bp->head);
@@ -222,6 +235,75 @@ rg_status broadphase_reserve(broadphase *bp, const rg_mem *m, int32_t slots, int
         }
     }
     return RG_OK;
+}
+
+/* ---------------------------------------------------------------- restoring a snapshot */
+
+void broadphase_locate(rg_real lx, rg_real ly, rg_real ux, rg_real uy, int16_t *level, uint64_t *key)
+{
+    int li = level_of(lx, ly, ux, uy);
+    *level = (int16_t)li;
+    *key = 0;
+    if (li != BP_HUGE) {
+        rg_real inv = level_inv(li);
+        *key = cell_key(li, cell_coord(lx, inv), cell_coord(ly, inv));
+    }
+}
+
+uint32_t broadphase_bucket(int bits, uint64_t key)
+{
+    return (uint32_t)((key * 0x9E3779B97F4A7C15ull) >> (64 - bits));
+}
+
+rg_status broadphase_reserve_slots(broadphase *bp, const rg_mem *m, int32_t slots)
+{
+    return bp_grow_slots(bp, m, bp_slot_cap(bp, slots));
+}
+
+void broadphase_clear(broadphase *bp, const rg_mem *m, int32_t *head, int bits)
+{
+    if (bits != bp->bucket_bits) {
+        if (bp->head != NULL) mem_free(m, bp->head, ((size_t)1 << bp->bucket_bits) * sizeof *bp->head);
+        bp->head = head;
+        bp->bucket_bits = bits;
+    }
+    bp->count = bp->n_huge = bp->n_moved = bp->n_active = 0;
+    for (int32_t s = 0; s < bp->cap; s++) {
+        bp_entry *e = &bp->e[s];
+        memset(e, 0, sizeof *e);
+        e->member = -1;
+        e->next = e->prev = -1;
+        e->lnext = e->lprev = -1;
+        e->apos = -1;
+    }
+    if (bp->head != NULL)
+        for (size_t k = 0; k < ((size_t)1 << bp->bucket_bits); k++) bp->head[k] = -1;
+    for (int li = 0; li <= BP_LEVELS; li++) bp->level_count[li] = 0;
+    for (int li = 0; li < BP_LEVELS; li++) bp->level_head[li] = -1;
+    bp->levels = 0;
+}
+
+void broadphase_restore_finish(broadphase *bp)
+{
+    for (int32_t i = 0; i < bp->count; i++) {
+        int32_t s = bp->members[i];
+        bp_entry *e = &bp->e[s];
+        level_count_add(bp, e->level, 1);
+        if (e->level == BP_HUGE) {
+            bp->huge[e->next] = s;
+            bp->n_huge++;
+            e->prev = e->lnext = e->lprev = -1;
+            continue;
+        }
+        if (e->prev < 0) bp->head[bucket_of(bp, e->key)] = s;
+        if (e->lprev < 0) bp->level_head[e->level] = s;
+    }
+    for (int32_t i = 0; i < bp->count; i++) {
+        int32_t s = bp->members[i];
+        if (bp->e[s].apos < 0) continue;
+        bp->active[bp->e[s].apos] = s;
+        bp->n_active++;
+    }
 }
 
 void broadphase_release(broadphase *bp, const rg_mem *m)
@@ -388,20 +470,27 @@ typedef struct ray_ctx {
     bp_ray_fn fn;
     void *ctx;
     rg_real max_t;
+    const broadphase *bp;
+    int once, has_prev;     /* once: skip the members the previous chunk's box overlaps */
+    rg_real plx, ply, pux, puy;
 } ray_ctx;
 
 static void ray_visit(void *p, int32_t slot)
 {
     ray_ctx *r = p;
+    if (r->has_prev && box_overlap(&r->bp->e[slot], r->plx, r->ply, r->pux, r->puy)) return;
     r->max_t = r->fn(r->ctx, slot, r->max_t);
 }
 
-/* The ray walks each level in chunks no longer than one cell per axis, each chunk a box
- * query; chunks beyond the closest hit so far are never visited. */
-void broadphase_raycast(const broadphase *bp, rg_vec2 o, rg_vec2 d, bp_ray_fn visit, void *ctx)
+/* The path walks each level in chunks no longer than one cell per axis, each chunk a box
+ * query (the chunk's segment grown by the half extents); chunks beyond the closest hit so
+ * far are never visited.  A member meets a run of consecutive chunks (the chunk boxes follow
+ * a straight path), so skipping those the previous chunk met visits each once. */
+void broadphase_sweep(const broadphase *bp, rg_vec2 o, rg_vec2 d, rg_real hx, rg_real hy, int once,
+                      bp_ray_fn visit, void *ctx)
 {
     if (bp->count == 0) return;
-    ray_ctx r = {visit, ctx, 1};
+    ray_ctx r = {visit, ctx, 1, bp, once, 0, 0, 0, 0, 0};
     rg_real span = rg_max(rg_fabs(d.x), rg_fabs(d.y));
     for (int i = 0; i < bp->n_huge; i++) ray_visit(&r, bp->huge[i]);
     for (int li = BP_LEVELS - 1; li >= 0; li--) {
@@ -410,6 +499,7 @@ void broadphase_raycast(const broadphase *bp, rg_vec2 o, rg_vec2 d, bp_ray_fn vi
         /* chunk length in t; a whole-ray chunk when the ray is shorter than a cell */
         rg_real step = span > c ? c / span : 1;
         rg_real nchunks = span > c ? r.max_t / step + 1 : 1;
+        r.has_prev = 0;
         if (nchunks * 4 > (rg_real)bp->level_count[li] + 8) {
             /* long ray over a sparse level: test each member of the level once */
             for (int32_t s = bp->level_head[li]; s >= 0;) {
@@ -423,9 +513,22 @@ void broadphase_raycast(const broadphase *bp, rg_vec2 o, rg_vec2 d, bp_ray_fn vi
             rg_real t1 = rg_min(t0 + step, r.max_t);
             rg_real ax = o.x + d.x * t0, ay = o.y + d.y * t0;
             rg_real bx = o.x + d.x * t1, by = o.y + d.y * t1;
-            query_level(bp, li, rg_min(ax, bx), rg_min(ay, by), rg_max(ax, bx), rg_max(ay, by),
-                        ray_visit, &r);
+            rg_real lx = rg_min(ax, bx) - hx, ly = rg_min(ay, by) - hy;
+            rg_real ux = rg_max(ax, bx) + hx, uy = rg_max(ay, by) + hy;
+            query_level(bp, li, lx, ly, ux, uy, ray_visit, &r);
             if (step >= 1) break;
+            if (once) {
+                r.has_prev = 1;
+                r.plx = lx;
+                r.ply = ly;
+                r.pux = ux;
+                r.puy = uy;
+            }
         }
     }
+}
+
+void broadphase_raycast(const broadphase *bp, rg_vec2 o, rg_vec2 d, bp_ray_fn visit, void *ctx)
+{
+    broadphase_sweep(bp, o, d, 0, 0, 0, visit, ctx);
 }

@@ -93,6 +93,24 @@ static inline uint32_t broadphase_new_mark(broadphase *bp)
     return bp->mark;
 }
 
+/* ---- restoring a snapshot: the members' boxes and links are set from outside (restore.c
+ * checks them), then the derived lists are rebuilt. */
+
+/* The level (or BP_HUGE) and cell key of a fat box, as insert and move compute them. */
+void broadphase_locate(rg_real lx, rg_real ly, rg_real ux, rg_real uy, int16_t *level, uint64_t *key);
+/* The bucket of a key in a table of 2^bits buckets (bits >= 1). */
+uint32_t broadphase_bucket(int bits, uint64_t key);
+/* Room for slots [0, slots), nothing else changed; all-or-nothing. */
+rg_status broadphase_reserve_slots(broadphase *bp, const rg_mem *m, int32_t slots);
+/* Empties the broadphase; with bits != its own, the bucket table becomes head (2^bits
+ * entries allocated by the caller, or NULL with bits 0: none, as in a world that never had
+ * a shape) and the old one is freed. */
+void broadphase_clear(broadphase *bp, const rg_mem *m, int32_t *head, int bits);
+/* After members[0..count) and their entries (box, level, key, member, chain and level
+ * links, huge index in next, moved, apos) are set: the bucket and level heads, the huge and
+ * active lists, the level counts. */
+void broadphase_restore_finish(broadphase *bp);
+
 /* Calls visit(ctx, slot) once for every member whose fat box overlaps [lx, ux] x [ly, uy]. */
 typedef void (*bp_visit_fn)(void *ctx, int32_t slot);
 void broadphase_query(const broadphase *bp, rg_real lx, rg_real ly, rg_real ux, rg_real uy,
@@ -103,5 +121,9 @@ void broadphase_query(const broadphase *bp, rg_real lx, rg_real ly, rg_real ux, 
  * visited more than once. */
 typedef rg_real (*bp_ray_fn)(void *ctx, int32_t slot, rg_real max_t);
 void broadphase_raycast(const broadphase *bp, rg_vec2 origin, rg_vec2 d, bp_ray_fn visit, void *ctx);
+/* The same for a box of half extents (hx, hy) swept along the segment (a shape cast); with
+ * `once`, every member is visited at most once. */
+void broadphase_sweep(const broadphase *bp, rg_vec2 origin, rg_vec2 d, rg_real hx, rg_real hy, int once,
+                      bp_ray_fn visit, void *ctx);
 
 #endif

@@ -2,11 +2,13 @@
  * API (solver iterations, contact tuning, continuous collision). */
 #include <string.h>
 
+#include "collide.h"
+#include "contact.h"
 #include "island.h"
 #include "narrow.h"
 #include "resolve.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 void collide_init(rg_world *w)
 {
@@ -110,6 +112,7 @@ RG_API int32_t rg_world_touching_count(const rg_world *world)
 
 RG_API rg_status rg_world_set_solver_iterations(rg_world *world, int32_t velocity, int32_t position)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL || velocity < 1 || velocity > 64 || position < 0 || position > 64)
         return RG_ERR_INVALID_ARGUMENT;
     world->coll.iterations = velocity;
@@ -129,6 +132,7 @@ RG_API rg_status rg_world_get_solver_iterations(const rg_world *world, int32_t *
 RG_API rg_status rg_world_set_contact_tuning(rg_world *world, rg_real slop, rg_real bias_rate,
                                              rg_real max_push, rg_real restitution_threshold)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL || !rg_finite(slop) || !rg_finite(bias_rate) || !rg_finite(max_push) ||
         !rg_finite(restitution_threshold) || slop < 0 || !(bias_rate > 0) || bias_rate > 1 ||
         !(max_push > 0) || restitution_threshold < 0)
@@ -158,6 +162,7 @@ RG_API rg_status rg_world_get_contact_tuning(const rg_world *world, rg_real *out
 
 RG_API rg_status rg_world_set_continuous(rg_world *world, int32_t enabled)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL || (enabled != 0 && enabled != 1)) return RG_ERR_INVALID_ARGUMENT;
     world->coll.continuous = enabled;
     return RG_OK;

@@ -1,8 +1,11 @@
 /* contact.c: contact storage: creation, destruction, body lists and the awake set. */
 #include <string.h>
 
+#include "body.h"
+#include "contact.h"
+#include "events.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 static inline void contact_set_next(contact *c, int32_t slot, int32_t v)
 {
@@ -74,6 +77,7 @@ static rg_status contact_grow(rg_world *w)
     /* new ids on the free list, lowest first */
     for (int32_t id = cap - 1; id >= old; id--) {
         memset(&c[id], 0, sizeof c[id]);
+        c[id].sa = c[id].sb = -1; /* free */
         c[id].na = cs->free_head;
         c[id].awake = -1;
         cs->free_head = id;
@@ -125,6 +129,11 @@ static inline void contact_mix(contact *c, const body_store *b, int32_t ia, int3
     c->e = rg_max(b->rest[ia], b->rest[ib]);
 }
 
+static inline uint32_t contact_one_way(const body_store *b, int32_t ia, int32_t ib)
+{
+    return (b->owx[ia] != 0 || b->owy[ia] != 0 || b->owx[ib] != 0 || b->owy[ib] != 0) ? CT_ONEWAY : 0;
+}
+
 int32_t contact_create(rg_world *w, int32_t s, int32_t t)
 {
     contact_store *cs = &w->coll.contacts;
@@ -145,6 +154,7 @@ int32_t contact_create(rg_world *w, int32_t s, int32_t t)
     c->sb = t;
     c->awake = -1;
     c->flags = ((b->cflags[ia] | b->cflags[ib]) & CF_SENSOR) ? CT_SENSOR : 0;
+    c->flags |= contact_one_way(b, ia, ib);
     contact_mix(c, b, ia, ib);
     contact_link(w, id, s);
     contact_link(w, id, t);
@@ -164,6 +174,7 @@ void contact_destroy(rg_world *w, int32_t id)
     contact_unlink(w, id, c->sb);
     if (c->awake >= 0) contact_awake_remove(cs, id);
     c->flags = 0;
+    c->sa = c->sb = -1; /* free */
     c->na = cs->free_head;
     cs->free_head = id;
     cs->live--;
@@ -177,4 +188,90 @@ void contact_refresh_materials(rg_world *w, int32_t s)
         contact *c = &cs->c[id];
         contact_mix(c, b, body_dense(w, c->sa), body_dense(w, c->sb));
     }
+}
+
+void contact_refresh_flags(rg_world *w, int32_t s)
+{
+    contact_store *cs = &w->coll.contacts;
+    const body_store *b = &w->b;
+    for (int32_t id = b->chead[body_dense(w, s)] - 1; id >= 0; id = contact_next(&cs->c[id], s)) {
+        contact *c = &cs->c[id];
+        c->flags = (c->flags & ~CT_ONEWAY) | contact_one_way(b, body_dense(w, c->sa), body_dense(w, c->sb));
+    }
+}
+
+int32_t contact_find(const rg_world *w, int32_t s, int32_t t)
+{
+    const contact_store *cs = &w->coll.contacts;
+    for (int32_t id = w->b.chead[body_dense(w, s)] - 1; id >= 0; id = contact_next(&cs->c[id], s))
+        if (contact_other(&cs->c[id], s) == t) return id;
+    return -1;
+}
+
+rg_status contact_block_alloc(contact_block *b, const rg_world *w, int32_t cap, int32_t n_ev, int32_t n_pend)
+{
+    const contact_store *cs = &w->coll.contacts;
+    const event_store *es = &w->coll.events;
+    const rg_mem *m = &w->mem;
+    int64_t need = EVENTS_PER_STEP(cap) > n_ev ? EVENTS_PER_STEP(cap) : n_ev;
+    if (need > INT32_MAX || n_pend > cap) return RG_ERR_CAPACITY;
+    memset(b, 0, sizeof *b);
+    b->cap = cap;
+    b->new_contacts = cs->cap != cap;
+    b->new_events = b->new_contacts || es->cap < need || es->pend_cap < cap;
+    if (b->new_contacts && cap > 0) {
+        b->c = mem_alloc(m, (size_t)cap * sizeof *b->c);
+        b->awake = mem_alloc(m, (size_t)cap * sizeof *b->awake);
+        rg_status st = solver_rows_alloc(&b->rows, m, cap);
+        if (b->c == NULL || b->awake == NULL || st != RG_OK) {
+            if (st == RG_OK) solver_rows_release(&b->rows, m);
+            mem_free(m, b->c, (size_t)cap * sizeof *b->c);
+            mem_free(m, b->awake, (size_t)cap * sizeof *b->awake);
+            return RG_ERR_OUT_OF_MEMORY;
+        }
+    }
+    if (b->new_events && need > 0) {
+        event_store none;
+        memset(&none, 0, sizeof none);
+        none.base = (int32_t)(need - EVENTS_PER_STEP(cap));
+        rg_status st = events_alloc(&b->ev, &none, m, cap > 0 ? cap : 1);
+        if (st != RG_OK) {
+            b->new_events = 0; /* nothing of it allocated */
+            contact_block_free(b, m);
+            return st;
+        }
+    }
+    return RG_OK;
+}
+
+void contact_block_free(contact_block *b, const rg_mem *m)
+{
+    if (b->new_contacts && b->cap > 0) {
+        solver_rows_release(&b->rows, m);
+        mem_free(m, b->c, (size_t)b->cap * sizeof *b->c);
+        mem_free(m, b->awake, (size_t)b->cap * sizeof *b->awake);
+    }
+    if (b->new_events) events_discard(&b->ev, m);
+    b->new_contacts = b->new_events = 0;
+}
+
+void contact_block_adopt(rg_world *w, contact_block *b)
+{
+    collide_world *cw = &w->coll;
+    contact_store *cs = &cw->contacts;
+    const rg_mem *m = &w->mem;
+    if (b->new_contacts) {
+        mem_free(m, cs->c, (size_t)cs->cap * sizeof *cs->c);
+        mem_free(m, cs->awake, (size_t)cs->cap * sizeof *cs->awake);
+        solver_rows_release(&cw->rows, m);
+        cs->c = b->c;
+        cs->awake = b->awake;
+        cs->cap = b->cap;
+        if (b->cap > 0) cw->rows = b->rows;
+    }
+    if (b->new_events) {
+        events_release(&cw->events, m);
+        cw->events = b->ev;
+    }
+    b->new_contacts = b->new_events = 0;
 }

@@ -1,9 +1,5 @@
-/* contact.h: contact storage: persistent contacts between pairs of bodies whose fat boxes
- * overlap, each body's list of them, and the awake set.
- *
- * Contacts are identified by an id into `c`; the awake ones (at least one body awake) are
- * listed in `awake`, in a deterministic order; each body heads a doubly linked list of its
- * contacts (`chead` in the body fields, id + 1).  The storage grows all-or-nothing together
+/* contact.h: contact storage (its structures in state.h): creation and destruction, each
+ * body's list of contacts, and the awake set.  The storage grows all-or-nothing together
  * with what is sized by the contact count: the event buffer (events.h) and the solver rows
  * (solver.h). */
 #ifndef RG_CONTACT_H
@@ -11,36 +7,8 @@
 
 #include <stdint.h>
 
-#include "rigid.h"
+#include "state.h"
 
-/* contact flags */
-#define CT_TOUCHING 1u
-#define CT_SENSOR   2u
-#define CT_SOLVE    4u  /* solved in this step */
-#define CT_CLOSING  8u  /* the step's free motion would make the pair overlap */
-
-typedef struct contact {
-    int32_t sa, sb;           /* body slots; a has the lower handle */
-    int32_t na, pa, nb, pb;   /* next/prev contact ids in a's and b's lists (-1 ends) */
-    int32_t awake;            /* index in awake[], -1 while both bodies rest */
-    uint32_t flags;           /* CT_* */
-    rg_real mu, e;            /* mixed friction and restitution */
-    rg_real nx, ny;           /* last normal, from a to b */
-    rg_real px, py;           /* last contact point, m */
-    rg_real s0;               /* last start separation, m */
-    rg_real vn0;              /* last relative normal velocity at the start of the step, m/s */
-    rg_real depth, speed;     /* at the begin, for the events */
-    rg_real pn, pt;           /* accumulated impulses, N*s (warm start) */
-    rg_real toi;              /* its solver row's toi (solver.h) */
-} contact;
-
-typedef struct contact_store {
-    contact *c;               /* [0, cap) by id */
-    int32_t cap, live, free_head;
-    int32_t *awake;           /* ids of awake contacts, [0, n_awake) */
-    int32_t n_awake;
-    int32_t n_touching;       /* contacts with CT_TOUCHING */
-} contact_store;
 
 struct rg_world;
 
@@ -56,6 +24,25 @@ int32_t contact_create(struct rg_world *w, int32_t s, int32_t t);
 void contact_destroy(struct rg_world *w, int32_t id);
 /* Mixes the materials of the contacts of body slot s again. */
 void contact_refresh_materials(struct rg_world *w, int32_t s);
+/* Sets CT_ONEWAY of the contacts of body slot s again (its one-way normal changed). */
+void contact_refresh_flags(struct rg_world *w, int32_t s);
+/* The contact between body slots s and t, or -1. */
+int32_t contact_find(const struct rg_world *w, int32_t s, int32_t t);
+/* Contact storage of an exact capacity with room for n_ev events, made aside (restoring a
+ * snapshot) and taken by contact_block_adopt, which frees what it replaces and leaves the
+ * contents to the caller.  Nothing is allocated when the world's storage already fits. */
+typedef struct contact_block {
+    contact *c;
+    int32_t *awake;
+    solver_rows rows;
+    event_store ev;
+    int32_t cap;
+    int new_contacts, new_events;
+} contact_block;
+rg_status contact_block_alloc(contact_block *b, const struct rg_world *w, int32_t cap, int32_t n_ev, int32_t n_pend);
+void contact_block_adopt(struct rg_world *w, contact_block *b);
+void contact_block_free(contact_block *b, const rg_mem *m);
+
 void contact_awake_add(contact_store *cs, int32_t id);
 void contact_awake_remove(contact_store *cs, int32_t id);
 

@@ -1,10 +1,12 @@
 /* continuous.c: timed impacts and the post-solve sweep (see continuous.h). */
 #include <string.h>
 
+#include "body.h"
 #include "collision.h"
+#include "contact.h"
 #include "continuous.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 /* Impacts of one body within this fraction of the step of each other count as one (a box
  * across a tile seam meets both tiles at once, to rounding). */
@@ -76,6 +78,14 @@ int continuous_time_impacts(rg_world *w, collide_step *x)
     return any;
 }
 
+/* Whether body i blocks a hit whose normal (nx, ny) points from i toward the other: always,
+ * unless it is one-way and the normal is not on its side. */
+static inline int continuous_one_way_blocks(const body_store *b, int32_t i, rg_real nx, rg_real ny)
+{
+    rg_real ox = b->owx[i], oy = b->owy[i];
+    return (ox == 0 && oy == 0) || nx * ox + ny * oy > 0;
+}
+
 void continuous_sweep(rg_world *w, const collide_step *x)
 {
     collide_world *cw = &w->coll;
@@ -95,7 +105,7 @@ void continuous_sweep(rg_world *w, const collide_step *x)
         rg_vec2 nbest = rg_v2(0, 0), vbest = rg_v2(0, 0);
         for (int32_t id = b->chead[i] - 1; id >= 0; id = contact_next(&cs->c[id], s)) {
             const contact *c = &cs->c[id];
-            if (c->flags & CT_SENSOR) continue;
+            if (c->flags & (CT_SENSOR | CT_PASS)) continue;
             int32_t j = body_dense(w, contact_other(c, s));
             int active = j < b->n_active;
             if (b->type[j] == RG_BODY_DYNAMIC && active) continue;
@@ -107,6 +117,10 @@ void continuous_sweep(rg_world *w, const collide_step *x)
             coll_manifold hit, end;
             if (!coll_sweep(b->shape[j], o0, ho, b->shape[i], p0, hf, rg_v2_sub(D, dob), &t, &hit)) continue;
             if (!(t > 0 && t < tmin)) continue;
+            /* a one-way shape blocks only against its normal (hit.normal: from j toward i) */
+            if ((c->flags & CT_ONEWAY) && (!continuous_one_way_blocks(b, j, hit.normal.x, hit.normal.y) ||
+                                           !continuous_one_way_blocks(b, i, -hit.normal.x, -hit.normal.y)))
+                continue;
             coll_manifold_of(b->shape[j], o1, ho, b->shape[i], p1, hf, &end);
             if (end.depth >= 0 && end.depth <= cw->slop) continue; /* resting at the end */
             tmin = t;

@@ -22,7 +22,7 @@
 #ifndef RG_CONTINUOUS_H
 #define RG_CONTINUOUS_H
 
-#include "collide.h"
+#include "state.h"
 
 struct rg_world;
 

@@ -1,7 +1,8 @@
 /* draw.c: the debug-draw walk (rg_world_draw): shapes, contacts, velocities, fat boxes and
  * springs handed to the caller's callbacks in a fixed order. */
+#include "body.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 /* The colour of body i's shape: sensors first, then by type and sleep state. */
 static uint32_t draw_color(const rg_world *w, int32_t i)

@@ -1,8 +1,9 @@
 /* events.c: the contact event buffer and rg_world_get_contact_events. */
 #include <string.h>
 
+#include "events.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 rg_status events_alloc(event_store *fresh, const event_store *cur, const rg_mem *m, int32_t contacts)
 {
@@ -16,6 +17,8 @@ rg_status events_alloc(event_store *fresh, const event_store *cur, const rg_mem 
     if (fresh->ev == NULL || fresh->pend == NULL) {
         mem_free(m, fresh->ev, size);
         mem_free(m, fresh->pend, (size_t)contacts * sizeof *fresh->pend);
+        fresh->ev = fresh->pend = NULL;
+        fresh->cap = fresh->pend_cap = 0;
         return RG_ERR_OUT_OF_MEMORY;
     }
     fresh->cap = cap;

@@ -7,18 +7,8 @@
 
 #include <stdint.h>
 
-#include "contact.h"
-#include "mem.h"
-#include "rigid.h"
+#include "state.h"
 
-typedef struct event_store {
-    rg_contact_event *ev;     /* events of the last step, or of every step of the last advance */
-    int32_t n, cap;           /* held, room (>= base + EVENTS_PER_STEP(contacts) in a step) */
-    int32_t base;             /* where the current step's events start */
-    rg_contact_event *pend;   /* ends between steps, reported with the next step */
-    int32_t n_pend, pend_cap; /* pend_cap: the contact capacity (one end per contact at most) */
-    int32_t in_step;
-} event_store;
 
 /* Events one step can produce with contact capacity cap: ends of the contacts touching when
  * it starts (found gone or updated), ends reported between steps (at most cap) and begins

@@ -2,8 +2,10 @@
  * surface friction, springs. */
 #include <string.h>
 
+#include "body.h"
+#include "force.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 void force_springs(const rg_world *w, rg_real *sax, rg_real *say)
 {

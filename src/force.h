@@ -6,8 +6,7 @@
 
 #include <stdint.h>
 
-#include "rigid.h"
-#include "spring.h"
+#include "state.h"
 
 struct rg_world;
 

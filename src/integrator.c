@@ -2,9 +2,11 @@
  * dissipation that never reverses or grows a velocity. */
 #include <string.h>
 
+#include "body.h"
+#include "force.h"
 #include "integrator.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 /* Backward-Euler dissipation for one body: given the velocity v_free the other forces give
  * over h, solve v' = v_free - h/m * (muN + lin*|v'| + quad*|v'|^2) * v'/|v'| for v' along

@@ -1,7 +1,9 @@
 /* island.c: islands, the sleep stage, waking, and the sleeping API. */
+#include "body.h"
+#include "contact.h"
 #include "island.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 void island_layout(mem_layout *l, island_state *s, int32_t n)
 {
@@ -190,7 +192,7 @@ RG_API rg_status rg_body_is_awake(const rg_world *world, rg_body body, int32_t *
 
 RG_API rg_status rg_body_wake(rg_world *world, rg_body body)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     if (world->b.type[i] != RG_BODY_STATIC) island_touch(world, world->b.slot[i]);
     return RG_OK;
 }
@@ -202,6 +204,7 @@ RG_API int32_t rg_world_awake_body_count(const rg_world *world)
 
 RG_API rg_status rg_world_set_sleeping(rg_world *world, int32_t enabled)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL || (enabled != 0 && enabled != 1)) return RG_ERR_INVALID_ARGUMENT;
     if (!enabled) island_wake_all(world);
     world->coll.sleeping = enabled;
@@ -217,6 +220,7 @@ RG_API rg_status rg_world_get_sleeping(const rg_world *world, int32_t *out_enabl
 
 RG_API rg_status rg_world_set_sleep_thresholds(rg_world *world, rg_real speed, rg_real time)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL || !rg_finite(speed) || !rg_finite(time) || speed < 0 || !(time > 0))
         return RG_ERR_INVALID_ARGUMENT;
     world->coll.sleep_speed = speed;

@@ -1,11 +1,13 @@
 /* narrow.c: the narrowphase (see narrow.h). */
+#include "body.h"
 #include "collision.h"
+#include "events.h"
 #include "island.h"
 #include "narrow.h"
 #include "pairs.h"
 #include "resolve.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 #define SPECULATIVE      RG_R(4)    /* solve pairs predicted within SPECULATIVE * slop */
 #define COS45            RG_R(0.70710678)
@@ -131,6 +133,47 @@ static inline int narrow_far_apart(const cbody *A, const cbody *B, int32_t ka, i
     return rg_fabs(gx) > slop && rg_fabs(gy) > slop;
 }
 
+/* Whether one-way body i (any body: two-way ones always block) blocks the other body of a
+ * contact beginning with normal (nx, ny) from i toward the other and start separation s0. */
+static inline int narrow_one_way_blocks(const body_store *b, int32_t i, rg_real nx, rg_real ny,
+                                        rg_real s0, rg_real slop)
+{
+    rg_real ox = b->owx[i], oy = b->owy[i];
+    if (ox == 0 && oy == 0) return 1;
+    return nx * ox + ny * oy > 0 && s0 >= -slop;
+}
+
+/* Whether the pair is skipped (neither solved nor touching) this step: it is passing through
+ * (rg_body_pass_through, or a one-way body it met from the wrong side or inside, until a
+ * step ends with the shapes apart, d > 0), or the pre-solve hook says so.  `candidate`: the
+ * pair would be solved or touching.  A touching one-way contact keeps blocking. */
+static int narrow_skip(rg_world *w, contact *c, int32_t ia, int32_t ib, rg_real s0, rg_real d,
+                       uint32_t was, int candidate)
+{
+    if (c->flags & CT_PASS) {
+        if (d > 0) c->flags &= ~CT_PASS; /* apart at the end of this step: collides from the next */
+        return 1;
+    }
+    if (!candidate) return 0;
+    if ((c->flags & CT_ONEWAY) && !was) {
+        const body_store *b = &w->b;
+        rg_real slop = w->coll.slop;
+        if (!narrow_one_way_blocks(b, ia, c->nx, c->ny, s0, slop) ||
+            !narrow_one_way_blocks(b, ib, -c->nx, -c->ny, s0, slop)) {
+            if (!(d > 0)) c->flags |= CT_PASS;
+            return 1;
+        }
+    }
+    if (w->pre_solve != NULL && !(c->flags & CT_SENSOR)) {
+        w->locked = 1;
+        int32_t keep = w->pre_solve(pool_handle(&w->body_pool, c->sa), pool_handle(&w->body_pool, c->sb),
+                                    rg_v2(c->nx, c->ny), s0, w->pre_solve_user);
+        w->locked = 0;
+        if (!keep) return 1;
+    }
+    return 0;
+}
+
 /* Updates contact id from the step's motion (the broadphase keeps only pairs whose fat
  * boxes overlap): manifold at the start of the step or at the time of impact, touching
  * state and events, grounded flags, islands, waking, and the solver row. */
@@ -147,8 +190,8 @@ static void narrow_one(rg_world *w, int32_t id, collide_step *x)
     rg_vec2 ha = rg_v2(A->hx, A->hy), hb = rg_v2(B->hx, B->hy);
     rg_vec2 r = rg_v2(B->dx - A->dx, B->dy - A->dy); /* b's motion relative to a over the step */
     if (cw->continuous && !(c->flags & CT_TOUCHING) && narrow_far_apart(A, B, ka, kb, cw->slop)) {
-        /* what the full test below would conclude: not solved, not touching */
-        c->flags &= ~(CT_SOLVE | CT_CLOSING);
+        /* what the full test below would conclude: not solved, not touching, apart */
+        c->flags &= ~(CT_SOLVE | CT_CLOSING | CT_PASS);
         c->pn = c->pt = 0;
         return;
     }
@@ -191,6 +234,7 @@ static void narrow_one(rg_world *w, int32_t id, collide_step *x)
     }
     uint32_t was = c->flags & CT_TOUCHING, now = 0;
     c->flags &= ~(CT_SOLVE | CT_CLOSING);
+    if (!active) c->flags &= ~CT_PASS; /* no impact within the step: apart */
     if (active) {
         rg_real nx = m.normal.x, ny = m.normal.y;
         rg_real vn0 = (B->vx - A->vx) * nx + (B->vy - A->vy) * ny;
@@ -209,8 +253,16 @@ static void narrow_one(rg_world *w, int32_t id, collide_step *x)
          * (d), but also when the solver stops either body (an impact below it) while the
          * other moves on, so each body's own motion toward the other counts */
         rg_real reach = rg_fabs(A->dx * nx + A->dy * ny) + rg_fabs(B->dx * nx + B->dy * ny);
-        if (!(c->flags & CT_SENSOR) && s0 - reach < SPECULATIVE * cw->slop && rg_finite(s0) &&
-            rg_finite(vn0)) {
+        int solve = !(c->flags & CT_SENSOR) && s0 - reach < SPECULATIVE * cw->slop && rg_finite(s0) &&
+                    rg_finite(vn0);
+        /* one-way shapes, pass-through and the pre-solve hook may skip the pair this step */
+        if (((c->flags & (CT_ONEWAY | CT_PASS)) || w->pre_solve != NULL) &&
+            narrow_skip(w, c, ia, ib, s0, d, was, now != 0 || solve)) {
+            now = 0;
+            solve = 0;
+            c->flags &= ~CT_CLOSING;
+        }
+        if (solve) {
             rg_real ima = A->im, imb = B->im;
             if (ima + imb > 0) {
                 c->flags |= CT_SOLVE;

@@ -15,8 +15,7 @@
 
 #include <stdint.h>
 
-#include "collide.h"
-#include "mem.h"
+#include "state.h"
 
 struct rg_world;
 

@@ -1,8 +1,10 @@
 /* pairs.c: fat boxes, the collision filter and the pair search (see pairs.h). */
+#include "body.h"
+#include "contact.h"
 #include "island.h"
 #include "pairs.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 /* Fat boxes grow by a margin of FAT_FRACTION of the shape's larger half extent, at least the
  * slop (so that two touching shapes held apart by up to the slop keep their contact) and at

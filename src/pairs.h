@@ -11,8 +11,7 @@
 
 #include <stdint.h>
 
-#include "collide.h"
-#include "world.h"
+#include "state.h"
 
 /* Whether dense bodies i and j may collide: the filter both ways, and at least one dynamic
  * body unless a sensor meets a kinematic body. */

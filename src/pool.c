@@ -44,6 +44,30 @@ rg_status pool_reserve(pool *p, const rg_mem *m)
     return RG_OK;
 }
 
+rg_status pool_reserve_slots(pool *p, const rg_mem *m, int32_t slots)
+{
+    if (slots > p->max_slots) return RG_ERR_CAPACITY;
+    if (slots <= p->capacity) return RG_OK;
+    int32_t cap = p->capacity < 16 ? 16 : p->capacity;
+    while (cap < slots) cap = cap > p->max_slots / 2 ? p->max_slots : cap * 2;
+    uint32_t *gen = mem_alloc(m, (size_t)cap * sizeof *gen);
+    int32_t *index = mem_alloc(m, (size_t)cap * sizeof *index);
+    if (gen == NULL || index == NULL) {
+        mem_free(m, gen, (size_t)cap * sizeof *gen);
+        mem_free(m, index, (size_t)cap * sizeof *index);
+        return RG_ERR_OUT_OF_MEMORY;
+    }
+    if (p->slot_count > 0) {
+        memcpy(gen, p->gen, (size_t)p->slot_count * sizeof *gen);
+        memcpy(index, p->index, (size_t)p->slot_count * sizeof *index);
+    }
+    pool_release_memory(p, m);
+    p->gen = gen;
+    p->index = index;
+    p->capacity = cap;
+    return RG_OK;
+}
+
 static uint64_t make_handle(const pool *p, int32_t slot)
 {
     return ((uint64_t)p->tag << (POOL_SLOT_BITS + POOL_GEN_BITS)) |

@@ -32,6 +32,8 @@ void pool_release_memory(pool *p, const rg_mem *m);
 /* Makes room so that the next pool_alloc cannot fail.  RG_ERR_CAPACITY or
  * RG_ERR_OUT_OF_MEMORY, changing nothing, when it cannot. */
 rg_status pool_reserve(pool *p, const rg_mem *m);
+/* Room for `slots` slots (restoring a snapshot); all-or-nothing. */
+rg_status pool_reserve_slots(pool *p, const rg_mem *m, int32_t slots);
 /* Takes a slot (after a successful pool_reserve) mapped to dense index `dense`. */
 uint64_t pool_alloc(pool *p, int32_t dense);
 /* Frees the slot of a live handle; its generation moves on (or the slot retires). */

@@ -1,10 +1,11 @@
 /* resolve.c: the solve driver (see resolve.h). */
 #include <string.h>
 
+#include "body.h"
 #include "continuous.h"
 #include "resolve.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 void resolve_layout(mem_layout *l, resolve_state *s, int32_t n)
 {

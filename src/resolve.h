@@ -7,9 +7,7 @@
 
 #include <stdint.h>
 
-#include "collide.h"
-#include "mem.h"
-#include "world.h"
+#include "state.h"
 
 /* The solver scratch arrays for n bodies. */
 void resolve_layout(mem_layout *l, resolve_state *s, int32_t n);

@@ -1,9 +1,11 @@
 /* shape.c: the shape, material, sensor, filter and grounded API of bodies. */
+#include "body.h"
+#include "contact.h"
 #include "island.h"
 #include "pairs.h"
 #include "shape.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 /* Ends every contact of slot s (end events reported with the next step), waking the
  * sleeping bodies on the other side. */
@@ -64,7 +66,7 @@ static rg_status shape_set(rg_world *w, int32_t i, int32_t kind, rg_real hx, rg_
 
 RG_API rg_status rg_body_set_circle(rg_world *world, rg_body body, rg_real radius)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     if (!shape_size_ok(radius)) return RG_ERR_INVALID_ARGUMENT;
     return shape_set(world, i, RG_SHAPE_CIRCLE, radius, radius);
 }
@@ -72,14 +74,14 @@ RG_API rg_status rg_body_set_circle(rg_world *world, rg_body body, rg_real radiu
 RG_API rg_status rg_body_set_aabb(rg_world *world, rg_body body, rg_real half_width,
                                   rg_real half_height)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     if (!shape_size_ok(half_width) || !shape_size_ok(half_height)) return RG_ERR_INVALID_ARGUMENT;
     return shape_set(world, i, RG_SHAPE_AABB, half_width, half_height);
 }
 
 RG_API rg_status rg_body_clear_shape(rg_world *world, rg_body body)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     if (world->b.shape[i] == RG_SHAPE_NONE) return RG_OK;
     shape_remove(world, world->b.slot[i]);
     return RG_OK;
@@ -97,7 +99,7 @@ RG_API rg_status rg_body_get_shape(const rg_world *world, rg_body body, int32_t 
 
 RG_API rg_status rg_body_set_restitution(rg_world *world, rg_body body, rg_real restitution)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     if (!rg_finite(restitution) || restitution < 0 || restitution > 1) return RG_ERR_INVALID_ARGUMENT;
     world->b.rest[i] = restitution;
     contact_refresh_materials(world, world->b.slot[i]);
@@ -114,7 +116,7 @@ RG_API rg_status rg_body_get_restitution(const rg_world *world, rg_body body, rg
 
 RG_API rg_status rg_body_set_friction(rg_world *world, rg_body body, rg_real mu)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     if (!rg_finite(mu) || mu < 0) return RG_ERR_INVALID_ARGUMENT;
     world->b.mu[i] = mu;
     contact_refresh_materials(world, world->b.slot[i]);
@@ -131,7 +133,7 @@ RG_API rg_status rg_body_get_friction(const rg_world *world, rg_body body, rg_re
 
 RG_API rg_status rg_body_set_sensor(rg_world *world, rg_body body, int32_t is_sensor)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     if (is_sensor != 0 && is_sensor != 1) return RG_ERR_INVALID_ARGUMENT;
     body_store *b = &world->b;
     if (((b->cflags[i] & CF_SENSOR) != 0) == (is_sensor != 0)) return RG_OK;
@@ -155,7 +157,7 @@ RG_API rg_status rg_body_is_sensor(const rg_world *world, rg_body body, int32_t 
 
 RG_API rg_status rg_body_set_filter(rg_world *world, rg_body body, uint32_t category, uint32_t mask)
 {
-    BODY_GET(world, body, i);
+    BODY_SET(world, body, i);
     body_store *b = &world->b;
     contact_store *cs = &world->coll.contacts;
     if (b->cat[i] == category && b->mask[i] == mask) return RG_OK;
@@ -189,6 +191,28 @@ RG_API rg_status rg_body_get_filter(const rg_world *world, rg_body body, uint32_
     if (out_category == NULL || out_mask == NULL) return RG_ERR_INVALID_ARGUMENT;
     *out_category = world->b.cat[i];
     *out_mask = world->b.mask[i];
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_set_one_way(rg_world *world, rg_body body, rg_vec2 normal)
+{
+    BODY_SET(world, body, i);
+    if (!rg_vec2_finite(normal)) return RG_ERR_INVALID_ARGUMENT;
+    rg_real len = rg_v2_len(normal);
+    int two_way = normal.x == 0 && normal.y == 0;
+    if (!two_way && !(rg_fabs(len - 1) <= RG_R(1e-3))) return RG_ERR_INVALID_ARGUMENT;
+    body_store *b = &world->b;
+    b->owx[i] = two_way ? 0 : normal.x / len;
+    b->owy[i] = two_way ? 0 : normal.y / len;
+    contact_refresh_flags(world, b->slot[i]);
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_get_one_way(const rg_world *world, rg_body body, rg_vec2 *out_normal)
+{
+    BODY_GET(world, body, i);
+    if (out_normal == NULL) return RG_ERR_INVALID_ARGUMENT;
+    *out_normal = rg_v2(world->b.owx[i], world->b.owy[i]);
     return RG_OK;
 }
 

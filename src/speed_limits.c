@@ -1,7 +1,7 @@
 /* speed_limits.c: speed limits after integration. */
 #include "speed_limits.h"
 #include "vec2.h"
-#include "world.h"
+#include "state.h"
 
 void speed_limits_apply(rg_world *w)
 {

@@ -1,8 +1,10 @@
 /* spring.c: spring storage and the spring API. */
 #include <string.h>
 
+#include "body.h"
+#include "spring.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 static void spring_remove_dense(rg_world *w, int32_t s)
 {
@@ -16,10 +18,27 @@ static void spring_remove_dense(rg_world *w, int32_t s)
     ss->count--;
 }
 
+rg_status spring_reserve(rg_world *w, int32_t n)
+{
+    spring_store *ss = &w->springs;
+    if (n <= ss->capacity) return RG_OK;
+    if (n > RG_MAX_SPRINGS) return RG_ERR_CAPACITY;
+    int32_t cap = ss->capacity < 8 ? 8 : ss->capacity;
+    while (cap < n) cap = cap > RG_MAX_SPRINGS / 2 ? RG_MAX_SPRINGS : cap * 2;
+    spring *items = mem_alloc(&w->mem, (size_t)cap * sizeof *items);
+    if (items == NULL) return RG_ERR_OUT_OF_MEMORY;
+    if (ss->count > 0) memcpy(items, ss->items, (size_t)ss->count * sizeof *items);
+    mem_free(&w->mem, ss->items, (size_t)ss->capacity * sizeof *items);
+    ss->items = items;
+    ss->capacity = cap;
+    return RG_OK;
+}
+
 RG_API rg_status rg_spring_create(rg_world *world, rg_body a, rg_body b, rg_vec2 anchor,
                                   rg_real rest_length, rg_real stiffness, rg_real damping,
                                   uint64_t *out_spring)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL || out_spring == NULL) return RG_ERR_INVALID_ARGUMENT;
     if (!rg_finite(rest_length) || !rg_finite(stiffness) || !rg_finite(damping) ||
         rest_length < 0 || stiffness < 0 || damping < 0)
@@ -37,17 +56,8 @@ RG_API rg_status rg_spring_create(rg_world *world, rg_body a, rg_body b, rg_vec2
     }
     spring_store *ss = &world->springs;
     rg_status st = pool_reserve(&ss->pool, &world->mem);
+    if (st == RG_OK) st = spring_reserve(world, ss->count + 1);
     if (st != RG_OK) return st;
-    if (ss->count == ss->capacity) {
-        int32_t cap = ss->capacity < 8 ? 8 : ss->capacity * 2;
-        if (cap > RG_MAX_SPRINGS) cap = RG_MAX_SPRINGS;
-        spring *items = mem_alloc(&world->mem, (size_t)cap * sizeof *items);
-        if (items == NULL) return RG_ERR_OUT_OF_MEMORY;
-        if (ss->count > 0) memcpy(items, ss->items, (size_t)ss->count * sizeof *items);
-        mem_free(&world->mem, ss->items, (size_t)ss->capacity * sizeof *items);
-        ss->items = items;
-        ss->capacity = cap;
-    }
     st = body_scratch_reserve(world);  /* springs are summed through the scratch arrays */
     if (st != RG_OK) return st;
     int32_t s = ss->count++;
@@ -66,6 +76,7 @@ RG_API rg_status rg_spring_create(rg_world *world, rg_body a, rg_body b, rg_vec2
 
 RG_API rg_status rg_spring_destroy(rg_world *world, uint64_t spring_handle)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL) return RG_ERR_INVALID_ARGUMENT;
     int32_t s = pool_lookup(&world->springs.pool, spring_handle);
     if (s < 0) return RG_ERR_STALE_HANDLE;

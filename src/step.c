@@ -2,16 +2,19 @@
 #include <math.h>
 #include <string.h>
 
+#include "collide.h"
 #include "continuous.h"
+#include "events.h"
+#include "force.h"
 #include "integrator.h"
 #include "island.h"
-#include "speed_limits.h"
 #include "narrow.h"
 #include "pairs.h"
 #include "resolve.h"
+#include "speed_limits.h"
+#include "state.h"
 #include "step.h"
 #include "vec2.h"
-#include "world.h"
 
 /* The collide stage, in order: views and fat boxes, pairs, narrowphase, solve, the
  * continuous sweep, fat boxes refit, sleep.  Only with shapes. */
@@ -72,6 +75,7 @@ static rg_status step_prepare(rg_world *w)
 
 RG_API rg_status rg_world_step(rg_world *world, rg_real dt)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL || !rg_finite(dt) || !(dt > 0)) return RG_ERR_INVALID_ARGUMENT;
     rg_status st = step_prepare(world);
     if (st != RG_OK) return st;
@@ -83,6 +87,7 @@ RG_API rg_status rg_world_step(rg_world *world, rg_real dt)
 
 RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *out_steps)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL || !rg_finite(frame_time) || frame_time < 0) return RG_ERR_INVALID_ARGUMENT;
     rg_status st = step_prepare(world);
     if (st != RG_OK) return st;

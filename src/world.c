@@ -2,8 +2,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "body.h"
+#include "collide.h"
+#include "spring.h"
+#include "state.h"
 #include "vec2.h"
-#include "world.h"
 
 void *mem_default_alloc(void *user, void *ptr, size_t old_size, size_t new_size)
 {
@@ -69,7 +72,7 @@ RG_API rg_status rg_world_create(rg_world **out_world)
 
 RG_API void rg_world_destroy(rg_world *world)
 {
-    if (world == NULL) return;
+    if (world == NULL || world->locked) return; /* not from inside its own step */
     spring_release(world);
     collide_release(world);
     body_store_release(world);
@@ -79,6 +82,7 @@ RG_API void rg_world_destroy(rg_world *world)
 
 RG_API rg_status rg_world_set_gravity(rg_world *world, rg_vec2 gravity)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL || !rg_vec2_finite(gravity)) return RG_ERR_INVALID_ARGUMENT;
     world->gravity = gravity;
     return RG_OK;
@@ -93,6 +97,7 @@ RG_API rg_status rg_world_get_gravity(const rg_world *world, rg_vec2 *out_gravit
 
 RG_API rg_status rg_world_set_wind(rg_world *world, rg_vec2 force)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL || !rg_vec2_finite(force)) return RG_ERR_INVALID_ARGUMENT;
     world->wind = force;
     return RG_OK;
@@ -107,6 +112,7 @@ RG_API rg_status rg_world_get_wind(const rg_world *world, rg_vec2 *out_force)
 
 RG_API rg_status rg_world_set_integrator(rg_world *world, int32_t integrator)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL || integrator < RG_INTEGRATOR_EXPLICIT_EULER || integrator > RG_INTEGRATOR_RK4)
         return RG_ERR_INVALID_ARGUMENT;
     world->integrator = integrator;
@@ -122,6 +128,7 @@ RG_API rg_status rg_world_get_integrator(const rg_world *world, int32_t *out_int
 
 RG_API rg_status rg_world_set_fixed_step(rg_world *world, rg_real dt, int32_t max_steps_per_advance)
 {
+    WORLD_WRITABLE(world);
     if (world == NULL || !rg_finite(dt) || !(dt > 0) || max_steps_per_advance < 1)
         return RG_ERR_INVALID_ARGUMENT;
     world->fixed_dt = (double)dt;

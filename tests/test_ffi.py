@@ -86,6 +86,22 @@ sig("rg_world_get_contact_events", C.c_int32, World, C.POINTER(ContactEvent), C.
 sig("rg_world_raycast", C.c_int32, World, Vec2, Vec2, C.c_uint32, C.POINTER(RayHit))
 sig("rg_world_query_aabb", C.c_int32, World, Vec2, Vec2, C.c_uint32, C.POINTER(Body), C.c_int32)
 BEGIN, END = 0, 1
+LOCKED = -5
+PRE_SOLVE = C.CFUNCTYPE(C.c_int32, Body, Body, Vec2, REAL, C.c_void_p)
+sig("rg_world_set_pre_solve", C.c_int32, World, PRE_SOLVE, C.c_void_p)
+sig("rg_body_get_shape", C.c_int32, World, Body, C.POINTER(C.c_int32), C.POINTER(Vec2))
+
+
+class Contact(C.Structure):
+    """rg_contact, field for field as rigid.h declares it."""
+    _fields_ = [("other", Body), ("normal", Vec2), ("point", Vec2), ("separation", REAL),
+                ("normal_impulse", REAL), ("tangent_impulse", REAL), ("sensor", C.c_int32)]
+
+
+sig("rg_body_get_contacts", C.c_int32, World, Body, C.POINTER(Contact), C.c_int32)
+sig("rg_body_set_one_way", C.c_int32, World, Body, Vec2)
+sig("rg_body_move", C.c_int32, World, Body, Vec2, C.c_uint32, C.c_int32, C.POINTER(Vec2),
+    C.POINTER(RayHit), C.c_int32, C.POINTER(C.c_int32))
 
 TESTS = []
 
@@ -315,6 +331,60 @@ def one_advance_of_several_steps_reports_every_steps_events():
     check(n == 2 and lib.rg_world_get_contact_events(w, buf, 4) == 2, "two events, got %d" % n)
     check([buf[0].kind, buf[1].kind] == [BEGIN, END], "begin then end")
     check(all(e.sensor == 1 and {e.a, e.b} == {gate.value, ball.value} for e in buf[:2]), "the pair")
+    lib.rg_world_destroy(w)
+
+
+@test
+def a_python_pre_solve_callback_skips_pairs_inside_a_locked_world():
+    w = new_world()
+    lib.rg_world_set_gravity(w, Vec2(0, -10))
+    floor = body(w, STATIC, 0, 0, -0.5)
+    lib.rg_body_set_aabb(w, floor, 10, 0.5)
+    ghost = body(w, DYNAMIC, 1, 0, 1)
+    lib.rg_body_set_circle(w, ghost, 0.25)
+    solid = body(w, DYNAMIC, 1, 3, 1)
+    lib.rg_body_set_circle(w, solid, 0.25)
+    seen = {"calls": 0, "locked": True, "getter": True, "order": True}
+
+    def hook(a, b, normal, separation, user):
+        seen["calls"] += 1
+        seen["order"] &= a < b and abs(normal.x ** 2 + normal.y ** 2 - 1) < 1e-5
+        seen["locked"] &= lib.rg_world_set_gravity(w, Vec2(0, 5)) == LOCKED
+        seen["locked"] &= lib.rg_body_set_position(w, a, Vec2(9, 9)) == LOCKED
+        kind = C.c_int32()
+        seen["getter"] &= lib.rg_body_get_shape(w, b, C.byref(kind), None) == OK
+        return 0 if ghost.value in (a, b) else 1
+
+    cb = PRE_SOLVE(hook)  # kept alive for as long as the world may call it
+    check(lib.rg_world_set_pre_solve(w, cb, None) == OK, "set hook")
+    for _ in range(90):
+        check(lib.rg_world_step(w, 1.0 / 60) == OK, "step")
+    check(seen["calls"] > 0 and seen["locked"] and seen["getter"] and seen["order"], str(seen))
+    check(pos(w, ghost).y < -1, "the skipped ball fell through the floor")
+    check(abs(pos(w, solid).y - 0.25) < 0.005, "the other one rests on it")
+    contacts = (Contact * 2)()
+    n = lib.rg_body_get_contacts(w, solid, contacts, 2)
+    check(n == 1 and contacts[0].other == floor.value, "one contact with the floor")
+    j = 1 * 10 / 60.0
+    check(abs(contacts[0].normal_impulse - j) < 1e-3 * j, "normal impulse m g dt: %g" % contacts[0].normal_impulse)
+    check(lib.rg_world_set_pre_solve(w, PRE_SOLVE(), None) == OK, "NULL removes the hook")
+    lib.rg_world_destroy(w)
+
+
+@test
+def the_mover_slides_into_a_corner_through_ctypes():
+    w = new_world()
+    floor = body(w, STATIC, 0, 0, -0.5)
+    lib.rg_body_set_aabb(w, floor, 10, 0.5)
+    wall = body(w, STATIC, 0, 5.5, 2)
+    lib.rg_body_set_aabb(w, wall, 0.5, 2)
+    m = body(w, KINEMATIC, 0, 0, 1)
+    lib.rg_body_set_aabb(w, m, 0.25, 0.25)
+    end, hits, n = Vec2(), (RayHit * 4)(), C.c_int32()
+    check(lib.rg_body_move(w, m, Vec2(100, -10), 0xFFFFFFFF, 0, C.byref(end), hits, 4, C.byref(n)) == OK, "move")
+    check(abs(end.x - 4.75) < 1e-5 and abs(end.y - 0.25) < 1e-5, "flush in the corner: %g %g" % (end.x, end.y))
+    # at x = 4.75 the path is still 0.48 m high: the wall first, then down along it to the floor
+    check(n.value == 2 and hits[0].body == wall.value and hits[1].body == floor.value, "wall then floor")
     lib.rg_world_destroy(w)
 
 

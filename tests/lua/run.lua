@@ -5,14 +5,19 @@
 --      "-- expect:" lines), file:line and a traceback, exit status 1 (not a crash), and
 --      leave the canary file it attacks untouched;
 --   4. tests/lua/ok/*.lua: scripts that must run in the host and exit 0;
---   5. lua/examples/*.lua: each runs in the host and draws its picture.
+--   5. lua/examples/*.lua: each runs in the host and draws its picture;
+--   6. with --library: tests/lua/test_rigid.lua again in LuaJIT through lua/rigid_jit.lua
+--      (with its scalar declarations of the vector calls, and with the header's own), and
+--      the LOVE game lua/examples/love headless, whose screenshot must show the player
+--      where the physics put it.  What is not installed is skipped, with a line saying so.
 -- Closes with "N passed, N failed".
-local opts = { lua = "lua5.4", out = "build/lua-tests", ["lua-env"] = "" }
+local opts = { lua = "lua5.4", out = "build/lua-tests", ["lua-env"] = "", luajit = "luajit",
+               love = "love" }
 do
   local i = 1
   while i <= #arg do
     local k = arg[i]:match("^%-%-(.+)$")
-    if not k or arg[i + 1] == nil then error("usage: run.lua --host H --module-dir D --fuzz F [--lua L] [--out O] [--lua-env E]") end
+    if not k or arg[i + 1] == nil then error("usage: run.lua --host H --module-dir D --fuzz F [--lua L] [--out O] [--lua-env E] [--library LIB [--luajit J] [--love L]]") end
     opts[k] = arg[i + 1]
     i = i + 2
   end
@@ -160,6 +165,86 @@ for _, path in ipairs(list("lua/examples/*.lua")) do
   end
   result(#problems == 0, "example " .. name .. " -> " .. svg,
          #problems > 0 and (table.concat(problems, "\n") .. "\n--- output:\n" .. out:sub(1, 1500)) or nil)
+end
+
+local function installed(cmd) return cmd ~= "" and run("command -v " .. q(cmd)) ~= "" end
+
+-- The player in the screenshot: the pixels of its colour (only the player has it) form the
+-- box the physics gives, mapped by the game's own transform, to rasterization (a filled
+-- pixel is one whose centre is inside: its centre is within 1/2 pixel of the box's edges,
+-- so the centroid is within 1/2 pixel of the box's centre, and each side within 1 pixel).
+local function check_shot(dir)
+  local rec = {}
+  for k, v in (read(dir .. "/shot.txt") or ""):gmatch("([%w_]+) ([^\n]+)") do rec[k] = v end
+  local pam = read(dir .. "/shot.pam")
+  if not (pam and rec.x) then return false, "no screenshot or no shot.txt in " .. dir end
+  local w, h = pam:match("^P7\nWIDTH (%d+)\nHEIGHT (%d+)\nDEPTH 4\nMAXVAL 255\n")
+  local body = pam:find("ENDHDR\n", 1, true)
+  w, h = tonumber(w), tonumber(h)
+  if not (w and body) or #pam - (body + 6) ~= w * h * 4 then return false, "not an RGBA PAM of its size" end
+  body = body + 7
+  local r0, g0, b0 = rec.color:match("(%d+) (%d+) (%d+)")
+  r0, g0, b0 = tonumber(r0), tonumber(g0), tonumber(b0)
+  local n, sx, sy, x0, x1, y0, y1 = 0, 0, 0, math.huge, -math.huge, math.huge, -math.huge
+  local others = {}
+  for j = 0, h - 1 do
+    local row = pam:sub(body + j * w * 4, body + (j + 1) * w * 4 - 1)
+    for i = 0, w - 1 do
+      local r, g, b = row:byte(i * 4 + 1, i * 4 + 3)
+      if math.abs(r - r0) <= 2 and math.abs(g - g0) <= 2 and math.abs(b - b0) <= 2 then
+        n, sx, sy = n + 1, sx + i + 0.5, sy + j + 0.5
+        x0, x1, y0, y1 = math.min(x0, i), math.max(x1, i + 1), math.min(y0, j), math.max(y1, j + 1)
+      else
+        others[r * 65536 + g * 256 + b] = true
+      end
+    end
+  end
+  local colours = 0
+  for _ in pairs(others) do colours = colours + 1 end
+  local scale, ox, oy = tonumber(rec.scale), tonumber(rec.ox), tonumber(rec.oy)
+  local cx, cy = ox + tonumber(rec.x) * scale, oy - tonumber(rec.y) * scale
+  local hw, hh = tonumber(rec.half_width) * scale, tonumber(rec.half_height) * scale
+  local problems = {}
+  if n == 0 then return false, "no pixel of the player's colour" end
+  if math.abs(sx / n - cx) > 0.5 or math.abs(sy / n - cy) > 0.5 then
+    problems[#problems + 1] = string.format("player drawn around (%.1f, %.1f), the physics says (%.1f, %.1f)",
+                                            sx / n, sy / n, cx, cy)
+  end
+  for _, e in ipairs{ { x0, cx - hw }, { x1, cx + hw }, { y0, cy - hh }, { y1, cy + hh } } do
+    if math.abs(e[1] - e[2]) > 1 then
+      problems[#problems + 1] = string.format("box [%d, %d] x [%d, %d], the physics says [%.1f, %.1f] x [%.1f, %.1f]",
+                                              x0, x1, y0, y1, cx - hw, cx + hw, cy - hh, cy + hh)
+      break
+    end
+  end
+  if n ~= (x1 - x0) * (y1 - y0) then problems[#problems + 1] = "the player's pixels are not one filled box" end
+  if colours < 4 then problems[#problems + 1] = "a picture of " .. colours .. " other colours: the scene is not drawn" end
+  return #problems == 0, table.concat(problems, "\n") .. string.format(" (t = %s s, %d pixels)", rec.t, n)
+end
+
+if opts.library then
+  print("-- API tests in LuaJIT through lua/rigid_jit.lua")
+  local jit_env = opts["lua-env"] .. " LUA_PATH='lua/?.lua;;' RIGID_LIBRARY=" .. q(opts.library)
+  if not installed(opts.luajit) then
+    print("skip  LuaJIT tests: no " .. opts.luajit .. " (tools/install-deps.sh installs luajit)")
+  else
+    suite("luajit tests/lua/test_rigid.lua", jit_env .. " " .. q(opts.luajit) .. " tests/lua/test_rigid.lua")
+    suite("luajit tests/lua/test_rigid.lua, RIGID_JIT_ABI=exact",
+          jit_env .. " RIGID_JIT_ABI=exact " .. q(opts.luajit) .. " tests/lua/test_rigid.lua")
+  end
+  print("-- the LOVE game lua/examples/love, headless")
+  if not (installed(opts.love) and installed("xvfb-run")) then
+    print("skip  LOVE game: no " .. opts.love .. " or no xvfb-run (tools/install-deps.sh installs love and xvfb)")
+  else
+    local dir = opts.out .. "/love"
+    os.execute("rm -rf " .. q(dir) .. " && mkdir -p " .. q(dir))
+    local out, how, code = run(limit .. "xvfb-run -a -s '-screen 0 1024x768x24' env " .. jit_env ..
+                               " " .. q(opts.love) .. " lua/examples/love --shot " .. q(dir))
+    local ok = how == "exit" and code == 0 and out:find("summary: ", 1, true) ~= nil
+    result(ok, "LOVE game runs the platformer to its end, exit 0", not ok and out:sub(-1500) or nil)
+    local shot_ok, detail = check_shot(dir)
+    result(shot_ok, "LOVE screenshot " .. dir .. "/shot.png: the player where the physics says", detail)
+  end
 end
 
 print(passed .. " passed, " .. failed .. " failed")

@@ -1,0 +1,94 @@
+/* contact_api.c: the public calls on pairs: a body's contacts, passing through, and the
+ * pre-solve hook. */
+#include "body.h"
+#include "collision.h"
+#include "contact.h"
+#include "island.h"
+#include "pairs.h"
+#include "state.h"
+#include "vec2.h"
+
+RG_API rg_status rg_world_set_pre_solve(rg_world *world, rg_pre_solve_fn *fn, void *user)
+{
+    WORLD_WRITABLE(world);
+    if (world == NULL) return RG_ERR_INVALID_ARGUMENT;
+    world->pre_solve = fn;
+    world->pre_solve_user = fn != NULL ? user : NULL;
+    return RG_OK;
+}
+
+/* The manifold of dense bodies i and j as they are now, normal from i toward j. */
+static void contact_api_manifold(const rg_world *w, int32_t i, int32_t j, coll_manifold *m)
+{
+    const body_store *b = &w->b;
+    coll_manifold_of(b->shape[i], rg_v2(b->x[i], b->y[i]), rg_v2(b->hx[i], b->hy[i]), b->shape[j],
+                     rg_v2(b->x[j], b->y[j]), rg_v2(b->hx[j], b->hy[j]), m);
+}
+
+RG_API rg_status rg_body_pass_through(rg_world *world, rg_body body, rg_body other)
+{
+    BODY_SET(world, body, i);
+    int32_t j = body_lookup(world, other);
+    if (j < 0) return RG_ERR_STALE_HANDLE;
+    body_store *b = &world->b;
+    if (i == j || b->shape[i] == RG_SHAPE_NONE || b->shape[j] == RG_SHAPE_NONE) return RG_ERR_INVALID_ARGUMENT;
+    int32_t s = b->slot[i], t = b->slot[j];
+    int32_t id = contact_find(world, s, t);
+    if (id < 0) {
+        /* no contact: the fat boxes do not overlap (then the shapes are apart), or the pair
+         * search has not met them yet (a body just placed) */
+        coll_manifold m;
+        contact_api_manifold(world, i, j, &m);
+        if (!(m.depth >= -world->coll.slop) || !pairs_admitted(world, i, j)) return RG_OK;
+        id = contact_create(world, s, t);
+        if (id < 0) return RG_ERR_OUT_OF_MEMORY;
+    }
+    world->coll.contacts.c[id].flags |= CT_PASS;
+    island_touch(world, s);
+    island_touch(world, t);
+    return RG_OK;
+}
+
+/* Inserts c into out[0..n) kept sorted by other handle, at most cap entries; returns the new n. */
+static int32_t contact_api_insert(rg_contact *out, int32_t n, int32_t cap, const rg_contact *c)
+{
+    int32_t k = n < cap ? n : cap - 1;
+    if (n >= cap && !(c->other < out[cap - 1].other)) return n;
+    while (k > 0 && out[k - 1].other > c->other) {
+        out[k] = out[k - 1];
+        k--;
+    }
+    out[k] = *c;
+    return n < cap ? n + 1 : n;
+}
+
+RG_API int32_t rg_body_get_contacts(const rg_world *world, rg_body body, rg_contact *out,
+                                    int32_t capacity)
+{
+    BODY_GET(world, body, i);
+    if (capacity < 0 || (out == NULL && capacity > 0)) return RG_ERR_INVALID_ARGUMENT;
+    const contact_store *cs = &world->coll.contacts;
+    const body_store *b = &world->b;
+    int32_t s = b->slot[i], count = 0, held = 0;
+    for (int32_t id = b->chead[i] - 1; id >= 0; id = contact_next(&cs->c[id], s)) {
+        const contact *c = &cs->c[id];
+        if (!(c->flags & CT_TOUCHING)) continue;
+        count++;
+        if (capacity == 0) continue;
+        int32_t t = contact_other(c, s), j = body_dense(world, t);
+        coll_manifold m;
+        contact_api_manifold(world, i, j, &m);
+        rg_contact r;
+        r.other = pool_handle(&world->body_pool, t);
+        r.normal = m.normal;
+        r.point = m.point;
+        r.separation = -m.depth;
+        /* the solver's pt runs along (-ny, nx) of the normal a -> b, on b; on either body it
+         * is -pt along the tangent of the normal from that body toward the other */
+        r.normal_impulse = (c->flags & CT_SENSOR) ? 0 : c->pn;
+        r.tangent_impulse = (c->flags & CT_SENSOR) ? 0 : -c->pt;
+        r.sensor = (c->flags & CT_SENSOR) != 0;
+        held = contact_api_insert(out, held, capacity, &r);
+    }
+    return count;
+}

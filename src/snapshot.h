@@ -1,0 +1,160 @@
+/* snapshot.h: the snapshot format, shared by its writer (snapshot.c: rg_world_save,
+ * rg_world_hash) and its reader (restore.c: rg_world_restore).
+ *
+ * One byte order (little-endian) and fixed field sizes (int32, uint32, uint64, rg_real as
+ * IEEE 754 binary32 or binary64, the accumulator as binary64), whatever the machine:
+ *
+ *   0   "RIGIDSNP"                      8 bytes
+ *   8   format version (SNAP_VERSION)   uint32
+ *   12  sizeof(rg_real)                 uint32
+ *   16  total size in bytes             uint64
+ *   24  checksum of bytes [32, size)    uint64 (snap_hash)
+ *   32  the scalars (snap_scalars: settings, counts, pool heads), SNAP_SCALARS bytes
+ *   ... the arrays, in the order of snap_layout, each starting on a multiple of 8 bytes
+ *       (zero padding): the body pool, every body field (RG_BODY_FIELDS order), the spring
+ *       pool and the springs, the contacts (a free contact is written with sa = -1 and only
+ *       its free-list link), the awake contacts, the events held and pending, the members
+ *       of the broadphase with their boxes and links, and its move buffer.
+ *
+ * What is not written is scratch that every step rebuilds (the views, the solver rows and
+ * indices, the union-find, the broadphase's pair-search marks), capacities, the allocator
+ * and the pre-solve hook.  rg_world_hash hashes the same stream with the world tag left out
+ * (0, and event handles without it), so equal states give equal hashes in any world. */
+#ifndef RG_SNAPSHOT_H
+#define RG_SNAPSHOT_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "state.h"
+
+#define SNAP_MAGIC "RIGIDSNP"
+#define SNAP_VERSION 1u
+#define SNAP_HEADER 32
+
+/* The counts that size the arrays, and the scalars written before them. */
+typedef struct snap_scalars {
+    rg_vec2 gravity, wind;
+    int32_t integrator, max_steps, prev_valid;
+    double fixed_dt, accumulator;
+    uint64_t step_count;
+    int32_t iterations, position, sleeping, continuous, near_sleep;
+    rg_real sleep_speed, sleep_time, slop, bias_rate, max_push, restitution_threshold;
+    /* body pool and store */
+    uint32_t btag, bmax_gen;
+    int32_t bmax_slots, bslots, bfree, blive;
+    int32_t count, n_active, n_moving;
+    /* spring pool and store */
+    uint32_t stag, smax_gen;
+    int32_t smax_slots, sslots, sfree, slive, springs;
+    /* contacts */
+    int32_t ccap, clive, cfree, n_awake, n_touching;
+    /* events */
+    int32_t n_ev, n_pend;
+    /* broadphase */
+    int32_t members, bucket_bits, n_huge, n_moved, n_bp_active;
+    uint32_t mark;
+} snap_scalars;
+
+/* Byte offsets of the arrays (from the snapshot's start) and the total size, from counts. */
+typedef struct snap_layout {
+    size_t bgen, bindex;                 /* [bslots] */
+    size_t field[64];                    /* body fields in RG_BODY_FIELDS order, [count] */
+    size_t sgen, sindex;                 /* [sslots] */
+    size_t springs;                      /* [springs] records */
+    size_t contacts;                     /* [ccap] records */
+    size_t awake;                        /* [n_awake] */
+    size_t ev, pend;                     /* [n_ev], [n_pend] records */
+    size_t members;                      /* [members] records */
+    size_t moved;                        /* [n_moved] */
+    size_t size;
+    int ok;                              /* 0: the counts overflow a size */
+} snap_layout;
+
+/* Record sizes in the file. */
+#define SNAP_REAL ((size_t)sizeof(rg_real))
+#define SNAP_SPRING (3 * 4 + 5 * SNAP_REAL)              /* slot_a, slot_b, self; anchor, rest, k, c */
+#define SNAP_CONTACT (8 * 4 + 13 * SNAP_REAL)            /* ints and flags, then the reals, as contact */
+#define SNAP_EVENT (2 * 8 + 6 * SNAP_REAL + 2 * 4)       /* a, b, normal, point, depth, speed, kind, sensor */
+#define SNAP_MEMBER (4 + 4 * SNAP_REAL + 6 * 4)          /* slot, box, next, prev, lnext, lprev, moved, apos */
+
+/* The scalars' size in the file. */
+size_t snap_scalars_size(void);
+void snap_layout_of(const snap_scalars *s, snap_layout *l);
+
+/* ---- little-endian encoding */
+
+static inline void snap_put32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)v;
+    p[1] = (uint8_t)(v >> 8);
+    p[2] = (uint8_t)(v >> 16);
+    p[3] = (uint8_t)(v >> 24);
+}
+
+static inline void snap_put64(uint8_t *p, uint64_t v)
+{
+    snap_put32(p, (uint32_t)v);
+    snap_put32(p + 4, (uint32_t)(v >> 32));
+}
+
+static inline uint32_t snap_get32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+static inline uint64_t snap_get64(const uint8_t *p)
+{
+    return (uint64_t)snap_get32(p) | (uint64_t)snap_get32(p + 4) << 32;
+}
+
+static inline void snap_put_real(uint8_t *p, rg_real v)
+{
+#ifdef RG_DOUBLE
+    uint64_t u;
+    memcpy(&u, &v, 8);
+    snap_put64(p, u);
+#else
+    uint32_t u;
+    memcpy(&u, &v, 4);
+    snap_put32(p, u);
+#endif
+}
+
+static inline rg_real snap_get_real(const uint8_t *p)
+{
+    rg_real v;
+#ifdef RG_DOUBLE
+    uint64_t u = snap_get64(p);
+#else
+    uint32_t u = snap_get32(p);
+#endif
+    memcpy(&v, &u, sizeof v);
+    return v;
+}
+
+/* Whether the machine stores integers and reals in the file's order, so that arrays copy
+ * as they are. */
+#if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define SNAP_NATIVE 1
+#else
+#define SNAP_NATIVE 0
+#endif
+
+/* ---- the hash: 64-bit words in four lanes, each a multiply-xorshift chain (a bijection of
+ * the lane for every word, so any change of any byte changes the result); tail bytes
+ * zero-padded and the length mixed in at the end.  Streamed: bytes may come in any chunks. */
+typedef struct snap_hasher {
+    uint64_t lane[4];
+    uint8_t pending[32];
+    size_t npending;
+    uint64_t length;
+} snap_hasher;
+
+void snap_hash_init(snap_hasher *h);
+void snap_hash_bytes(snap_hasher *h, const void *p, size_t n);
+uint64_t snap_hash_final(snap_hasher *h);
+uint64_t snap_hash(const void *p, size_t n);
+
+#endif

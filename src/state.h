@@ -1,0 +1,291 @@
+/* state.h: the state of a world: struct rg_world and the structures of every module it
+ * holds, in one place so that no module's header depends on another's.  Data only (and the
+ * inline slot-to-index lookup); the functions that work on it are declared by the modules'
+ * own headers. */
+#ifndef RG_STATE_H
+#define RG_STATE_H
+
+#include <stdint.h>
+
+#include "broadphase.h"
+#include "mem.h"
+#include "pool.h"
+#include "rigid.h"
+#include "solver.h"
+
+/* ---------------------------------------------------------------- bodies (body.c) */
+
+/* Every per-body array, in one list, so that growing, swapping and moving a body between
+ * partitions is written once.  All arrays live in one block, so growth is all-or-nothing. */
+#define RG_BODY_FIELDS(X)                                                              \
+    X(rg_real, x) X(rg_real, y)          /* position, m */                             \
+    X(rg_real, vx) X(rg_real, vy)        /* velocity, m/s */                           \
+    X(rg_real, fx) X(rg_real, fy)        /* applied force for the next step, N */      \
+    X(rg_real, ax) X(rg_real, ay)        /* acceleration at the start of the last step */ \
+    X(rg_real, px) X(rg_real, py)        /* position before the last advance step */   \
+    X(rg_real, mass) X(rg_real, inv_mass) /* kg, 1/kg; 0 for static and kinematic */   \
+    X(rg_real, gscale)                   /* gravity scale; 0 for non-dynamic */        \
+    X(rg_real, drag_lin)                 /* kg/s */                                    \
+    X(rg_real, drag_quad)                /* kg/m */                                    \
+    X(rg_real, fric)                     /* mu * normal force, N */                    \
+    X(rg_real, min_speed) X(rg_real, max_speed) /* m/s; max 0 = none */                \
+    X(uint64_t, user)                    /* caller's data */                           \
+    X(int32_t, slot)                     /* pool slot of the body in this dense place */ \
+    X(int32_t, type)                     /* RG_BODY_* */                               \
+    X(uint32_t, flags)                   /* BODY_F_* */                                \
+    /* collision (shape.c, pairs.c, narrow.c, island.c) */                             \
+    X(int32_t, shape)                    /* RG_SHAPE_* */                              \
+    X(rg_real, hx) X(rg_real, hy)        /* half extents, m ((r, r) for a circle) */   \
+    X(rg_real, rest) X(rg_real, mu)      /* restitution, contact friction */           \
+    X(uint32_t, cat) X(uint32_t, mask)   /* collision filter */                        \
+    X(uint32_t, cflags)                  /* CF_* */                                    \
+    X(int32_t, chead)                    /* first contact id + 1; 0: none */           \
+    X(rg_real, dx) X(rg_real, dy)        /* displacement of the last integration, m */ \
+    X(rg_real, sleep_t)                  /* s spent below the sleep speed */           \
+    X(int32_t, isl_head) X(int32_t, isl_next) /* sleeping island list: slot + 1 */    \
+    X(rg_real, owx) X(rg_real, owy)      /* one-way normal; (0, 0): two-way */
+
+#define BODY_F_DISSIPATIVE 1u /* has drag or surface friction (and is dynamic) */
+#define BODY_F_LIMITED     2u /* has a speed limit (and is dynamic) */
+
+/* cflags: collision state of a body */
+#define CF_SENSOR     1u
+#define CF_GROUNDED   2u
+#define CF_TELEPORTED 4u /* placed by the API since its last pair search */
+
+/* Dense order is partitioned: [0, n_active) moving and awake (dynamic and kinematic),
+ * [n_active, n_moving) asleep, [n_moving, count) static.  Every stage loops over the
+ * partition it needs, so static and sleeping bodies cost nothing per step. */
+enum { BODY_PART_ACTIVE = 0, BODY_PART_ASLEEP = 1, BODY_PART_STATIC = 2 };
+
+typedef struct body_store {
+#define RG_FIELD_PTR(T, name) T *name;
+    RG_BODY_FIELDS(RG_FIELD_PTR)
+#undef RG_FIELD_PTR
+    void *block;
+    size_t block_size;
+    int32_t count;
+    int32_t capacity;
+    int32_t n_active;
+    int32_t n_moving;
+} body_store;
+
+/* Integrator scratch arrays (same capacity as the bodies). */
+#define RG_SCRATCH_FIELDS(X) \
+    X(rg_real, x0) X(rg_real, y0) X(rg_real, vx0) X(rg_real, vy0) \
+    X(rg_real, kx) X(rg_real, ky) X(rg_real, kvx) X(rg_real, kvy) \
+    X(rg_real, vfx) X(rg_real, vfy) X(rg_real, sax) X(rg_real, say) \
+    X(rg_real, tax) X(rg_real, tay) X(int32_t, implicit)
+
+typedef struct scratch_store {
+#define RG_FIELD_PTR(T, name) T *name;
+    RG_SCRATCH_FIELDS(RG_FIELD_PTR)
+#undef RG_FIELD_PTR
+    void *block;
+    size_t block_size;
+    int32_t capacity;
+} scratch_store;
+
+/* Defaults of a new body's collision fields (shape.c documents them). */
+#define BODY_DEFAULT_FRICTION ((rg_real)0.6)
+#define BODY_DEFAULT_CATEGORY 1u
+#define BODY_DEFAULT_MASK     0xFFFFFFFFu
+
+/* ---------------------------------------------------------------- springs (spring.c) */
+
+typedef struct spring {
+    int32_t slot_a;     /* body pool slot of a */
+    int32_t slot_b;     /* body pool slot of b, -1 when tied to the anchor */
+    int32_t self_slot;  /* this spring's pool slot */
+    rg_vec2 anchor;     /* m, world point when slot_b < 0 */
+    rg_real rest;       /* m */
+    rg_real k;          /* N/m */
+    rg_real c;          /* N*s/m */
+} spring;
+
+typedef struct spring_store {
+    pool pool;
+    spring *items;      /* dense */
+    int32_t count;
+    int32_t capacity;
+} spring_store;
+
+/* ---------------------------------------------------------------- contacts (contact.c)
+ *
+ * Persistent contacts between pairs of bodies whose fat boxes overlap.  Contacts are
+ * identified by an id into `c`; the awake ones (at least one body awake) are listed in
+ * `awake`, in a deterministic order; each body heads a doubly linked list of its contacts
+ * (`chead` in the body fields, id + 1). */
+
+/* contact flags */
+#define CT_TOUCHING 1u
+#define CT_SENSOR   2u
+#define CT_SOLVE    4u  /* solved in this step */
+#define CT_CLOSING  8u  /* the step's free motion would make the pair overlap */
+#define CT_ONEWAY  16u  /* a body of the pair is one-way (narrow.c decides when it blocks) */
+#define CT_PASS    32u  /* passing: neither solved nor touching until a step ends apart */
+
+typedef struct contact {
+    int32_t sa, sb;           /* body slots; a has the lower handle; -1 when the id is free */
+    int32_t na, pa, nb, pb;   /* next/prev contact ids in a's and b's lists (-1 ends) */
+    int32_t awake;            /* index in awake[], -1 while both bodies rest */
+    uint32_t flags;           /* CT_* */
+    rg_real mu, e;            /* mixed friction and restitution */
+    rg_real nx, ny;           /* last normal, from a to b */
+    rg_real px, py;           /* last contact point, m */
+    rg_real s0;               /* last start separation, m */
+    rg_real vn0;              /* last relative normal velocity at the start of the step, m/s */
+    rg_real depth, speed;     /* at the begin, for the events */
+    rg_real pn, pt;           /* accumulated impulses, N*s (warm start) */
+    rg_real toi;              /* its solver row's toi (solver.h) */
+} contact;
+
+typedef struct contact_store {
+    contact *c;               /* [0, cap) by id */
+    int32_t cap, live, free_head;
+    int32_t *awake;           /* ids of awake contacts, [0, n_awake) */
+    int32_t n_awake;
+    int32_t n_touching;       /* contacts with CT_TOUCHING */
+} contact_store;
+
+/* ---------------------------------------------------------------- events (events.c) */
+
+typedef struct event_store {
+    rg_contact_event *ev;     /* events of the last step, or of every step of the last advance */
+    int32_t n, cap;           /* held, room (>= base + EVENTS_PER_STEP(contacts) in a step) */
+    int32_t base;             /* where the current step's events start */
+    rg_contact_event *pend;   /* ends between steps, reported with the next step */
+    int32_t n_pend, pend_cap; /* pend_cap: the contact capacity (one end per contact at most) */
+    int32_t in_step;
+} event_store;
+
+/* ---------------------------------------------------------------- the collide stage (collide.h) */
+
+/* The step's view of a body, cached once per step for the awake ones (one cache line's worth
+ * for the narrowphase instead of a dozen arrays). */
+typedef struct cbody {
+    rg_real sx, sy;   /* position at the start of the step, m */
+    rg_real dx, dy;   /* displacement of the integration, m */
+    rg_real vx, vy;   /* velocity at the start of the step, m/s */
+    rg_real hx, hy;   /* half extents, m */
+    rg_real gs;       /* gravity scale (0 unless dynamic) */
+    rg_real im;       /* inverse mass (0 unless dynamic) */
+    int32_t kind;     /* RG_SHAPE_* */
+    int32_t pad;
+} cbody;
+
+/* Per-body scratch, body capacity + 1, indexed by place in the broadphase's active list (k),
+ * by dense body index (i) or by solver body (q). */
+typedef struct narrow_state {
+    cbody *cb;                /* i: the step's view of the awake shaped bodies */
+    rg_real *sx0, *sy0;       /* k: positions before integration */
+    rg_real *svx0, *svy0;     /* k: velocities before integration */
+    int32_t *adense;          /* k: dense index during the step */
+} narrow_state;
+
+typedef struct island_state {
+    rg_real *umin;            /* k: island minimum rest time */
+    int32_t *uf;              /* k: union-find parents */
+    int32_t *ihead, *itail;   /* k: island member lists while falling asleep */
+    int32_t *list;            /* slots of bodies falling asleep */
+    int32_t near_sleep;       /* a body will reach sleep_time within two steps */
+} island_state;
+
+typedef struct resolve_state {
+    int32_t *sidx;            /* i: solver index, valid when sstamp[i] == gen */
+    uint32_t *sstamp;         /* i */
+    uint32_t gen;             /* solver index generation (one per step, or more) */
+    int32_t *sbody;           /* q: dense index of solver body q (q >= 1; 0 is the ground) */
+    rg_real *sv;              /* q: solver velocities, pairs */
+    rg_real *spv;             /* q: pseudo-velocities of the position pass, pairs */
+    rg_real *stoi;            /* q: fraction of the step at which its velocity changes */
+    int32_t pv_valid;         /* spv holds this step's position pass */
+    uint32_t *cmask;          /* q: colouring, the colours each body is in */
+} resolve_state;
+
+typedef struct collide_world {
+    broadphase bp;
+    contact_store contacts;
+    event_store events;
+    solver_rows rows;         /* sized with the contacts */
+
+    narrow_state narrow;      /* the per-body scratch, one block of scap bodies */
+    island_state island;
+    resolve_state resolve;
+    void *scratch;
+    size_t scratch_size;
+    int32_t scap;
+
+    /* what the scene uses */
+    int32_t shape_count;
+
+    /* settings */
+    int32_t iterations, position;
+    int32_t sleeping;
+    rg_real sleep_speed, sleep_time;
+    int32_t continuous;
+    rg_real slop, bias_rate, max_push, restitution_threshold;
+} collide_world;
+
+/* What one step's collide stage hands from module to module: solver rows staged by the
+ * narrowphase in contact order with their sort keys, and what it woke. */
+typedef struct collide_step {
+    int32_t n;          /* active bodies when the stage started (those with a body view) */
+    int32_t na;         /* awake shaped bodies then (the island list's range) */
+    int32_t nc;         /* staged rows */
+    int32_t ns;         /* solver bodies, 0 being the ground */
+    int32_t nimp;       /* staged impact rows (rows.imp) */
+    int woke;           /* the pair search or the narrowphase woke bodies: rows restaged */
+    int unite;          /* join islands in the narrowphase (sleeping is near) */
+    solver_params p;
+} collide_step;
+
+/* ---------------------------------------------------------------- the world */
+
+struct rg_world {
+    rg_mem mem;
+    pool body_pool;
+    body_store b;          /* dense structure-of-arrays body storage */
+    spring_store springs;
+
+    rg_vec2 gravity;       /* m/s^2 */
+    rg_vec2 wind;          /* N */
+    int32_t integrator;    /* RG_INTEGRATOR_* */
+
+    /* What the scene uses, so a stage nobody uses costs nothing. */
+    int32_t dissipative_count; /* dynamic bodies with drag or surface friction */
+    int32_t limit_count;       /* dynamic bodies with speed limits */
+
+    /* Fixed-step accumulator (double, so that long runs do not drift). */
+    double fixed_dt;
+    int32_t max_steps;
+    double accumulator;
+    int32_t prev_valid;    /* b.px/b.py hold the positions before the last advance step */
+    uint64_t step_count;
+
+    /* Per-body scratch for the integrators, grown with the body capacity when first needed. */
+    scratch_store scratch;
+
+    /* Collision: broadphase, contacts, events, islands, settings. */
+    collide_world coll;
+
+    /* The pre-solve hook (narrow.c), and whether the world is locked: a callback inside its
+     * step is running, and calls that would change the world return RG_ERR_LOCKED. */
+    rg_pre_solve_fn *pre_solve;
+    void *pre_solve_user;
+    int32_t locked;
+};
+
+/* At the top of every call that changes the world. */
+#define WORLD_WRITABLE(world) \
+    if ((world) != NULL && (world)->locked) return RG_ERR_LOCKED
+
+/* Dense index of the live body in pool slot `slot`.  Slots never move; dense indices move
+ * whenever a body changes partition (falls asleep, wakes, is created or destroyed), so code
+ * that keeps a body across such a change keeps its slot. */
+static inline int32_t body_dense(const struct rg_world *w, int32_t slot)
+{
+    return pool_dense(&w->body_pool, slot);
+}
+
+#endif

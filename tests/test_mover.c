@@ -1,0 +1,208 @@
+/* test_mover.c: the character mover: sliding into a corner ends flush at any speed, tile
+ * seams do not snag, touch stops, cross reports, one-way shapes, bad input. */
+#include "testutil.h"
+
+#define SLOP 0.005
+#define ALL 0xFFFFFFFFu
+
+/* A floor of 20 flush 1 m tiles (tops at y = 0, x from -10 to 10) and a wall whose left
+ * face is at x = 8. */
+static rg_world *room(rg_body *wall)
+{
+    rg_world *w = gravity_world(-10);
+    for (int t = 0; t < 20; t++) box_body(w, RG_BODY_STATIC, 0, -9.5 + t, -0.5, 0.5, 0.5);
+    *wall = box_body(w, RG_BODY_STATIC, 0, 8.5, 2, 0.5, 2);
+    return w;
+}
+
+static void test_sliding_along_the_floor_into_the_wall_ends_flush_at_any_speed(void **state)
+{
+    (void)state;
+    const double reach[] = { 10, 1e3, 1e5 };
+    for (int shape = 0; shape < 2; shape++) {
+        for (size_t k = 0; k < sizeof reach / sizeof reach[0]; k++) {
+            rg_body wall;
+            rg_world *w = room(&wall);
+            rg_body b = shape ? circle_body(w, RG_BODY_KINEMATIC, 0, 0, 0.5, 0.25)
+                              : box_body(w, RG_BODY_KINEMATIC, 0, 0, 0.5, 0.25, 0.25);
+            /* down-right, into the floor and far beyond the wall */
+            rg_vec2 end;
+            rg_ray_hit hits[8];
+            int32_t n = -1;
+            assert_ok(rg_body_move(w, b, v2(reach[k], -reach[k] / 10), ALL, RG_MOVE_SLIDE, &end, hits, 8, &n));
+            rg_vec2 p = pos_of(w, b);
+            assert_true(p.x == end.x && p.y == end.y);
+            /* flush against the wall (x = 8) and on the floor (y = 0), to rounding */
+            double tol = 64 * REAL_EPS * (1 + reach[k] / 100);
+            assert_near(PX(w, b), 8 - 0.25, tol + 1e-6);
+            assert_near(PY(w, b), 0.25, tol + 1e-6);
+            assert_true(n >= 2);
+            assert_true(hits[n - 1].body == wall);
+            assert_near(hits[n - 1].normal.x, -1, 1e-6);
+            for (int i = 1; i < n; i++) assert_true(hits[i].fraction >= hits[i - 1].fraction);
+            /* nothing overlaps beyond the slop */
+            rg_body over[4];
+            assert_int_equal(rg_world_query_aabb(w, v2(PX(w, b) - 0.25 + SLOP, PY(w, b) - 0.25 + SLOP),
+                                                 v2(PX(w, b) + 0.25 - SLOP, PY(w, b) + 0.25 - SLOP), ALL, over, 4), 1);
+            assert_true(over[0] == b);
+            rg_world_destroy(w);
+        }
+    }
+}
+
+/* A box resting on the tile floor as the solver leaves it (up to the slop into it) slides
+ * the whole way across the seams: no hit, no catch. */
+static void test_tile_seams_do_not_snag(void **state)
+{
+    (void)state;
+    for (int shape = 0; shape < 2; shape++) {
+        rg_body wall;
+        rg_world *w = room(&wall);
+        rg_body b = shape ? circle_body(w, RG_BODY_DYNAMIC, 1, -9, 0.3, 0.25)
+                          : box_body(w, RG_BODY_DYNAMIC, 1, -9, 0.3, 0.25, 0.25);
+        step_n(w, 60, DT); /* rests with the solver's slop */
+        double y = PY(w, b);
+        assert_true(y <= 0.25 && y >= 0.25 - SLOP);
+        int32_t n = -1;
+        assert_ok(rg_body_move(w, b, v2(7, y), ALL, RG_MOVE_SLIDE, NULL, NULL, 0, &n));
+        assert_int_equal(n, 0);
+        assert_true(PX(w, b) == (double)(rg_real)7 && PY(w, b) == y);
+        /* and back with a little push into the floor: slides along it */
+        assert_ok(rg_body_move(w, b, v2(-9, y - 0.5), ALL, RG_MOVE_SLIDE, NULL, NULL, 0, &n));
+        assert_near(PX(w, b), -9, 1e-5);
+        assert_true(fabs(PY(w, b) - y) <= SLOP);
+        /* sunk 3 mm into the tiles (less than the slop): still no catch at the seams */
+        assert_ok(rg_body_set_position(w, b, v2(-9, 0.25 - 0.003)));
+        assert_ok(rg_body_move(w, b, v2(7, 0.25 - 0.003), ALL, RG_MOVE_SLIDE, NULL, NULL, 0, &n));
+        assert_int_equal(n, 0);
+        assert_near(PX(w, b), 7, 1e-5);
+        rg_world_destroy(w);
+    }
+}
+
+static void test_touch_stops_at_the_first_surface(void **state)
+{
+    (void)state;
+    rg_body wall;
+    rg_world *w = room(&wall);
+    rg_body b = box_body(w, RG_BODY_KINEMATIC, 0, 0, 1, 0.25, 0.25);
+    rg_vec2 end;
+    rg_ray_hit hit;
+    int32_t n;
+    /* down-right, 2 m down over 10 m: meets the floor 0.75 m down, at x = 3.75, and stops */
+    assert_ok(rg_body_move(w, b, v2(10, -1), ALL, RG_MOVE_TOUCH, &end, &hit, 1, &n));
+    assert_int_equal(n, 1);
+    assert_near(end.y, 0.25, 1e-5);
+    assert_near(end.x, 3.75, 1e-4);
+    assert_near(hit.fraction, 0.375, 1e-5);
+    assert_near(hit.normal.y, 1, 1e-6);
+    /* straight at the wall: flush, and the velocity is untouched */
+    assert_ok(rg_body_set_velocity(w, b, v2(3, 4)));
+    assert_ok(rg_body_move(w, b, v2(100, 0.5), ALL, RG_MOVE_TOUCH, &end, &hit, 1, &n));
+    assert_int_equal(n, 1);
+    assert_true(hit.body == wall);
+    assert_near(end.x, 7.75, 1e-5);
+    assert_true(VX(w, b) == 3 && VY(w, b) == 4);
+    rg_world_destroy(w);
+}
+
+static void test_cross_reaches_the_target_and_reports_every_shape_crossed(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(0);
+    rg_body a = box_body(w, RG_BODY_STATIC, 0, 2, 0, 0.5, 0.5);
+    rg_body b = circle_body(w, RG_BODY_STATIC, 0, 5, 0.2, 0.5);
+    rg_body coin = circle_body(w, RG_BODY_STATIC, 0, 7, 0, 0.3);
+    assert_ok(rg_body_set_sensor(w, coin, 1));
+    rg_body off = box_body(w, RG_BODY_STATIC, 0, 5, 5, 0.5, 0.5); /* not on the path */
+    (void)off;
+    rg_body m = box_body(w, RG_BODY_KINEMATIC, 0, 0, 0, 0.25, 0.25);
+    rg_vec2 end;
+    rg_ray_hit hits[8];
+    int32_t n;
+    assert_ok(rg_body_move(w, m, v2(10, 0), ALL, RG_MOVE_CROSS, &end, hits, 8, &n));
+    assert_true(end.x == 10 && end.y == 0);
+    assert_int_equal(n, 3);
+    assert_true(hits[0].body == a && hits[1].body == b && hits[2].body == coin);
+    assert_near(hits[0].fraction, (2 - 0.5 - 0.25) / 10, 1e-6);
+    /* capacity 1: the first, and the count of all */
+    rg_ray_hit first;
+    assert_ok(rg_body_set_position(w, m, v2(0, 0)));
+    assert_ok(rg_body_move(w, m, v2(10, 0), ALL, RG_MOVE_CROSS, NULL, &first, 1, &n));
+    assert_int_equal(n, 3);
+    assert_true(first.body == a);
+    /* SLIDE ignores the sensor and stops at the box */
+    assert_ok(rg_body_set_position(w, m, v2(6.2, 0)));
+    assert_ok(rg_body_move(w, m, v2(10, 0), ALL, RG_MOVE_SLIDE, &end, NULL, 0, &n));
+    assert_int_equal(n, 0);
+    assert_true(end.x == 10);
+    rg_world_destroy(w);
+}
+
+static void test_one_way_shapes_block_the_mover_only_against_their_normal(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-10);
+    rg_body p = box_body(w, RG_BODY_STATIC, 0, 0, 2, 2, 0.1); /* spans y 1.9 .. 2.1 */
+    assert_ok(rg_body_set_one_way(w, p, v2(0, 1)));
+    rg_body m = box_body(w, RG_BODY_KINEMATIC, 0, 0, 0, 0.25, 0.25);
+    rg_vec2 end;
+    int32_t n;
+    /* up from below: through */
+    assert_ok(rg_body_move(w, m, v2(0, 4), ALL, RG_MOVE_SLIDE, &end, NULL, 0, &n));
+    assert_int_equal(n, 0);
+    assert_true(end.y == 4);
+    /* down from above: lands on top */
+    assert_ok(rg_body_move(w, m, v2(0, 0), ALL, RG_MOVE_SLIDE, &end, NULL, 0, &n));
+    assert_int_equal(n, 1);
+    assert_near(end.y, 2.35, 1e-5);
+    /* from the side, at its height: through */
+    assert_ok(rg_body_set_position(w, m, v2(-5, 2)));
+    assert_ok(rg_body_move(w, m, v2(5, 2), ALL, RG_MOVE_SLIDE, &end, NULL, 0, &n));
+    assert_int_equal(n, 0);
+    /* overlapping it, moving down: not pushed (passes) */
+    assert_ok(rg_body_set_position(w, m, v2(0, 2)));
+    assert_ok(rg_body_move(w, m, v2(0, 0), ALL, RG_MOVE_SLIDE, &end, NULL, 0, &n));
+    assert_int_equal(n, 0);
+    assert_true(end.y == 0);
+    rg_world_destroy(w);
+}
+
+static void test_bad_input_is_rejected_and_changes_nothing(void **state)
+{
+    (void)state;
+    rg_body wall;
+    rg_world *w = room(&wall);
+    rg_body b = box_body(w, RG_BODY_KINEMATIC, 0, 0, 1, 0.25, 0.25);
+    rg_body bare = make_body(w, 1, 3, 3);
+    rg_ray_hit h;
+    int32_t n = 7;
+    rg_vec2 end = v2(-1, -1);
+    assert_status(rg_body_move(w, b, v2(NAN, 0), ALL, RG_MOVE_SLIDE, &end, &h, 1, &n), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_body_move(w, b, v2(0, INFINITY), ALL, RG_MOVE_SLIDE, &end, &h, 1, &n), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_body_move(w, b, v2(1, 1), ALL, 3, &end, &h, 1, &n), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_body_move(w, b, v2(1, 1), ALL, -1, &end, &h, 1, &n), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_body_move(w, b, v2(1, 1), ALL, RG_MOVE_SLIDE, &end, NULL, 1, &n), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_body_move(w, b, v2(1, 1), ALL, RG_MOVE_SLIDE, &end, &h, -1, &n), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_body_move(w, bare, v2(1, 1), ALL, RG_MOVE_SLIDE, &end, &h, 1, &n), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_body_move(w, 4242, v2(1, 1), ALL, RG_MOVE_SLIDE, &end, &h, 1, &n), RG_ERR_STALE_HANDLE);
+    assert_status(rg_body_move(NULL, b, v2(1, 1), ALL, RG_MOVE_SLIDE, &end, &h, 1, &n), RG_ERR_INVALID_ARGUMENT);
+    /* a target so far that the path's length overflows */
+    assert_status(rg_body_move(w, b, v2(0.9 * (double)REAL_MAX, -0.9 * (double)REAL_MAX), ALL, RG_MOVE_SLIDE, &end, &h, 1, &n), RG_ERR_INVALID_ARGUMENT);
+    assert_true(PX(w, b) == 0 && PY(w, b) == 1);
+    assert_true(n == 7 && end.x == -1);
+    rg_world_destroy(w);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_sliding_along_the_floor_into_the_wall_ends_flush_at_any_speed),
+        cmocka_unit_test(test_tile_seams_do_not_snag),
+        cmocka_unit_test(test_touch_stops_at_the_first_surface),
+        cmocka_unit_test(test_cross_reaches_the_target_and_reports_every_shape_crossed),
+        cmocka_unit_test(test_one_way_shapes_block_the_mover_only_against_their_normal),
+        cmocka_unit_test(test_bad_input_is_rejected_and_changes_nothing),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,254 @@
+/* test_one_way.c: one-way shapes and passing through: landing on a platform, jumping up
+ * through it, walking through its side, fast bodies, dropping down, any normal. */
+#include "testutil.h"
+
+#define SLOP 0.005
+#define G 10.0
+
+/* A static one-way platform (top at y = 0.1) 4 m wide, facing up. */
+static rg_body platform(rg_world *w, double x, double y, double hw, double hh)
+{
+    rg_body p = box_body(w, RG_BODY_STATIC, 0, x, y, hw, hh);
+    assert_ok(rg_body_set_one_way(w, p, v2(0, 1)));
+    return p;
+}
+
+static void test_a_body_falling_onto_a_one_way_platform_rests_on_it(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-G);
+    rg_body p = platform(w, 0, 0, 2, 0.1);
+    rg_body ball = circle_body(w, RG_BODY_DYNAMIC, 1, 0.3, 2, 0.25);
+    rg_body crate = box_body(w, RG_BODY_DYNAMIC, 1, -1, 3, 0.25, 0.25);
+    step_n(w, 180, DT);
+    /* resting on the top face (y = 0.1) within the slop the solver leaves */
+    assert_true(fabs(PY(w, ball) - 0.35) <= SLOP);
+    assert_true(fabs(PY(w, crate) - 0.35) <= SLOP);
+    assert_int_equal(flag(rg_body_is_grounded, w, ball), 1);
+    assert_int_equal(flag(rg_body_is_grounded, w, crate), 1);
+    rg_vec2 n;
+    assert_ok(rg_body_get_one_way(w, p, &n));
+    assert_true(n.x == 0 && n.y == 1);
+    rg_world_destroy(w);
+}
+
+/* Jumping up from below: while it passes, the body flies exactly as it would without the
+ * platform (no contact is solved: the same bits), and then it lands on top. */
+static void test_a_body_jumping_up_through_it_is_not_slowed_and_lands_on_top(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-G), *free = gravity_world(-G);
+    platform(w, 0, 1, 2, 0.1);
+    rg_body b = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.3, 0.25, 0.25);
+    rg_body f = box_body(free, RG_BODY_DYNAMIC, 1, 0, 0.3, 0.25, 0.25);
+    /* v0 = 6 m/s: the apex (0.3 + 36/20 = 2.1 m) is well above the top (1.1 + 0.25) */
+    assert_ok(rg_body_set_velocity(w, b, v2(0, 6)));
+    assert_ok(rg_body_set_velocity(free, f, v2(0, 6)));
+    int passed = 0;
+    for (int k = 0; k < 60 && VY(free, f) > 0; k++) {
+        step_n(w, 1, DT);
+        step_n(free, 1, DT);
+        assert_true(PY(w, b) == PY(free, f) && VY(w, b) == VY(free, f));
+        assert_int_equal(flag(rg_body_is_grounded, w, b), 0);
+        passed |= PY(w, b) - 0.25 > 1.1;
+    }
+    assert_true(passed);
+    step_n(w, 120, DT);
+    assert_true(fabs(PY(w, b) - 1.35) <= SLOP);
+    assert_int_equal(flag(rg_body_is_grounded, w, b), 1);
+    rg_world_destroy(free);
+    rg_world_destroy(w);
+}
+
+/* The highest bottom of a box leaving y0 at v0 up in semi-implicit Euler steps of DT:
+ * v_k = v0 - k g dt, y_k = y_(k-1) + v_k dt. */
+static double discrete_apex(double y0, double v0)
+{
+    double y = y0, v = v0, top = y0;
+    while (v > 0) {
+        v -= G * DT;
+        y += v * DT;
+        if (y > top) top = y;
+    }
+    return top;
+}
+
+/* Clearing the top by 1 cm only, the pair stays a contact (the fat boxes keep overlapping):
+ * it passes up through while it overlaps, and lands once a step ended apart. */
+static void test_a_body_that_barely_clears_the_top_lands_on_it(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-G);
+    platform(w, 0, 1, 2, 0.1);
+    rg_body b = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.3, 0.25, 0.25);
+    double lo = 3, hi = 6; /* v0 whose apex puts the bottom 1 cm above the top (y = 1.1) */
+    for (int k = 0; k < 60; k++) {
+        double mid = (lo + hi) / 2;
+        if (discrete_apex(0.05, mid) < 1.11) lo = mid; else hi = mid;
+    }
+    assert_ok(rg_body_set_velocity(w, b, v2(0, lo)));
+    step_n(w, 180, DT);
+    assert_true(fabs(PY(w, b) - 1.35) <= SLOP);
+    assert_int_equal(flag(rg_body_is_grounded, w, b), 1);
+    rg_world_destroy(w);
+}
+
+/* A low platform whose height the walker overlaps: walking into its side, the walker is not
+ * pushed up or back: it walks through as if the platform were not there. */
+static void test_walking_into_its_side_while_overlapping_is_not_pushed(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-G);
+    floor_of(w);
+    platform(w, 3, 0.3, 1, 0.1); /* spans y 0.2 .. 0.4; the walker spans 0 .. 0.5 */
+    rg_body walker = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.25, 0.25, 0.25);
+    assert_ok(rg_body_set_friction(w, walker, 0));
+    step_n(w, 30, DT);
+    double y0 = PY(w, walker);
+    assert_ok(rg_body_set_velocity(w, walker, v2(3, 0)));
+    for (int k = 0; k < 120; k++) {
+        step_n(w, 1, DT);
+        assert_true(fabs(PY(w, walker) - y0) <= SLOP);
+        assert_true(fabs(VX(w, walker) - 3) <= 1e-4);
+    }
+    assert_true(PX(w, walker) > 5.5); /* through and past the platform's far end (x = 4) */
+    rg_world_destroy(w);
+}
+
+/* From above at a speed that crosses the thin platform in one step: it still lands. */
+static void test_a_fast_body_from_above_lands_on_a_thin_platform(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-G);
+    platform(w, 0, 0, 2, 0.01);
+    rg_body b = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 3, 0.1);
+    assert_ok(rg_body_set_velocity(w, b, v2(0, -120))); /* 2 m per step */
+    step_n(w, 120, DT);
+    assert_true(fabs(PY(w, b) - 0.11) <= SLOP);
+    rg_world_destroy(w);
+}
+
+/* Dropping down: a body resting on a platform passes through it after rg_body_pass_through;
+ * on a two-way box the pair collides again once apart (thrown back up, it hits the underside). */
+static void test_pass_through_drops_a_resting_body_and_it_collides_again_once_apart(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-G);
+    floor_of(w);
+    rg_body p = platform(w, 0, 2, 2, 0.1);
+    rg_body b = box_body(w, RG_BODY_DYNAMIC, 1, 0, 2.5, 0.25, 0.25);
+    step_n(w, 60, DT);
+    assert_true(fabs(PY(w, b) - 2.35) <= SLOP);
+    assert_ok(rg_body_pass_through(w, b, p));
+    step_n(w, 120, DT);
+    assert_true(fabs(PY(w, b) - 0.25) <= SLOP); /* on the floor */
+    /* a two-way shelf */
+    rg_body shelf = box_body(w, RG_BODY_STATIC, 0, 6, 2, 1, 0.1);
+    rg_body c = box_body(w, RG_BODY_DYNAMIC, 1, 6, 2.5, 0.25, 0.25);
+    step_n(w, 60, DT);
+    assert_true(fabs(PY(w, c) - 2.35) <= SLOP);
+    assert_ok(rg_body_pass_through(w, shelf, c)); /* either order */
+    step_n(w, 120, DT);
+    assert_true(fabs(PY(w, c) - 0.25) <= SLOP);
+    /* apart now: thrown up, it hits the shelf's underside (y = 1.9) and falls back */
+    assert_ok(rg_body_set_velocity(w, c, v2(0, 8)));
+    double top = 0;
+    for (int k = 0; k < 90; k++) {
+        step_n(w, 1, DT);
+        if (PY(w, c) > top) top = PY(w, c);
+    }
+    assert_true(top <= 1.9 - 0.25 + SLOP);
+    assert_true(top > 1.9 - 0.25 - 0.2);
+    /* pass_through on a pair that is apart does nothing */
+    assert_ok(rg_body_pass_through(w, c, shelf));
+    assert_ok(rg_body_set_velocity(w, c, v2(0, 8)));
+    top = 0;
+    for (int k = 0; k < 90; k++) {
+        step_n(w, 1, DT);
+        if (PY(w, c) > top) top = PY(w, c);
+    }
+    assert_true(top <= 1.9 - 0.25 + SLOP);
+    rg_world_destroy(w);
+}
+
+/* A wall facing +x blocks what comes from +x moving -x and lets the rest through; a diagonal
+ * normal blocks from its side. */
+static void test_normals_in_any_direction(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(0);
+    rg_body wall = box_body(w, RG_BODY_STATIC, 0, 0, 0, 0.1, 2);
+    assert_ok(rg_body_set_one_way(w, wall, v2(1, 0)));
+    rg_body from_right = circle_body(w, RG_BODY_DYNAMIC, 1, 2, 1, 0.2);
+    rg_body from_left = circle_body(w, RG_BODY_DYNAMIC, 1, -2, -1, 0.2);
+    assert_ok(rg_body_set_velocity(w, from_right, v2(-4, 0)));
+    assert_ok(rg_body_set_velocity(w, from_left, v2(4, 0)));
+    step_n(w, 60, DT);
+    assert_true(PX(w, from_right) >= 0.1 + 0.2 - SLOP);  /* stopped at the wall's face */
+    assert_true(PX(w, from_left) > 1.5);                  /* passed through */
+    /* normal (0.6, 0.8): a ball coming down onto the box is held, one rising into it is not */
+    rg_body slab = box_body(w, RG_BODY_STATIC, 0, 10, 0, 1, 0.1);
+    assert_ok(rg_body_set_one_way(w, slab, v2(0.6, 0.8)));
+    rg_body down = circle_body(w, RG_BODY_DYNAMIC, 1, 10, 1, 0.2);
+    rg_body up = circle_body(w, RG_BODY_DYNAMIC, 1, 10.5, -1, 0.2);
+    assert_ok(rg_body_set_velocity(w, down, v2(0, -3)));
+    assert_ok(rg_body_set_velocity(w, up, v2(0, 3)));
+    step_n(w, 60, DT);
+    assert_true(PY(w, down) >= 0.1 + 0.2 - SLOP);
+    assert_true(PY(w, up) > 1.5);
+    rg_vec2 n;
+    assert_ok(rg_body_get_one_way(w, slab, &n));
+    assert_near(n.x, 0.6, 1e-6);
+    assert_near(n.y, 0.8, 1e-6);
+    /* (0, 0) makes it two-way again: the ball rising into it is stopped */
+    assert_ok(rg_body_set_one_way(w, slab, v2(0, 0)));
+    rg_body up2 = circle_body(w, RG_BODY_DYNAMIC, 1, 9.5, -1, 0.2);
+    assert_ok(rg_body_set_velocity(w, up2, v2(0, 3)));
+    step_n(w, 60, DT);
+    assert_true(PY(w, up2) <= -0.1 - 0.2 + SLOP);
+    rg_world_destroy(w);
+}
+
+static void test_bad_input_is_rejected_and_changes_nothing(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-G);
+    rg_body p = platform(w, 0, 0, 2, 0.1);
+    rg_body b = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 1, 0.2);
+    rg_body bare = make_body(w, 1, 5, 5);
+    const double bad[][2] = { { NAN, 1 }, { 0, INFINITY }, { 0.5, 0 }, { 0, 1.01 }, { 1e30, 1e30 } };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++)
+        assert_status(rg_body_set_one_way(w, p, v2(bad[k][0], bad[k][1])), RG_ERR_INVALID_ARGUMENT);
+    rg_vec2 n;
+    assert_ok(rg_body_get_one_way(w, p, &n));
+    assert_true(n.x == 0 && n.y == 1);
+    assert_status(rg_body_get_one_way(w, p, NULL), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_body_get_one_way(NULL, p, &n), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_body_set_one_way(NULL, p, v2(0, 1)), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_body_set_one_way(w, 12345, v2(0, 1)), RG_ERR_STALE_HANDLE);
+    assert_status(rg_body_pass_through(w, b, b), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_body_pass_through(w, b, bare), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_body_pass_through(w, b, 999), RG_ERR_STALE_HANDLE);
+    assert_status(rg_body_pass_through(w, 999, b), RG_ERR_STALE_HANDLE);
+    assert_status(rg_body_pass_through(NULL, b, p), RG_ERR_INVALID_ARGUMENT);
+    /* a tiny error of length is accepted and normalised */
+    assert_ok(rg_body_set_one_way(w, p, v2(0, 1.0005)));
+    assert_ok(rg_body_get_one_way(w, p, &n));
+    assert_near(n.y, 1, 4 * REAL_EPS);
+    rg_world_destroy(w);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_a_body_falling_onto_a_one_way_platform_rests_on_it),
+        cmocka_unit_test(test_a_body_jumping_up_through_it_is_not_slowed_and_lands_on_top),
+        cmocka_unit_test(test_a_body_that_barely_clears_the_top_lands_on_it),
+        cmocka_unit_test(test_walking_into_its_side_while_overlapping_is_not_pushed),
+        cmocka_unit_test(test_a_fast_body_from_above_lands_on_a_thin_platform),
+        cmocka_unit_test(test_pass_through_drops_a_resting_body_and_it_collides_again_once_apart),
+        cmocka_unit_test(test_normals_in_any_direction),
+        cmocka_unit_test(test_bad_input_is_rejected_and_changes_nothing),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

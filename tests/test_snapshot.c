@@ -1,0 +1,413 @@
+/* test_snapshot.c: save, restore and hash: resimulation to the same bytes, clones, the
+ * rollback loop's memory, corrupt, truncated and forged snapshots. */
+#include "testutil.h"
+
+#include "snapshot.h"
+
+typedef struct scene {
+    rg_world *w;
+    rg_body b[128];
+    int n;
+    rg_body plat, coin, doomed;
+} scene;
+
+static rg_body add(scene *s, int32_t type, double m, double x, double y)
+{
+    rg_body h;
+    assert_ok(rg_body_create(s->w, type, (rg_real)m, v2(x, y), &h));
+    s->b[s->n++] = h;
+    return h;
+}
+
+/* A pile on a floor between walls, a kinematic platform, a sensor, springs, drag, bullets
+ * fast enough for continuous collision; sleeping on. */
+static void build(scene *s, rg_world *w, int32_t integrator)
+{
+    s->w = w;
+    s->n = 0;
+    assert_ok(rg_world_set_gravity(w, v2(0, -9.81)));
+    assert_ok(rg_world_set_integrator(w, integrator));
+    rg_body floor = add(s, RG_BODY_STATIC, 0, 0, -0.5);
+    assert_ok(rg_body_set_aabb(w, floor, 10, 0.5));
+    for (int side = -1; side <= 1; side += 2) {
+        rg_body wall = add(s, RG_BODY_STATIC, 0, side * 10.5, 5);
+        assert_ok(rg_body_set_aabb(w, wall, 0.5, 6));
+    }
+    s->plat = add(s, RG_BODY_KINEMATIC, 0, -5, 3);
+    assert_ok(rg_body_set_aabb(w, s->plat, 1.5, 0.2));
+    assert_ok(rg_body_set_velocity(w, s->plat, v2(1, 0)));
+    s->coin = add(s, RG_BODY_STATIC, 0, 3, 1);
+    assert_ok(rg_body_set_circle(w, s->coin, 0.5));
+    assert_ok(rg_body_set_sensor(w, s->coin, 1));
+    for (int i = 0; i < 60; i++) {
+        rg_body b = add(s, RG_BODY_DYNAMIC, 0.5 + 0.2 * (i % 4), -6 + (i % 10) * 1.2 + 0.01 * (i % 3),
+                        4 + (i / 10) * 1.2);
+        if (i % 3)
+            assert_ok(rg_body_set_circle(w, b, 0.4f));
+        else
+            assert_ok(rg_body_set_aabb(w, b, 0.4f, 0.35f));
+        if (i % 5 == 0) assert_ok(rg_body_set_drag(w, b, 0.1f, 0.05f));
+        if (i % 7 == 0) assert_ok(rg_body_set_restitution(w, b, 0.5f));
+        if (i > 0 && i % 9 == 0) {
+            uint64_t sp;
+            assert_ok(rg_spring_create(w, b, s->b[s->n - 2], v2(0, 0), 1.2f, 30, 0.4f, &sp));
+        }
+    }
+    for (int i = 0; i < 4; i++) {
+        rg_body bullet = add(s, RG_BODY_DYNAMIC, 0.1, -8 + i, 8);
+        assert_ok(rg_body_set_circle(w, bullet, 0.05f));
+        assert_ok(rg_body_set_velocity(w, bullet, v2(i % 2 ? 120 : -90, -150)));
+    }
+    s->doomed = s->b[20];
+}
+
+static uint64_t hash_of(rg_world *w)
+{
+    uint64_t h = 0;
+    assert_ok(rg_world_hash(w, &h));
+    return h;
+}
+
+/* The step trace: every step's hash and event count. */
+static void run(rg_world *w, int steps, uint64_t *trace)
+{
+    for (int k = 0; k < steps; k++) {
+        assert_ok(rg_world_step(w, (rg_real)(1.0 / 60)));
+        trace[k] = hash_of(w) ^ (uint64_t)rg_world_get_contact_events(w, NULL, 0);
+    }
+}
+
+static void *save(rg_world *w, size_t *size)
+{
+    assert_ok(rg_world_save(w, NULL, 0, size));
+    void *buf = malloc(*size);
+    assert_non_null(buf);
+    size_t again = 0;
+    assert_ok(rg_world_save(w, buf, *size, &again));
+    assert_true(again == *size);
+    return buf;
+}
+
+/* Save at step 100, run on to 260; restore and run again; restore into a fresh world and
+ * run; through a file.  Every step gives the same hash and events, and the end the same
+ * positions and velocities, for every integrator. */
+static void test_resimulation_after_restore_gives_identical_bytes(void **state)
+{
+    (void)state;
+    enum { K = 100, N = 160 };
+    static uint64_t first[N], again[N], fresh[N], filed[N];
+    for (int32_t integ = 0; integ < 4; integ++) {
+        rg_world *w;
+        assert_ok(rg_world_create(&w));
+        scene s;
+        build(&s, w, integ);
+        for (int k = 0; k < K; k++) {
+            if (k == 40) assert_ok(rg_body_apply_impulse(w, s.b[30], v2(3, 2)));
+            assert_ok(rg_world_step(w, (rg_real)(1.0 / 60)));
+        }
+        size_t size;
+        void *snap = save(w, &size);
+        uint64_t h0 = hash_of(w);
+        run(w, N, first);
+        rg_vec2 p_end = pos_of(w, s.b[40]), v_end = vel_of(w, s.b[40]);
+        /* back: the same hash at once, the same run after */
+        assert_ok(rg_world_restore(w, snap, size));
+        assert_true(hash_of(w) == h0);
+        run(w, N, again);
+        assert_memory_equal(first, again, sizeof first);
+        rg_vec2 p2 = pos_of(w, s.b[40]), v2_ = vel_of(w, s.b[40]);
+        assert_memory_equal(&p_end, &p2, sizeof p2);
+        assert_memory_equal(&v_end, &v2_, sizeof v2_);
+        /* into a fresh world: it answers the saving world's handles */
+        rg_world *w2;
+        assert_ok(rg_world_create(&w2));
+        assert_ok(rg_world_restore(w2, snap, size));
+        assert_true(hash_of(w2) == h0);
+        assert_true(rg_body_is_valid(w2, s.b[40]));
+        run(w2, N, fresh);
+        assert_memory_equal(first, fresh, sizeof first);
+        /* through a file */
+        FILE *f = tmpfile();
+        assert_non_null(f);
+        assert_true(fwrite(snap, 1, size, f) == size);
+        rewind(f);
+        void *back = malloc(size);
+        assert_true(fread(back, 1, size, f) == size);
+        fclose(f);
+        rg_world *w3;
+        assert_ok(rg_world_create(&w3));
+        assert_ok(rg_world_restore(w3, back, size));
+        run(w3, N, filed);
+        assert_memory_equal(first, filed, sizeof first);
+        /* something happened in the run: sleep, events, bullets stopped by the floor */
+        assert_true(rg_world_awake_body_count(w3) < s.n - 5 || integ != RG_INTEGRATOR_SEMI_IMPLICIT_EULER);
+        free(back);
+        free(snap);
+        rg_world_destroy(w3);
+        rg_world_destroy(w2);
+        rg_world_destroy(w);
+    }
+}
+
+/* Equal states hash alike in different worlds (other handle tags); a change of one bit of
+ * one body's state changes the hash. */
+static void test_equal_states_give_equal_hashes(void **state)
+{
+    (void)state;
+    rg_world *a, *b;
+    assert_ok(rg_world_create(&a));
+    assert_ok(rg_world_create(&b));
+    scene sa, sb;
+    build(&sa, a, RG_INTEGRATOR_SEMI_IMPLICIT_EULER);
+    build(&sb, b, RG_INTEGRATOR_SEMI_IMPLICIT_EULER);
+    assert_true(sa.b[0] != sb.b[0]); /* different tags */
+    step_n(a, 50, 1.0 / 60);
+    step_n(b, 50, 1.0 / 60);
+    assert_true(hash_of(a) == hash_of(b));
+    rg_vec2 v = vel_of(b, sb.b[30]);
+    rg_real bumped = v.x;
+    uint32_t bits;
+    memcpy(&bits, &bumped, sizeof bits < sizeof bumped ? sizeof bits : sizeof bumped);
+    bits ^= 1u;
+    memcpy(&bumped, &bits, sizeof bits < sizeof bumped ? sizeof bits : sizeof bumped);
+    assert_ok(rg_body_set_velocity(b, sb.b[30], v2((double)bumped, (double)v.y)));
+    assert_true(hash_of(a) != hash_of(b));
+    rg_world_destroy(a);
+    rg_world_destroy(b);
+}
+
+static void test_save_reports_its_size_and_respects_capacity(void **state)
+{
+    (void)state;
+    rg_world *w;
+    assert_ok(rg_world_create(&w));
+    scene s;
+    build(&s, w, RG_INTEGRATOR_SEMI_IMPLICIT_EULER);
+    step_n(w, 10, 1.0 / 60);
+    size_t size = 0, got = 0;
+    assert_ok(rg_world_save(w, NULL, 0, &size));
+    assert_true(size > SNAP_HEADER && size % 8 == 0);
+    uint8_t *buf = malloc(size + 16);
+    memset(buf, 0xA5, size + 16);
+    assert_status(rg_world_save(w, buf, size - 1, &got), RG_ERR_CAPACITY);
+    assert_true(got == size);
+    for (size_t k = 0; k < size + 16; k++) assert_int_equal(buf[k], 0xA5); /* nothing written */
+    assert_ok(rg_world_save(w, buf, size + 16, &got));
+    assert_true(got == size && buf[size] == 0xA5);
+    assert_status(rg_world_save(NULL, buf, size, &got), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_world_save(w, buf, size, NULL), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_world_save(w, NULL, 10, &got), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_world_restore(NULL, buf, size), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_world_restore(w, NULL, size), RG_ERR_INVALID_ARGUMENT);
+    uint64_t h;
+    assert_status(rg_world_hash(NULL, &h), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_world_hash(w, NULL), RG_ERR_INVALID_ARGUMENT);
+    /* an empty world saves, restores and hashes too */
+    rg_world *e;
+    assert_ok(rg_world_create(&e));
+    size_t esize;
+    void *es = save(e, &esize);
+    assert_ok(rg_world_restore(w, es, esize));
+    assert_int_equal(rg_world_body_count(w), 0);
+    assert_true(hash_of(w) == hash_of(e));
+    assert_false(rg_body_is_valid(w, s.b[0]));
+    free(es);
+    free(buf);
+    rg_world_destroy(e);
+    rg_world_destroy(w);
+}
+
+/* A flip of any byte, any truncation, any extension and random bytes: invalid, and the
+ * world keeps its state (hash) and goes on as before. */
+static void test_corrupt_truncated_and_random_snapshots_are_rejected(void **state)
+{
+    (void)state;
+    rg_world *w, *src;
+    assert_ok(rg_world_create(&w));
+    assert_ok(rg_world_create(&src));
+    scene s, t;
+    build(&s, w, RG_INTEGRATOR_SEMI_IMPLICIT_EULER);
+    build(&t, src, RG_INTEGRATOR_RK4);
+    step_n(w, 30, 1.0 / 60);
+    step_n(src, 60, 1.0 / 60);
+    size_t size;
+    uint8_t *snap = save(src, &size);
+    uint64_t h0 = hash_of(w);
+    uint8_t *bad = malloc(size + 64);
+    for (size_t k = 0; k < size; k++) {
+        memcpy(bad, snap, size);
+        bad[k] ^= (uint8_t)(1u << (k % 8));
+        assert_status(rg_world_restore(w, bad, size), RG_ERR_INVALID_ARGUMENT);
+    }
+    for (size_t n = 0; n < size; n += (n < 256 ? 1 : 37)) assert_status(rg_world_restore(w, snap, n), RG_ERR_INVALID_ARGUMENT);
+    memcpy(bad, snap, size);
+    memset(bad + size, 0, 64);
+    assert_status(rg_world_restore(w, bad, size + 8), RG_ERR_INVALID_ARGUMENT);
+    uint64_t x = 0x9E3779B97F4A7C15ull;
+    for (int r = 0; r < 200; r++) {
+        for (size_t k = 0; k < size; k++) {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            bad[k] = (uint8_t)x;
+        }
+        if (r % 2) memcpy(bad, snap, SNAP_HEADER); /* a good header over garbage */
+        assert_status(rg_world_restore(w, bad, size), RG_ERR_INVALID_ARGUMENT);
+    }
+    assert_true(hash_of(w) == h0);
+    /* and the world goes on exactly as an untouched twin */
+    rg_world *twin;
+    assert_ok(rg_world_create(&twin));
+    scene u;
+    build(&u, twin, RG_INTEGRATOR_SEMI_IMPLICIT_EULER);
+    step_n(twin, 30, 1.0 / 60);
+    step_n(w, 30, 1.0 / 60);
+    step_n(twin, 30, 1.0 / 60);
+    assert_true(hash_of(w) == hash_of(twin));
+    free(bad);
+    free(snap);
+    rg_world_destroy(twin);
+    rg_world_destroy(src);
+    rg_world_destroy(w);
+}
+
+/* Forged: the checksum made right after changing what it covers.  Each forgery breaks one
+ * invariant the state relies on; each is refused. */
+static void reseal(uint8_t *p, size_t size) { snap_put64(p + 24, snap_hash(p + SNAP_HEADER, size - SNAP_HEADER)); }
+
+static void test_forged_snapshots_with_a_valid_checksum_are_rejected(void **state)
+{
+    (void)state;
+    rg_world *w;
+    assert_ok(rg_world_create(&w));
+    scene s;
+    build(&s, w, RG_INTEGRATOR_SEMI_IMPLICIT_EULER);
+    step_n(w, 40, 1.0 / 60);
+    size_t size;
+    uint8_t *snap = save(w, &size);
+    uint64_t h0 = hash_of(w);
+    uint8_t *bad = malloc(size);
+    memcpy(bad, snap, size);
+    reseal(bad, size);
+    assert_ok(rg_world_restore(w, bad, size)); /* resealing alone forges nothing */
+    /* every 4-byte word of the stream set to a few hostile values, resealed: refused, or
+     * accepted only as a state that still checks out (then restored and stepped safely) */
+    const uint32_t hostile[] = { 0xFFFFFFFFu, 0x7FFFFFFFu, 0x80000000u, 0x7FC00000u, 0x7F800000u, 0, 1, 3 };
+    int refused = 0, accepted = 0;
+    for (size_t at = SNAP_HEADER; at + 4 <= size; at += 4) {
+        for (size_t v = 0; v < sizeof hostile / sizeof hostile[0]; v++) {
+            memcpy(bad, snap, size);
+            if (snap_get32(bad + at) == hostile[v]) continue;
+            snap_put32(bad + at, hostile[v]);
+            reseal(bad, size);
+            rg_status st = rg_world_restore(w, bad, size);
+            assert_true(st == RG_OK || st == RG_ERR_INVALID_ARGUMENT);
+            if (st == RG_ERR_INVALID_ARGUMENT) {
+                refused++;
+                continue;
+            }
+            accepted++;
+            /* an accepted forgery is a valid state: stepping it must be safe */
+            step_n(w, 2, 1.0 / 60);
+            assert_ok(rg_world_restore(w, snap, size));
+        }
+    }
+    printf("  forged words: %d refused, %d accepted as valid states\n", refused, accepted);
+    assert_true(refused > 0);
+    assert_ok(rg_world_restore(w, snap, size));
+    assert_true(hash_of(w) == h0);
+    free(bad);
+    free(snap);
+    rg_world_destroy(w);
+}
+
+/* A rollback loop: 10,000 times restore and step a frame; memory in use stays what it was
+ * after the first, bodies created after the save are gone, destroyed ones live again. */
+static void test_ten_thousand_rollbacks_hold_memory_and_handles(void **state)
+{
+    (void)state;
+    test_alloc ta;
+    memset(&ta, 0, sizeof ta);
+    rg_world *w;
+    assert_ok(rg_world_create_with_allocator(test_alloc_fn, &ta, &w));
+    scene s;
+    build(&s, w, RG_INTEGRATOR_SEMI_IMPLICIT_EULER);
+    step_n(w, 30, 1.0 / 60);
+    size_t size;
+    void *snap = save(w, &size);
+    uint64_t h0 = hash_of(w);
+    assert_ok(rg_body_destroy(w, s.doomed));
+    rg_body late;
+    assert_ok(rg_body_create(w, RG_BODY_DYNAMIC, 1, v2(0, 9), &late));
+    assert_ok(rg_world_restore(w, snap, size));
+    assert_true(rg_body_is_valid(w, s.doomed));
+    assert_false(rg_body_is_valid(w, late));
+    step_n(w, 1, 1.0 / 60);
+    long long bytes = ta.live_bytes;
+    long blocks = ta.live_blocks;
+    for (int k = 0; k < 10000; k++) {
+        assert_ok(rg_world_restore(w, snap, size));
+        if (k % 1000 == 0) assert_true(hash_of(w) == h0);
+        step_n(w, 1, 1.0 / 60);
+        if (ta.live_bytes != bytes || ta.live_blocks != blocks)
+            fail_msg("rollback %d: %lld bytes in %ld blocks, was %lld in %ld", k, ta.live_bytes, ta.live_blocks,
+                     bytes, blocks);
+    }
+    /* a new body after a restore never takes a handle that was live in the snapshot's
+     * future: handles of the saving world's bodies still name them */
+    assert_ok(rg_world_restore(w, snap, size));
+    rg_body again;
+    assert_ok(rg_body_create(w, RG_BODY_DYNAMIC, 1, v2(0, 9), &again));
+    for (int i = 0; i < s.n; i++) assert_true(again != s.b[i]);
+    free(snap);
+    rg_world_destroy(w);
+    assert_int_equal(ta.live_blocks, 0);
+}
+
+/* Restoring with too little memory: RG_ERR_OUT_OF_MEMORY, the world unchanged. */
+static void test_out_of_memory_on_restore_changes_nothing(void **state)
+{
+    (void)state;
+    rg_world *big;
+    assert_ok(rg_world_create(&big));
+    scene s;
+    build(&s, big, RG_INTEGRATOR_SEMI_IMPLICIT_EULER);
+    step_n(big, 20, 1.0 / 60);
+    size_t size;
+    void *snap = save(big, &size);
+    for (long fail = 1; fail < 40; fail++) {
+        test_alloc ta;
+        memset(&ta, 0, sizeof ta);
+        rg_world *w;
+        assert_ok(rg_world_create_with_allocator(test_alloc_fn, &ta, &w));
+        rg_body b = make_body(w, 1, 1, 1);
+        uint64_t h0 = hash_of(w);
+        ta.fail_at = ta.calls + fail;
+        rg_status st = rg_world_restore(w, snap, size);
+        ta.fail_at = 0;
+        if (st == RG_OK) {
+            assert_true(hash_of(w) == hash_of(big));
+        } else {
+            assert_int_equal(st, RG_ERR_OUT_OF_MEMORY);
+            assert_true(hash_of(w) == h0 && rg_body_is_valid(w, b));
+        }
+        rg_world_destroy(w);
+        assert_int_equal(ta.live_blocks, 0);
+    }
+    free(snap);
+    rg_world_destroy(big);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_resimulation_after_restore_gives_identical_bytes),
+        cmocka_unit_test(test_equal_states_give_equal_hashes),
+        cmocka_unit_test(test_save_reports_its_size_and_respects_capacity),
+        cmocka_unit_test(test_corrupt_truncated_and_random_snapshots_are_rejected),
+        cmocka_unit_test(test_forged_snapshots_with_a_valid_checksum_are_rejected),
+        cmocka_unit_test(test_ten_thousand_rollbacks_hold_memory_and_handles),
+        cmocka_unit_test(test_out_of_memory_on_restore_changes_nothing),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
