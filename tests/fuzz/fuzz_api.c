@@ -47,7 +47,9 @@ enum {
     OP_GROUNDED, OP_SET_SLEEPING, OP_GET_SLEEPING, OP_SET_SLEEP_THRESH, OP_GET_SLEEP_THRESH,
     OP_IS_AWAKE, OP_WAKE, OP_SET_ITER, OP_GET_ITER, OP_SET_TUNING, OP_GET_TUNING,
     OP_SET_CONTINUOUS, OP_GET_CONTINUOUS, OP_EVENTS, OP_RAYCAST, OP_QUERY, OP_DRAW,
-    OP_STEP_SMALL, OP_BODY_CREATE_SHAPED, OP_COUNT
+    OP_STEP_SMALL, OP_BODY_CREATE_SHAPED, OP_SET_ONE_WAY, OP_GET_ONE_WAY, OP_PASS_THROUGH,
+    OP_PRE_SOLVE, OP_CONTACTS, OP_RAYCAST_ALL, OP_QUERY_POINT, OP_CAST_SHAPE, OP_MOVE, OP_SAVE,
+    OP_RESTORE, OP_HASH, OP_COUNT
 };
 
 static const char *const op_names[OP_COUNT] = {
@@ -64,7 +66,9 @@ static const char *const op_names[OP_COUNT] = {
     "get_sleep_thresholds", "is_awake", "wake", "set_solver_iterations",
     "get_solver_iterations", "set_contact_tuning", "get_contact_tuning", "set_continuous",
     "get_continuous", "contact_events", "raycast", "query_aabb", "draw", "step(1/60)",
-    "body_create+shape"
+    "body_create+shape", "set_one_way", "get_one_way", "pass_through", "set_pre_solve",
+    "get_contacts", "raycast_all", "query_point", "cast_shape", "move", "save", "restore",
+    "hash"
 };
 
 static void create_world(input *in, fworld *fw)
@@ -94,7 +98,7 @@ static void create_world(input *in, fworld *fw)
         return;
     }
     fw->w = w;
-    fw->serial = ++next_serial;
+    fw->serial = fw->identity = ++next_serial;
 }
 
 static void do_body_create(input *in, fworld *fw, int shaped)
@@ -157,6 +161,112 @@ static void check_hit(const fworld *fw, int32_t n, const rg_ray_hit *hit)
     if (!in_list(fw->live, fw->nlive, hit->body)) FAIL("ray hit a body that is not live");
     if (!(hit->fraction >= 0 && hit->fraction <= 1)) FAIL("ray fraction %g", (double)hit->fraction);
     if (derived_checked(fw) && (!finite2(hit->point) || !finite2(hit->normal))) FAIL("ray hit not finite");
+}
+
+/* ---- pre-solve: checks its arguments, and that the world is locked while it runs */
+
+static int32_t on_pre_solve(rg_body a, rg_body b, rg_vec2 normal, rg_real separation, void *user)
+{
+    fworld *fw = (fworld *)user;
+    rg_vec2 p;
+    if (!(a < b)) FAIL("pre-solve: a >= b");
+    if (!in_list(fw->live, fw->nlive, a) || !in_list(fw->live, fw->nlive, b))
+        FAIL("pre-solve: a body that is not live");
+    if (derived_checked(fw) && (!finite2(normal) || !isfinite(separation))) FAIL("pre-solve: not finite");
+    if (rg_body_get_position(fw->w, a, &p) != RG_OK) FAIL("pre-solve: a getter failed");
+    if (rg_body_set_position(fw->w, a, p) != RG_ERR_LOCKED) FAIL("pre-solve: set_position not locked");
+    if (rg_world_step(fw->w, (rg_real)(1.0 / 60)) != RG_ERR_LOCKED) FAIL("pre-solve: step not locked");
+    if (rg_body_destroy(fw->w, b) != RG_ERR_LOCKED) FAIL("pre-solve: destroy not locked");
+    if (fw->presolve_calls++ == 0) rg_world_destroy(fw->w);   /* a no-op from inside */
+    return (fw->presolve >> (fw->presolve_calls % 8)) & 1;
+}
+
+/* ---- snapshots: two slots, each with the model of the world as it was saved */
+
+typedef struct saved {
+    unsigned char *buf;
+    size_t n;
+    fworld model;
+    int valid;
+} saved;
+
+static saved slots[2];
+
+static void hit_sane(const fworld *fw, const rg_ray_hit *h, int k)
+{
+    if (!in_list(fw->live, fw->nlive, h->body)) FAIL("hit %d: a body that is not live", k);
+    if (!(h->fraction >= 0 && h->fraction <= 1)) FAIL("hit %d: fraction %g", k, (double)h->fraction);
+    if (derived_checked(fw) && (!finite2(h->point) || !finite2(h->normal))) FAIL("hit %d: not finite", k);
+}
+
+static int32_t do_save(input *in, fworld *fw)
+{
+    saved *sl = &slots[u8(in) & 1];
+    size_t n = 0, cap;
+    rg_status st = rg_world_save(fw->w, NULL, 0, (u8(in) < 16) ? NULL : &n);
+    if (st != RG_OK) return st;
+    cap = (u8(in) < 32) ? n / 2 : n;   /* sometimes too small: nothing written past cap */
+    unsigned char *buf = (unsigned char *)malloc(cap > 0 ? cap : 1);
+    if (buf == NULL) abort();
+    st = rg_world_save(fw->w, buf, cap, &n);
+    if (st != RG_OK) {
+        free(buf);
+        if (cap >= n || st != RG_ERR_CAPACITY) FAIL("save into %zu bytes of %zu: status %d", cap, n, st);
+        return st;
+    }
+    free(sl->buf);
+    sl->buf = buf;
+    sl->n = n;
+    sl->model = *fw;
+    sl->valid = 1;
+    /* A fresh world restored from it answers the same handles and hashes alike. */
+    rg_world *clone;
+    uint64_t h1 = 0, h2 = 0;
+    if (rg_world_create(&clone) != RG_OK) abort();
+    if (rg_world_restore(clone, buf, n) != RG_OK) FAIL("a fresh snapshot does not restore");
+    if (rg_world_hash(fw->w, &h1) != RG_OK || rg_world_hash(clone, &h2) != RG_OK || h1 != h2)
+        FAIL("a world and its restored clone hash differently");
+    for (int k = 0; k < fw->nlive; k++) {
+        rg_vec2 a, b;
+        if (rg_body_get_position(clone, fw->live[k], &b) != RG_OK ||
+            rg_body_get_position(fw->w, fw->live[k], &a) != RG_OK || memcmp(&a, &b, sizeof a) != 0)
+            FAIL("the clone does not answer a handle as the original does");
+    }
+    rg_world_destroy(clone);
+    return RG_OK;
+}
+
+static int32_t do_restore(input *in, fworld *fw)
+{
+    saved *sl = &slots[u8(in) & 1];
+    uint8_t how = u8(in);
+    if (!sl->valid || fw->w == NULL) return rg_world_restore(fw->w, NULL, 0);
+    size_t n = sl->n;
+    unsigned char *data = (unsigned char *)malloc(n);
+    if (data == NULL) abort();
+    memcpy(data, sl->buf, n);
+    int corrupt = how >= 128;
+    if (how >= 192) {
+        n = n * (size_t)u8(in) / 256;                  /* truncated */
+    } else if (corrupt) {
+        size_t at = ((size_t)u8(in) << 8 | u8(in)) % n;
+        data[at] ^= (unsigned char)(u8(in) | 1);       /* one byte flipped */
+    }
+    rg_status st = rg_world_restore(fw->w, data, n);
+    free(data);
+    if (st == RG_OK && corrupt) FAIL("a corrupted snapshot was accepted");
+    if (st != RG_OK) return st;
+    for (int k = 0; k < fw->nlive; k++)
+        if (!in_list(sl->model.live, sl->model.nlive, fw->live[k])) remember_dead(fw->live[k], fw);
+    rg_world *w = fw->w;
+    fz_alloc *al = fw->al;
+    int presolve = fw->presolve;
+    *fw = sl->model;
+    fw->w = w;
+    fw->al = al;
+    fw->presolve = presolve;   /* the hook is the world's own, not saved */
+    fw->serial = ++next_serial;
+    return RG_OK;
 }
 
 /* Runs one operation; returns its status (< 0: an error) and whether it steps. */
@@ -365,6 +475,96 @@ static int32_t run_op(input *in, int op, int *is_step, int *is_const)
         draw_world = fw;
         return rg_world_draw(w, (which & 16) ? NULL : &d);
     }
+    case OP_SET_ONE_WAY: b = pick_body(in, fw); return rg_body_set_one_way(w, b, vec_arg(in));
+    case OP_GET_ONE_WAY: *is_const = 1; return rg_body_get_one_way(w, pick_body(in, fw), OUT(in, v));
+    case OP_PASS_THROUGH: b = pick_body(in, fw); return rg_body_pass_through(w, b, pick_body(in, fw));
+    case OP_PRE_SOLVE: {
+        uint8_t mode = u8(in);
+        st = rg_world_set_pre_solve(w, mode < 64 ? NULL : on_pre_solve, fw);
+        if (st == RG_OK) fw->presolve = mode < 64 ? 0 : (mode | 1);
+        return st;
+    }
+    case OP_CONTACTS: {
+        *is_const = 1;
+        b = pick_body(in, fw);
+        int32_t cap = int_arg(in);
+        rg_contact *out = NULL;
+        if (cap > 0 && cap <= MAXB && u8(in) >= 24) out = (rg_contact *)malloc((size_t)cap * sizeof *out);
+        st = rg_body_get_contacts(w, b, out, cap);
+        for (int k = 0; st > 0 && out != NULL && k < st && k < cap; k++) {
+            if (!in_list(fw->live, fw->nlive, out[k].other)) FAIL("contact with a body that is not live");
+            if (k > 0 && !(out[k - 1].other < out[k].other)) FAIL("contacts not ascending");
+            if (out[k].sensor != 0 && out[k].sensor != 1) FAIL("contact sensor %d", out[k].sensor);
+            if (derived_checked(fw) && (!finite2(out[k].normal) || !finite2(out[k].point) ||
+                                        !isfinite(out[k].separation) || !isfinite(out[k].normal_impulse)))
+                FAIL("contact not finite");
+        }
+        free(out);
+        return st;
+    }
+    case OP_RAYCAST_ALL: {
+        *is_const = 1;
+        rg_vec2 o = vec_arg(in), d = vec_arg(in);
+        uint32_t mask = u32(in);
+        int32_t cap = int_arg(in);
+        rg_ray_hit *out = NULL;
+        if (cap > 0 && cap <= MAXB && u8(in) >= 24) out = (rg_ray_hit *)malloc((size_t)cap * sizeof *out);
+        st = rg_world_raycast_all(w, o, d, mask, out, cap);
+        if (st > fw->nlive) FAIL("raycast_all hit %d of %d bodies", st, fw->nlive);
+        for (int k = 0; st > 0 && out != NULL && k < st && k < cap; k++) {
+            hit_sane(fw, &out[k], k);
+            if (k > 0 && (out[k - 1].fraction > out[k].fraction ||
+                          (out[k - 1].fraction == out[k].fraction && !(out[k - 1].body < out[k].body))))
+                FAIL("raycast_all hits not in order");
+        }
+        free(out);
+        return st;
+    }
+    case OP_QUERY_POINT: {
+        *is_const = 1;
+        rg_vec2 p = vec_arg(in);
+        uint32_t mask = u32(in);
+        int32_t cap = int_arg(in);
+        rg_body *out = NULL;
+        if (cap > 0 && cap <= MAXB && u8(in) >= 24) out = (rg_body *)malloc((size_t)cap * sizeof *out);
+        st = rg_world_query_point(w, p, mask, out, cap);
+        if (st >= 0) check_query(fw, out, st, out != NULL ? cap : 0);
+        free(out);
+        return st;
+    }
+    case OP_CAST_SHAPE: {
+        *is_const = 1;
+        rg_ray_hit hit;
+        int32_t shape = int_arg(in);
+        rg_vec2 size = vec_arg(in), o = vec_arg(in), d = vec_arg(in);
+        memset(&hit, 0, sizeof hit);
+        st = rg_world_cast_shape(w, shape, size, o, d, u32(in), OUT(in, hit));
+        if (st > 1) FAIL("cast_shape returned %d", st);
+        if (st == 1) hit_sane(fw, &hit, 0);
+        return st;
+    }
+    case OP_MOVE: {
+        rg_vec2 target, pos = { 0, 0 }, now;
+        rg_ray_hit hits[8];
+        int32_t count = -5, *outc;
+        b = pick_body(in, fw);
+        target = vec_arg(in);
+        uint32_t mask = u32(in);
+        int32_t response = int_arg(in), cap = (int32_t)(u8(in) % 9);
+        rg_vec2 *outp = OUT(in, pos);
+        outc = OUT(in, count);
+        st = rg_body_move(w, b, target, mask, response, outp, (u8(in) < 24) ? NULL : hits,
+                          cap, outc);
+        if (st == RG_OK) {
+            if (rg_body_get_position(w, b, &now) != RG_OK) FAIL("move: the body is gone");
+            if (outp != NULL && memcmp(&pos, &now, sizeof pos) != 0) FAIL("move: out_position is not the position");
+            if (outc != NULL && count < 0) FAIL("move: %d hits", count);
+        }
+        return st;
+    }
+    case OP_SAVE: *is_const = 1; return w == NULL ? rg_world_save(NULL, NULL, 0, NULL) : do_save(in, fw);
+    case OP_RESTORE: return do_restore(in, fw);
+    case OP_HASH: *is_const = 1; return rg_world_hash(w, OUT(in, u64v));
     default: return RG_OK;
     }
 }
@@ -398,6 +598,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     op_name = "teardown";
     for (int k = 0; k < NW; k++) world_close(&W[k]);
+    for (int k = 0; k < 2; k++) {
+        free(slots[k].buf);
+        memset(&slots[k], 0, sizeof slots[k]);
+    }
     return 0;
 }
 

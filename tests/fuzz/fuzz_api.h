@@ -64,7 +64,9 @@ typedef struct fz_alloc {
 typedef struct fworld {
     rg_world *w;
     fz_alloc *al;              /* NULL: the default allocator */
-    int serial;                /* which world this is, over the input */
+    int serial;                /* which world this is, over the input (a restore makes anew) */
+    int identity;              /* whose handles it answers: its own serial, or after a restore
+                                  the saving world's (a clone, a rollback) */
     rg_body live[MAXB];
     int nlive;
     uint64_t spring[MAXS];
@@ -76,11 +78,14 @@ typedef struct fworld {
     int big;                   /* FUZZ_KNOWN_NO_RANGES: it left the tame envelope */
     int tag_known;
     uint32_t tag;
+    int presolve;              /* pre-solve hook set: its answers, bit by bit */
+    int presolve_calls;
 } fworld;
 
 typedef struct dead_handle {
     rg_body h;
     int serial;                /* the world that issued it */
+    int identity;
 } dead_handle;
 
 typedef struct snap {
@@ -104,6 +109,7 @@ int32_t int_arg(input *in);
 void *fz_allocf(void *user, void *ptr, size_t old_size, size_t new_size);
 int in_list(const rg_body *l, int n, uint64_t h);
 void world_issued(fworld *fw, rg_body h);
+void remember_dead(rg_body h, const fworld *fw);
 void body_gone(fworld *fw, rg_body h);
 void world_close(fworld *fw);
 fworld *pick_world(input *in);

@@ -141,10 +141,11 @@ int ndead, dead_next, next_serial;
 
 static uint32_t tag_of(uint64_t h) { return (uint32_t)(h >> 44); }
 
-static void remember_dead(rg_body h, int serial)
+void remember_dead(rg_body h, const fworld *fw)
 {
     dead[dead_next].h = h;
-    dead[dead_next].serial = serial;
+    dead[dead_next].serial = fw->serial;
+    dead[dead_next].identity = fw->identity;
     dead_next = (dead_next + 1) % NDEAD;
     if (ndead < NDEAD) ndead++;
 }
@@ -173,12 +174,13 @@ void world_issued(fworld *fw, rg_body h)
     if (h == 0) FAIL("a body handle of 0");
     if (in_list(fw->issued, fw->nissued, h)) FAIL("handle %llx issued twice by one world", (unsigned long long)h);
     for (int k = 0; k < NW; k++) {
-        if (&W[k] == fw || W[k].w == NULL) continue;
+        if (&W[k] == fw || W[k].w == NULL || W[k].identity == fw->identity) continue;
         if (in_list(W[k].issued, W[k].nissued, h) && !shared_tag_tolerated(fw, h))
             FAIL("handle %llx issued by two live worlds", (unsigned long long)h);
     }
     for (int k = 0; k < ndead; k++)
-        if (dead[k].h == h && (dead[k].serial == fw->serial || !shared_tag_tolerated(fw, h)))
+        if (dead[k].h == h && (dead[k].serial == fw->serial ||
+                               (dead[k].identity != fw->identity && !shared_tag_tolerated(fw, h))))
             FAIL("stale handle %llx issued again", (unsigned long long)h);
     if (fw->nissued < MAXISSUE) fw->issued[fw->nissued++] = h;
     if (!fw->tag_known) {
@@ -203,14 +205,14 @@ void body_gone(fworld *fw, rg_body h)
         } else {
             i++;
         }
-    remember_dead(h, fw->serial);
+    remember_dead(h, fw);
 }
 
 void world_close(fworld *fw)
 {
     if (fw->w == NULL) return;
     for (int i = 0; i < fw->nissued; i++)
-        if (in_list(fw->live, fw->nlive, fw->issued[i])) remember_dead(fw->issued[i], fw->serial);
+        if (in_list(fw->live, fw->nlive, fw->issued[i])) remember_dead(fw->issued[i], fw);
     rg_world_destroy(fw->w);
     if (fw->al != NULL) {
         if (fw->al->live_blocks != 0 || fw->al->live_bytes != 0)
@@ -383,7 +385,7 @@ static void check_world(fworld *fw, int was_step)
             FAIL("stale handle %llx valid in world %d", (unsigned long long)dead[k].h, fw->serial);
     }
     for (int o = 0; o < NW; o++) {
-        if (W[o].w == NULL || &W[o] == fw) continue;
+        if (W[o].w == NULL || &W[o] == fw || W[o].identity == fw->identity) continue;
         for (int k = 0; k < W[o].nlive; k++) {
             rg_body h = W[o].live[k];
             if (!shared_tag_tolerated(fw, h) && rg_body_is_valid(w, h))
