@@ -4,7 +4,7 @@
  * arguments (a call may pass a million, from table.unpack), table.unpack and string.byte push
  * as many results as asked, table.sort without a comparator runs n log n comparisons, and
  * tonumber or arithmetic on a string (the string metatable's __add and the rest) reads the
- * whole string.  Each wrapper calls the stock function and charges the meter by that count:
+ * whole string, and print writes it.  Each wrapper calls the stock function and charges the meter by that count:
  * a value moved, a comparison or a byte read is a unit. */
 #include <lauxlib.h>
 #include <lua.h>
@@ -68,6 +68,7 @@ void lcount_open(lua_State *L, const lpattern_meter *meter)
     lua_pushglobaltable(L);
     lcount_wrap(L, top + 1, "select", BY_ARGS, meter);
     lcount_wrap(L, top + 1, "tonumber", BY_STRINGS, meter);
+    lcount_wrap(L, top + 1, "print", BY_STRINGS, meter);   /* writes each string out */
     lua_getglobal(L, LUA_TABLIBNAME);
     lcount_wrap(L, top + 2, "unpack", BY_RESULTS, meter);
     lcount_wrap(L, top + 2, "sort", BY_SORT, meter);
