@@ -132,9 +132,13 @@ SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-fr
 CC_IS_CLANG := $(findstring clang,$(shell $(CC) --version 2>/dev/null | head -n 1))
 SAN_B := build/sanitize$(if $(CC_IS_CLANG),-clang)
 SAN_RT := $(if $(CC_IS_CLANG),libclang_rt.asan-$(shell uname -m).so,libasan.so)
+# clang links its runtime statically into executables only; linked as a shared library (as
+# gcc's is) the sanitized librigid.so names it, so programs built against it link too.
+comma := ,
+SAN_LINK := $(if $(CC_IS_CLANG),-shared-libasan -Wl$(comma)-rpath$(comma)$(shell $(CC) -print-runtime-dir))
 sanitize: deps
 	@$(MAKE) --no-print-directory test-all B=$(SAN_B) OPT=-O1 $(if $(CC_IS_CLANG),$(SAN_KNOWN_VARS)) \
-	  EXTRA_CFLAGS="$(SAN_FLAGS)" EXTRA_LDFLAGS="$(SAN_FLAGS)" \
+	  EXTRA_CFLAGS="$(SAN_FLAGS)" EXTRA_LDFLAGS="$(SAN_FLAGS) $(SAN_LINK)" \
 	  FFI_ENV="LD_PRELOAD=$$($(CC) -print-file-name=$(SAN_RT)) ASAN_OPTIONS=detect_leaks=0"
 
 # ---------------------------------------------------------------- install
