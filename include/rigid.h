@@ -18,9 +18,13 @@
  *   never becomes valid again in that world, and a handle from another world or a forged
  *   one is rejected (RG_ERR_STALE_HANDLE).
  * - Errors: every function validates its input in every build and returns a status
- *   (rg_status, below; functions returning a count return it >= 0 or a negative status).
- *   A call that returns an error changes nothing.  No input, however bad, crashes the
- *   library or puts a NaN into the world.
+ *   (rg_status, below; functions returning a count return it >= 0 or a negative status),
+ *   and rg_world_last_error(world) tells why the last call on that world failed.  A call
+ *   that returns an error changes nothing.  No input, however bad, crashes the library or
+ *   puts a NaN into the world.
+ * - Ranges: every real input has an accepted range, stated with the calls as RG_MIN_* and
+ *   RG_MAX_* constants (SI units; the same in the float and double builds, compared after
+ *   rounding to rg_real).  A value outside it, NaN or infinite is RG_ERR_INVALID_ARGUMENT.
  * - No global state: two worlds share nothing, and a world may move to another thread
  *   between calls.  The same calls give bit-identical results on any compiler, optimisation
  *   level and SIMD path.
@@ -98,6 +102,20 @@ enum { RG_MAX_BODIES = 16777215, RG_MAX_SPRINGS = 16777215 };
 
 /* Human-readable text for a status; never NULL. */
 RG_API const char *rg_status_string(rg_status s);
+/* Why the last call on this world failed, naming the function, the argument and the rule:
+ *   "rg_body_set_circle: radius 1e+08 is above RG_MAX_SHAPE_SIZE (1e+07)"
+ *   "rg_body_set_velocity: body 0x1000001 is stale (destroyed, forged or of another world)"
+ *   "rg_world_step: dt -1 is not > 0"      "rg_body_set_velocity: velocity.x is NaN"
+ *   "rg_world_step: out of memory (integrator scratch)"
+ *   "rg_world_set_gravity: locked: called from inside a step's callback"
+ * and "" when that call succeeded.  Every call that takes a world sets or clears it,
+ * getters, queries and counts too (a call that succeeds writes it only when it was set, so
+ * successful calls only read it).  The text lives in the world, at most 199 bytes, until
+ * the next call on it or its destruction; copy it to keep it.  Never NULL: for a NULL world
+ * it is "rg_world_last_error: world is NULL".  A call given a NULL world returns
+ * RG_ERR_INVALID_ARGUMENT and has no world to store a reason in, nor does a failed
+ * rg_world_create*. */
+RG_API const char *rg_world_last_error(const rg_world *world);
 /* MAJOR*10000 + MINOR*100 + PATCH of the loaded library; equals RG_VERSION. */
 RG_API int32_t rg_version(void);
 /* sizeof(rg_real) of the loaded library: 4 (float build) or 8 (double build). */
@@ -123,28 +141,39 @@ RG_API rg_status rg_world_create_with_allocator(rg_alloc_fn alloc, void *user,
 /* Frees the world and everything in it.  NULL is a no-op. */
 RG_API void rg_world_destroy(rg_world *world);
 
-/* Gravity as an acceleration in m/s^2, applied to dynamic bodies times their gravity scale. */
+/* Largest |component| of gravity, m/s^2. */
+#define RG_MAX_ACCELERATION 1.0e6
+/* Largest |component| of a force in N (wind, applied forces, surface friction's normal
+ * force, an applied force summed over a step) and of an impulse in N*s. */
+#define RG_MAX_FORCE 1.0e12
+
+/* Gravity as an acceleration in m/s^2 (each component within +-RG_MAX_ACCELERATION),
+ * applied to dynamic bodies times their gravity scale. */
 RG_API rg_status rg_world_set_gravity(rg_world *world, rg_vec2 gravity);
 RG_API rg_status rg_world_get_gravity(const rg_world *world, rg_vec2 *out_gravity);
-/* Wind as a force in N: the same force on every dynamic body (a light body feels more). */
+/* Wind as a force in N (each component within +-RG_MAX_FORCE): the same force on every
+ * dynamic body (a light body feels more). */
 RG_API rg_status rg_world_set_wind(rg_world *world, rg_vec2 force);
 RG_API rg_status rg_world_get_wind(const rg_world *world, rg_vec2 *out_force);
 /* One of RG_INTEGRATOR_*. */
 RG_API rg_status rg_world_set_integrator(rg_world *world, int32_t integrator);
 RG_API rg_status rg_world_get_integrator(const rg_world *world, int32_t *out_integrator);
 
-/* Exactly one step of length dt seconds (dt > 0 and finite):
+/* Longest step, s (rg_world_step, rg_world_set_fixed_step). */
+#define RG_MAX_DT 10.0
+
+/* Exactly one step of length dt seconds (0 < dt <= RG_MAX_DT):
  * forces -> integrate -> speed limits -> collide -> events -> clear applied forces. */
 RG_API rg_status rg_world_step(rg_world *world, rg_real dt);
 
-/* The step rg_world_advance takes (dt > 0, finite) and the most steps one advance may take
- * (>= 1).  Changing them keeps the accumulated time. */
+/* The step rg_world_advance takes (0 < dt <= RG_MAX_DT) and the most steps one advance may
+ * take (>= 1).  Changing them keeps the accumulated time. */
 RG_API rg_status rg_world_set_fixed_step(rg_world *world, rg_real dt, int32_t max_steps_per_advance);
 RG_API rg_status rg_world_get_fixed_step(const rg_world *world, rg_real *out_dt,
                                          int32_t *out_max_steps);
-/* Adds frame_time (>= 0, finite, seconds) to an accumulator and takes as many fixed steps
- * as fit, at most max_steps_per_advance; time beyond that is dropped (the game slows down
- * instead of spiralling).  *out_steps (may be NULL) receives the number of steps taken.
+/* Adds frame_time (>= 0, any finite number of seconds) to an accumulator and takes as many
+ * fixed steps as fit, at most max_steps_per_advance; time beyond that is dropped (the game
+ * slows down instead of spiralling).  *out_steps (may be NULL) receives the number of steps taken.
  * The state after k fixed steps is bit-identical whatever frame times fed the accumulator.
  * The contact events read after it (rg_world_get_contact_events) are those of every step it
  * took, in step order; none when it took no step.  Their buffer grows as needed and then
@@ -168,9 +197,18 @@ RG_API int32_t rg_world_spring_count(const rg_world *world);
 
 /* ---------------------------------------------------------------- bodies */
 
-/* type is one of RG_BODY_*.  mass (kg) must be > 0 and finite for a dynamic body; it is
- * ignored (may be anything finite) for the others.  position in m.  Defaults: velocity 0,
- * gravity scale 1, no drag, no surface friction, no speed limits. */
+/* Largest |component| of a position, an anchor and a rest length, m. */
+#define RG_MAX_COORD 1.0e9
+/* Largest |component| of a velocity and largest speed limit, m/s. */
+#define RG_MAX_SPEED 1.0e6
+/* Mass of a dynamic body, kg. */
+#define RG_MIN_MASS 1.0e-6
+#define RG_MAX_MASS 1.0e9
+
+/* type is one of RG_BODY_*.  mass (kg) must be in [RG_MIN_MASS, RG_MAX_MASS] for a dynamic
+ * body; it is ignored (may be anything finite) for the others.  position in m, each
+ * component within +-RG_MAX_COORD.  Defaults: velocity 0, gravity scale 1, no drag, no
+ * surface friction, no speed limits. */
 RG_API rg_status rg_body_create(rg_world *world, int32_t type, rg_real mass, rg_vec2 position,
                                 rg_body *out_body);
 /* Destroys the body and the springs attached to it (their handles go stale). */
@@ -181,11 +219,13 @@ RG_API int32_t rg_body_is_valid(const rg_world *world, rg_body body);
 RG_API rg_status rg_body_get_type(const rg_world *world, rg_body body, int32_t *out_type);
 /* Mass in kg; 0 for static and kinematic bodies. */
 RG_API rg_status rg_body_get_mass(const rg_world *world, rg_body body, rg_real *out_mass);
-/* New mass in kg (> 0, finite) of a dynamic body; RG_ERR_INVALID_ARGUMENT for the others. */
+/* New mass in kg ([RG_MIN_MASS, RG_MAX_MASS]) of a dynamic body; RG_ERR_INVALID_ARGUMENT
+ * for the others. */
 RG_API rg_status rg_body_set_mass(rg_world *world, rg_body body, rg_real mass);
 
-/* Position in m, velocity in m/s.  A static body has no velocity: setting a non-zero one
- * is RG_ERR_INVALID_ARGUMENT. */
+/* Position in m (each component within +-RG_MAX_COORD), velocity in m/s (each within
+ * +-RG_MAX_SPEED).  A static body has no velocity: setting a non-zero one is
+ * RG_ERR_INVALID_ARGUMENT. */
 RG_API rg_status rg_body_get_position(const rg_world *world, rg_body body, rg_vec2 *out);
 RG_API rg_status rg_body_set_position(rg_world *world, rg_body body, rg_vec2 position);
 RG_API rg_status rg_body_get_velocity(const rg_world *world, rg_body body, rg_vec2 *out);
@@ -195,23 +235,36 @@ RG_API rg_status rg_body_set_velocity(rg_world *world, rg_body body, rg_vec2 vel
  * 0 before the first step and for non-dynamic bodies. */
 RG_API rg_status rg_body_get_acceleration(const rg_world *world, rg_body body, rg_vec2 *out);
 
-/* A force in N held constant over the next step, then cleared.  Forces add up.  No effect
- * on static and kinematic bodies (infinite mass), which is not an error. */
+/* A force in N held constant over the next step, then cleared.  Forces add up, each
+ * component of the sum within +-RG_MAX_FORCE (one that would leave it is
+ * RG_ERR_INVALID_ARGUMENT).  No effect on static and kinematic bodies (infinite mass), which
+ * is not an error. */
 RG_API rg_status rg_body_apply_force(rg_world *world, rg_body body, rg_vec2 force);
-/* An impulse in N*s: velocity += impulse / mass at once.  No effect on non-dynamic bodies. */
+/* An impulse in N*s (each component within +-RG_MAX_FORCE): velocity += impulse / mass at
+ * once; a velocity that would leave +-RG_MAX_SPEED is RG_ERR_INVALID_ARGUMENT.  No effect on
+ * non-dynamic bodies. */
 RG_API rg_status rg_body_apply_impulse(rg_world *world, rg_body body, rg_vec2 impulse);
-/* Multiplies world gravity for this body (any finite value; 0 floats, -1 falls up). */
+/* Largest |gravity scale|. */
+#define RG_MAX_GRAVITY_SCALE 1.0e3
+/* Multiplies world gravity for this body (within +-RG_MAX_GRAVITY_SCALE; 0 floats, -1 falls
+ * up). */
 RG_API rg_status rg_body_set_gravity_scale(rg_world *world, rg_body body, rg_real scale);
+/* Largest drag coefficient: linear in kg/s, quadratic in kg/m. */
+#define RG_MAX_DRAG 1.0e9
+/* Largest friction coefficient (surface friction's mu, a body's contact friction). */
+#define RG_MAX_FRICTION 1.0e3
 /* Air drag F = -(linear + quadratic * |v|) * v, with linear in kg/s and quadratic in kg/m
- * (quadratic = 1/2 * rho * Cd * A); both >= 0 and finite. */
+ * (quadratic = 1/2 * rho * Cd * A); both in [0, RG_MAX_DRAG]. */
 RG_API rg_status rg_body_set_drag(rg_world *world, rg_body body, rg_real linear, rg_real quadratic);
-/* Surface friction F = -mu * normal_force * v/|v| (mu >= 0, normal_force >= 0 in N): a body
- * sliding on a surface, as seen from above.  It brings the body exactly to rest, never
- * reverses it, and holds it at rest against any smaller force (static friction). */
+/* Surface friction F = -mu * normal_force * v/|v| (mu in [0, RG_MAX_FRICTION], normal_force
+ * in [0, RG_MAX_FORCE] N): a body sliding on a surface, as seen from above.  It brings the
+ * body exactly to rest, never reverses it, and holds it at rest against any smaller force
+ * (static friction). */
 RG_API rg_status rg_body_set_surface_friction(rg_world *world, rg_body body, rg_real mu,
                                               rg_real normal_force);
 /* After each step: |v| < min_speed -> v = 0 exactly; |v| > max_speed -> v scaled to
- * max_speed.  max_speed = 0 means no limit; both >= 0, and max_speed >= min_speed unless 0. */
+ * max_speed.  max_speed = 0 means no limit; both in [0, RG_MAX_SPEED], and max_speed >=
+ * min_speed unless 0. */
 RG_API rg_status rg_body_set_speed_limits(rg_world *world, rg_body body, rg_real min_speed,
                                           rg_real max_speed);
 /* An opaque 64-bit value for the caller (an entity id, an index); 0 by default. */
@@ -226,10 +279,15 @@ RG_API rg_status rg_body_get_user_data(const rg_world *world, rg_body body, uint
 
 /* ---------------------------------------------------------------- springs */
 
+/* Largest spring stiffness, N/m, and damping, N*s/m. */
+#define RG_MAX_STIFFNESS 1.0e9
+#define RG_MAX_DAMPING 1.0e9
+
 /* A damped spring between two points: F = -(stiffness*(|d| - rest_length) +
  * damping*(dv . d/|d|)) * d/|d| on a, the opposite on b, where d = pos(a) - pos(b) and dv
- * the relative velocity.  b = 0 ties a to the fixed world point `anchor` (ignored
- * otherwise).  stiffness in N/m, damping in N*s/m, rest_length in m, all >= 0 and finite.
+ * the relative velocity.  b = 0 ties a to the fixed world point `anchor` (each component
+ * within +-RG_MAX_COORD; ignored otherwise).  stiffness in N/m, in [0, RG_MAX_STIFFNESS];
+ * damping in N*s/m, in [0, RG_MAX_DAMPING]; rest_length in m, in [0, RG_MAX_COORD].
  * A zero rest length gives F = -stiffness * d exactly.  Evaluated at every stage of a
  * multi-stage integrator.  a and b must be distinct live bodies of this world. */
 RG_API rg_status rg_spring_create(rg_world *world, rg_body a, rg_body b, rg_vec2 anchor,
@@ -264,13 +322,15 @@ RG_API int32_t rg_spring_is_valid(const rg_world *world, uint64_t spring);
 
 enum { RG_SHAPE_NONE = 0, RG_SHAPE_CIRCLE = 1, RG_SHAPE_AABB = 2 };
 
-/* Largest radius or half extent a shape may have, in m. */
+/* Smallest and largest radius or half extent a shape may have, in m. */
+#define RG_MIN_SHAPE_SIZE 1.0e-6
 #define RG_MAX_SHAPE_SIZE 1.0e7
 
-/* Gives the body a circle of radius r in m (0 < r <= RG_MAX_SHAPE_SIZE), replacing any
- * shape it had.  Static, kinematic and dynamic bodies may all have shapes. */
+/* Gives the body a circle of radius r in m (RG_MIN_SHAPE_SIZE <= r <= RG_MAX_SHAPE_SIZE),
+ * replacing any shape it had.  Static, kinematic and dynamic bodies may all have shapes. */
 RG_API rg_status rg_body_set_circle(rg_world *world, rg_body body, rg_real radius);
-/* Gives the body an axis-aligned box of half extents in m (each in (0, RG_MAX_SHAPE_SIZE]). */
+/* Gives the body an axis-aligned box of half extents in m (each in [RG_MIN_SHAPE_SIZE,
+ * RG_MAX_SHAPE_SIZE]). */
 RG_API rg_status rg_body_set_aabb(rg_world *world, rg_body body, rg_real half_width,
                                   rg_real half_height);
 /* Removes the body's shape; its touching contacts end (end events after the next step). */
@@ -282,8 +342,8 @@ RG_API rg_status rg_body_get_shape(const rg_world *world, rg_body body, int32_t 
 
 /* Materials.  A touching pair uses the larger of the two restitutions and the geometric mean
  * of the two frictions.  Defaults: restitution 0, friction 0.6.  restitution in [0, 1]
- * (0: no bounce, 1: elastic); friction >= 0 and finite (the Coulomb coefficient: the
- * tangential impulse is at most friction * normal impulse). */
+ * (0: no bounce, 1: elastic); friction in [0, RG_MAX_FRICTION] (the Coulomb coefficient:
+ * the tangential impulse is at most friction * normal impulse). */
 RG_API rg_status rg_body_set_restitution(rg_world *world, rg_body body, rg_real restitution);
 RG_API rg_status rg_body_get_restitution(const rg_world *world, rg_body body, rg_real *out);
 RG_API rg_status rg_body_set_friction(rg_world *world, rg_body body, rg_real mu);
@@ -318,7 +378,8 @@ RG_API rg_status rg_body_is_grounded(const rg_world *world, rg_body body, int32_
 /* enabled 1 (the default) or 0; disabling wakes every sleeping body. */
 RG_API rg_status rg_world_set_sleeping(rg_world *world, int32_t enabled);
 RG_API rg_status rg_world_get_sleeping(const rg_world *world, int32_t *out_enabled);
-/* speed in m/s (>= 0), time in s (> 0).  Defaults 0.05 m/s and 0.5 s. */
+/* speed in m/s (in [0, RG_MAX_SPEED]), time in s (> 0, finite).  Defaults 0.05 m/s and
+ * 0.5 s. */
 RG_API rg_status rg_world_set_sleep_thresholds(rg_world *world, rg_real speed, rg_real time);
 RG_API rg_status rg_world_get_sleep_thresholds(const rg_world *world, rg_real *out_speed,
                                                rg_real *out_time);
@@ -340,10 +401,11 @@ RG_API rg_status rg_world_set_solver_iterations(rg_world *world, int32_t velocit
                                                 int32_t position);
 RG_API rg_status rg_world_get_solver_iterations(const rg_world *world, int32_t *out_velocity,
                                                 int32_t *out_position);
-/* Contact tuning: slop in m (>= 0, default 0.005): penetration left uncorrected so resting
- * contacts stay touching; bias_rate in (0, 1] (default 0.2): fraction of the remaining
- * penetration removed per step; max_push in m/s (> 0, default 2): fastest correction;
- * restitution_threshold in m/s (>= 0, default 1): slower impacts do not bounce. */
+/* Contact tuning: slop in m ([0, RG_MAX_SHAPE_SIZE], default 0.005): penetration left
+ * uncorrected so resting contacts stay touching; bias_rate in (0, 1] (default 0.2): fraction
+ * of the remaining penetration removed per step; max_push in m/s ((0, RG_MAX_SPEED], default
+ * 2): fastest correction; restitution_threshold in m/s ([0, RG_MAX_SPEED], default 1):
+ * slower impacts do not bounce. */
 RG_API rg_status rg_world_set_contact_tuning(rg_world *world, rg_real slop, rg_real bias_rate,
                                              rg_real max_push, rg_real restitution_threshold);
 RG_API rg_status rg_world_get_contact_tuning(const rg_world *world, rg_real *out_slop,
@@ -388,7 +450,11 @@ typedef struct rg_contact_event {
 RG_API int32_t rg_world_get_contact_events(const rg_world *world, rg_contact_event *out,
                                            int32_t capacity);
 
-/* ---- queries: they see bodies as they are now, also before the first step */
+/* ---- queries: they see bodies as they are now, also before the first step.  Their points,
+ * bounds and translations (rays, boxes, points, shape casts) may reach further than bodies
+ * do, each component within +-RG_MAX_QUERY_COORD m, so that origin + t * translation stays
+ * finite. */
+#define RG_MAX_QUERY_COORD 1.0e12
 
 typedef struct rg_ray_hit {
     rg_body body;
@@ -401,13 +467,14 @@ typedef struct rg_ray_hit {
 /* The closest shape along origin + t * translation, t in [0, 1], among bodies with
  * (category & mask) != 0 (sensors too).  Shapes that contain the origin are ignored.  Ties
  * go to the lower handle.  Returns 1 and fills *out_hit on a hit, 0 when nothing is hit, < 0
- * (RG_ERR_INVALID_ARGUMENT) for NULL world or out_hit or a non-finite origin or translation. */
+ * (RG_ERR_INVALID_ARGUMENT) for NULL world or out_hit or an origin or translation out of
+ * range. */
 RG_API int32_t rg_world_raycast(const rg_world *world, rg_vec2 origin, rg_vec2 translation,
                                 uint32_t mask, rg_ray_hit *out_hit);
 /* Bodies whose shape's bounding box overlaps [lower, upper] (touching counts) and whose
  * (category & mask) != 0; returns the count and copies min(count, capacity) handles to out,
- * in ascending handle order.  < 0 (RG_ERR_INVALID_ARGUMENT) for NULL world, non-finite
- * bounds, lower > upper in x or y, capacity < 0, or out NULL with capacity > 0. */
+ * in ascending handle order.  < 0 (RG_ERR_INVALID_ARGUMENT) for NULL world, bounds out of
+ * range, lower > upper in x or y, capacity < 0, or out NULL with capacity > 0. */
 RG_API int32_t rg_world_query_aabb(const rg_world *world, rg_vec2 lower, rg_vec2 upper,
                                    uint32_t mask, rg_body *out, int32_t capacity);
 
@@ -501,9 +568,10 @@ RG_API int32_t rg_world_cast_shape(const rg_world *world, int32_t shape, rg_vec2
    stopped it (within rounding; never overlapping it by more than the slop), and a box or
    circle sliding over a row of flush boxes (a tile floor) does not catch on their seams;
    SLIDE takes at most 8 legs.  *out_count (may be NULL) gets the number of hits, of which
-   min(count, capacity) are copied.  The body must have a shape (else
-   RG_ERR_INVALID_ARGUMENT); it is woken, and rendering interpolates from where it was at
-   the last step (the previous position is kept). */
+   min(count, capacity) are copied.  target is a position (each component within
+   +-RG_MAX_COORD).  The body must have a shape (else RG_ERR_INVALID_ARGUMENT); it is woken,
+   and rendering interpolates from where it was at the last step (the previous position is
+   kept). */
 RG_API rg_status rg_body_move(rg_world *world, rg_body body, rg_vec2 target, uint32_t mask,
                               int32_t response, rg_vec2 *out_position, rg_ray_hit *out_hits,
                               int32_t capacity, int32_t *out_count);

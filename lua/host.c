@@ -9,6 +9,7 @@
 #include <lauxlib.h>
 #include <lua.h>
 
+#include "lhtml.h"
 #include "lrigid.h"
 #include "lsandbox.h"
 #include "lsvg.h"
@@ -22,7 +23,9 @@ static const char usage[] =
     "usage: rigid SCRIPT.lua [options] [-- script arguments]\n"
     "  --steps N      fixed steps a scene runs (default: its `duration` global, else 10 s)\n"
     "  --seconds S    simulated seconds a scene runs\n"
-    "  --svg FILE     draw the world (bodies, trails, contact points) into FILE\n"
+    "  --svg FILE     draw the world at the end as rg_world_draw does, with the paths\n"
+    "                 that led there, into FILE (SVG)\n"
+    "  --html FILE    record the run into FILE, a replay viewer (one self-contained page)\n"
     "  --memory MiB   memory cap of the script, physics included (default 64)\n"
     "  --budget N     instructions per call into the script: the main chunk, setup, each\n"
     "                 frame (update and the contact calls after its step share one) and\n"
@@ -36,6 +39,7 @@ typedef struct host {
     long long steps;         /* -1: not given */
     double seconds;          /* < 0: not given */
     const char *svg;
+    const char *html;
     long long memory_mib;
     long long budget;
     int nargs;
@@ -44,6 +48,7 @@ typedef struct host {
     lua_State *L;
     lsandbox *sb;
     lsvg *rec;               /* NULL unless --svg */
+    lhtml *replay;           /* NULL unless --html */
     int world_ref;           /* the world drawn and stepped */
     int ctor_ref;            /* rigid.world as it was before the script ran */
     long long steps_taken;
@@ -77,7 +82,7 @@ static int parse_args(host *h, int argc, char **argv)
             exit(0);
         } else if (strcmp(a, "--steps") == 0 || strcmp(a, "--memory") == 0 ||
                    strcmp(a, "--budget") == 0 || strcmp(a, "--seconds") == 0 ||
-                   strcmp(a, "--svg") == 0) {
+                   strcmp(a, "--svg") == 0 || strcmp(a, "--html") == 0) {
             if (val == NULL) {
                 fprintf(stderr, "rigid: %s needs a value\n%s", a, usage);
                 return 0;
@@ -85,6 +90,8 @@ static int parse_args(host *h, int argc, char **argv)
             i++;
             if (strcmp(a, "--svg") == 0) {
                 h->svg = val;
+            } else if (strcmp(a, "--html") == 0) {
+                h->html = val;
             } else if (strcmp(a, "--seconds") == 0) {
                 char *end;
                 h->seconds = strtod(val, &end);
@@ -125,19 +132,12 @@ static void host_charge(lua_State *L, void *ud, double units)
     lsandbox_charge(L, h->sb, units);
 }
 
-static void record_contacts(host *h, lua_State *L, int world_idx)
+/* One frame of the drawn world for --svg and --html. */
+static void record(host *h, lua_State *L, int world_idx, double t)
 {
-    rg_world *w = lrigid_toworld(L, world_idx);
-    rg_contact_event *ev;
-    int32_t n, i;
-    if (h->rec == NULL || w == NULL) return;
-    n = rg_world_get_contact_events(w, NULL, 0);
-    if (n <= 0 || (ev = (rg_contact_event *)malloc((size_t)n * sizeof *ev)) == NULL) return;
-    n = rg_world_get_contact_events(w, ev, n);
-    for (i = 0; i < n; i++)
-        if (ev[i].kind == RG_CONTACT_BEGIN && !ev[i].sensor)
-            lsvg_contact(h->rec, (double)ev[i].point.x, (double)ev[i].point.y);
-    free(ev);
+    world_idx = lua_absindex(L, world_idx);
+    if (h->rec != NULL) lsvg_record(h->rec, L, world_idx, t);
+    if (h->replay != NULL) lhtml_record(h->replay, L, world_idx, t);
 }
 
 static double fixed_dt(lua_State *L, int world_idx)
@@ -166,10 +166,7 @@ static void host_after_step(lua_State *L, void *ud, int world_idx, int steps)
     if (!same) return;
     h->steps_taken += steps;
     h->sim_time += steps * fixed_dt(L, world_idx);
-    if (h->rec != NULL) {
-        lsvg_record(h->rec, L, world_idx, h->sim_time);
-        record_contacts(h, L, world_idx);
-    }
+    record(h, L, world_idx, h->sim_time);
 }
 
 /* ---------------------------------------------------------------- running */
@@ -231,10 +228,7 @@ static int scene_step(host *h, double dt)
     }
     h->steps_taken += taken;
     h->sim_time += taken * dt;
-    if (h->rec != NULL) {
-        lsvg_record(h->rec, L, -1, h->sim_time);
-        record_contacts(h, L, lua_gettop(L));
-    }
+    record(h, L, -1, h->sim_time);
     has_contact = lsandbox_getfunction(L, "contact");
     if (has_contact) lua_pop(L, 1);
     if (has_contact) {
@@ -276,6 +270,7 @@ static int run_scene(host *h)
             lsvg_free(h->rec);
             h->rec = lsvg_new();
         }
+        lhtml_restart(h->replay);
     }
     /* The world comes from the constructor the module had before the script ran. */
     lua_rawgeti(L, LUA_REGISTRYINDEX, h->ctor_ref);
@@ -314,11 +309,9 @@ static int run_scene(host *h)
                                                                         : DEFAULT_SECONDS) / dt - 1e-9);
         n = want < MAX_STEPS ? (long long)want : (long long)MAX_STEPS;
     }
-    if (h->rec != NULL) {
-        lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
-        lsvg_record(h->rec, L, -1, 0);
-        lua_pop(L, 1);
-    }
+    lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
+    record(h, L, -1, 0);
+    lua_pop(L, 1);
     for (k = 0; k < n; k++) {
         double d;
         lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
@@ -338,12 +331,14 @@ static int run_scene(host *h)
     return 1;
 }
 
-static void write_picture(host *h, int ok)
+/* Writes what --svg and --html asked for; 0 when one cannot be written. */
+static int write_picture(host *h, int ok)
 {
-    char title[512], sub[512];
+    char title[512], sub[768], caption[300];
     const char *base = strrchr(h->script, '/');
     int bodies = 0;
-    if (h->rec == NULL) return;
+    int written = 1;
+    if (h->rec == NULL && h->replay == NULL) return 1;
     if (h->world_ref != LUA_NOREF) {
         rg_world *w;
         lua_rawgeti(h->L, LUA_REGISTRYINDEX, h->world_ref);
@@ -352,13 +347,34 @@ static void write_picture(host *h, int ok)
         lua_pop(h->L, 1);
     }
     snprintf(title, sizeof title, "rigid: %s", base != NULL ? base + 1 : h->script);
-    snprintf(sub, sizeof sub, "%lld steps, %.2f s simulated, %d bodies at the end, %d contacts%s",
-             h->steps_taken, h->sim_time, bodies, lsvg_contact_count(h->rec),
-             ok ? "" : " (the script failed: this is the world it left)");
-    if (lsvg_write(h->rec, h->svg, title, sub) != 0)
-        fprintf(stderr, "rigid: cannot write %s: %s\n", h->svg, strerror(errno));
-    else
-        printf("rigid: picture written to %s\n", h->svg);
+    /* A scene may say what its picture shows: a global string `caption`. */
+    caption[0] = '\0';
+    lua_pushglobaltable(h->L);
+    lua_pushstring(h->L, "caption");
+    lua_rawget(h->L, -2);
+    if (lua_type(h->L, -1) == LUA_TSTRING) snprintf(caption, sizeof caption, "%s; ", lua_tostring(h->L, -1));
+    lua_pop(h->L, 2);
+    if (h->rec != NULL) {
+        snprintf(sub, sizeof sub, "%s%lld steps, %.2f s simulated, %d bodies at the end%s", caption,
+                 h->steps_taken, h->sim_time, bodies, ok ? "" : " (the script failed: this is the world it left)");
+        if (lsvg_write(h->rec, h->svg, title, sub) != 0) {
+            fprintf(stderr, "rigid: cannot write %s: %s\n", h->svg, strerror(errno));
+            written = 0;
+        } else
+            printf("rigid: picture written to %s\n", h->svg);
+    }
+    if (h->replay != NULL) {
+        snprintf(sub, sizeof sub, "%s%lld steps, %.2f s simulated, %d bodies at the end%s", caption,
+                 h->steps_taken, h->sim_time, bodies,
+                 ok ? "" : " (the script failed: the last frame is the world it left)");
+        if (lhtml_write(h->replay, h->html, title, sub) != 0) {
+            fprintf(stderr, "rigid: cannot write %s: %s\n", h->html, strerror(errno));
+            written = 0;
+        } else {
+            printf("rigid: replay of %d frames written to %s\n", lhtml_frames(h->replay), h->html);
+        }
+    }
+    return written;
 }
 
 int main(int argc, char **argv)
@@ -388,6 +404,15 @@ int main(int argc, char **argv)
     h.ctor_ref = luaL_ref(L, LUA_REGISTRYINDEX);
     lua_pop(L, 1);
     if (h.svg != NULL) h.rec = lsvg_new();
+    if (h.html != NULL) {
+        if ((h.replay = lhtml_new()) == NULL) {
+            fprintf(stderr, "rigid: out of memory for --html\n");
+            lsandbox_close(L, h.sb);
+            lsvg_free(h.rec);
+            return 1;
+        }
+        lhtml_capture_print(L, h.replay);
+    }
     h.hooks.charge = host_charge;
     h.hooks.after_step = host_after_step;
     h.hooks.ud = &h;
@@ -410,7 +435,7 @@ int main(int argc, char **argv)
         }
     }
     lua_settop(L, 0);
-    write_picture(&h, ok);
+    if (!write_picture(&h, ok)) ok = 0;
     if (ok)
         fprintf(stderr, "rigid: %s: %lld steps (%.2f s simulated) in %.3f s CPU, peak memory %.2f MiB\n",
                 h.script, h.steps_taken, h.sim_time, (double)(clock() - t0) / CLOCKS_PER_SEC,
@@ -418,5 +443,6 @@ int main(int argc, char **argv)
     lrigid_sethooks(L, NULL);
     lsandbox_close(L, h.sb);
     lsvg_free(h.rec);
+    lhtml_free(h.replay);
     return ok ? 0 : 1;
 }

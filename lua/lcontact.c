@@ -73,17 +73,24 @@ static int lcontact_pass_through(lua_State *L)
 static const char *const lcontact_responses[] = { "slide", "touch", "cross", NULL };
 static const char *const lcontact_move_options[] = { "mask", "response", NULL };
 
-/* body:move(tx, ty [, { mask =, response = "slide" | "touch" | "cross" }]) --> x, y, hits */
+/* Room for the hits of one move: SLIDE meets at most 8 surfaces and TOUCH one; a CROSS that
+ * crosses more is made again with room for all. */
+#define LCONTACT_HITS 16
+
+/* body:move(tx, ty [, { mask =, response = "slide" | "touch" | "cross" }]) --> x, y, hits.
+ * A CROSS lands on its target exactly, so one back to the start restores the position bit
+ * for bit before the second try, and keeps the position rendering interpolates from
+ * (rg_body_set_position would not). */
 static int lcontact_move(lua_State *L)
 {
-    const char *what = "move";
+    const char *what = "move", *hint = "a body with a shape and a finite target";
     lbody *b = lbody_check(L, 1);
     rg_world *w = lbody_world_of(L, b);
-    rg_vec2 target = lcheck_vec2(L, 2), end;
+    rg_vec2 target = lcheck_vec2(L, 2), start, end;
     lua_Integer mask = 0xFFFFFFFF;
     int response = RG_MOVE_SLIDE;
-    int32_t n = 0, i;
-    rg_ray_hit *hits;
+    int32_t n = 0, cap = LCONTACT_HITS, i;
+    rg_ray_hit room[LCONTACT_HITS], *hits = room;
     if (!lua_isnoneornil(L, 4)) {
         luaL_checktype(L, 4, LUA_TTABLE);
         lcheck_option_names(L, 4, lcontact_move_options, what);
@@ -92,20 +99,17 @@ static int lcontact_move(lua_State *L)
     }
     lua_settop(L, 1);
     lua_getiuservalue(L, 1, LBODY_UV_WORLD);   /* 2: the world value */
-    /* room for the hits first (a slide meets at most 8 surfaces; a cross is counted by a
-     * first call that copies none, which changes nothing the second call reads) */
-    if (response == RG_MOVE_CROSS) {
-        rg_vec2 p;
-        LCHECK(L, rg_body_get_position(w, b->h, &p), what, NULL);
-        LCHECK(L, rg_body_move(w, b->h, target, (uint32_t)mask, response, NULL, NULL, 0, &n), what,
-               "a body with a shape and a finite target");
-        LCHECK(L, rg_body_set_position(w, b->h, p), what, NULL);
-    } else {
-        n = 8;
+    LCHECK(L, rg_body_get_position(w, b->h, &start), what, NULL);
+    LCHECK(L, rg_body_move(w, b->h, target, (uint32_t)mask, response, &end, hits, cap, &n), what,
+           hint);
+    if (n > cap) {
+        LCHECK(L, rg_body_move(w, b->h, start, 0, RG_MOVE_CROSS, NULL, NULL, 0, NULL), what, NULL);
+        hits = (rg_ray_hit *)lua_newuserdatauv(L, (size_t)n * sizeof *hits, 0);
+        cap = n;
+        LCHECK(L, rg_body_move(w, b->h, target, (uint32_t)mask, response, &end, hits, cap, &n),
+               what, hint);
+        if (n > cap) n = cap;   /* the same path crosses the same shapes */
     }
-    hits = (rg_ray_hit *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *hits, 0);
-    LCHECK(L, rg_body_move(w, b->h, target, (uint32_t)mask, response, &end, hits, n, &n), what,
-           "a body with a shape and a finite target");
     lworld_charge(L, rg_world_body_count(w));
     lcheck_pushvec2(L, end);
     lua_createtable(L, n, 0);

@@ -56,6 +56,21 @@ static int lquery_events(lua_State *L)
     return 1;
 }
 
+/* The returns of world:raycast, cast_circle and cast_box for a query that returned r:
+ * body, x, y, nx, ny, fraction, or nil. */
+static int lquery_returnhit(lua_State *L, int32_t r, const rg_ray_hit *hit)
+{
+    if (r == 0) {
+        lua_pushnil(L);
+        return 1;
+    }
+    lbody_push(L, 1, hit->body);
+    lcheck_pushvec2(L, hit->point);
+    lcheck_pushvec2(L, hit->normal);
+    lcheck_pushreal(L, hit->fraction);
+    return 6;
+}
+
 static int lquery_raycast(lua_State *L)
 {
     rg_world *w = lworld_checkopen(L, 1);
@@ -65,15 +80,7 @@ static int lquery_raycast(lua_State *L)
     int32_t r = rg_world_raycast(w, o, d, mask, &hit);
     if (r < 0) return lcheck_status(L, r, "raycast", NULL);
     lworld_charge(L, rg_world_body_count(w));
-    if (r == 0) {
-        lua_pushnil(L);
-        return 1;
-    }
-    lbody_push(L, 1, hit.body);
-    lcheck_pushvec2(L, hit.point);
-    lcheck_pushvec2(L, hit.normal);
-    lcheck_pushreal(L, hit.fraction);
-    return 6;
+    return lquery_returnhit(L, r, &hit);
 }
 
 static int lquery_aabb(lua_State *L)
@@ -151,36 +158,29 @@ static int lquery_point(lua_State *L)
 
 /* world:cast_circle(r, x, y, dx, dy [, mask]) and world:cast_box(hw, hh, x, y, dx, dy
  * [, mask]): the returns of world:raycast. */
-static int lquery_cast(lua_State *L, int32_t shape, rg_vec2 size, int at, const char *what)
+static int lquery_cast(lua_State *L, int32_t shape, rg_vec2 size, int at, const char *what,
+                       const char *hint)
 {
     rg_world *w = lworld_checkopen(L, 1);
     rg_vec2 o = lcheck_vec2(L, at), d = lcheck_vec2(L, at + 2);
     uint32_t mask = lcheck_optmask(L, at + 4);
     rg_ray_hit hit;
     int32_t r = rg_world_cast_shape(w, shape, size, o, d, mask, &hit);
-    if (r < 0) return lcheck_status(L, r, what, NULL);
+    if (r < 0) return lcheck_status(L, r, what, hint);
     lworld_charge(L, rg_world_body_count(w));
-    if (r == 0) {
-        lua_pushnil(L);
-        return 1;
-    }
-    lbody_push(L, 1, hit.body);
-    lcheck_pushvec2(L, hit.point);
-    lcheck_pushvec2(L, hit.normal);
-    lcheck_pushreal(L, hit.fraction);
-    return 6;
+    return lquery_returnhit(L, r, &hit);
 }
 
 static int lquery_cast_circle(lua_State *L)
 {
     rg_vec2 size = { lcheck_real(L, 2), 0 };
-    return lquery_cast(L, RG_SHAPE_CIRCLE, size, 3, "cast_circle");
+    return lquery_cast(L, RG_SHAPE_CIRCLE, size, 3, "cast_circle", "radius must be > 0");
 }
 
 static int lquery_cast_box(lua_State *L)
 {
     rg_vec2 size = lcheck_vec2(L, 2);
-    return lquery_cast(L, RG_SHAPE_AABB, size, 4, "cast_box");
+    return lquery_cast(L, RG_SHAPE_AABB, size, 4, "cast_box", "half sizes must be > 0");
 }
 
 const luaL_Reg lquery_world_methods[] = {

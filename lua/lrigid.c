@@ -1,6 +1,6 @@
 /* lrigid.c: the Lua 5.4 binding of rigid (module `rigid`): luaopen_rigid and the
- * interface a host sees (lrigid.h).  The methods live in lworld.c, lbody.c, lspring.c and
- * lquery.c, the checks in lcheck.c (lrigid_int.h).
+ * interface a host sees (lrigid.h).  The methods live in lworld.c, lbody.c, lspring.c,
+ * lquery.c and lcontact.c, the checks in lcheck.c (lrigid_int.h).
  *
  * Units are SI.  Numbers must be numbers (not numeric strings) and finite; option tables
  * accept only the names listed; a destroyed body raises "attempt to use a destroyed body".
@@ -12,7 +12,7 @@
  *               drag = {linear, quadratic}, surface_friction = {mu, normal_force},
  *               min_speed, max_speed, user_data (integer), name (string, for pictures),
  *               circle = r | aabb = {hw, hh}, restitution, friction, sensor (boolean),
- *               category, mask }                                        --> body
+ *               category, mask, one_way = {nx, ny} }                    --> body
  *   world:spring{ a = body, b = body | anchor = {x, y}, rest_length, stiffness, damping }
  *   world:step(dt)  world:advance(frame_time) --> steps  world:alpha()
  *   world:gravity() / set_gravity(x, y)   world:wind() / set_wind(x, y)
@@ -22,6 +22,10 @@
  *                      (of the last world:step, or of every step of the last world:advance)
  *   world:raycast(x, y, dx, dy [, mask]) --> body, hit_x, hit_y, nx, ny, fraction | nil
  *   world:query_aabb(x0, y0, x1, y1 [, mask]) --> { body... }
+ *   world:raycast_all(x, y, dx, dy [, mask]) --> { { body, x, y, nx, ny, fraction }... }
+ *   world:query_point(x, y [, mask]) --> { body... }
+ *   world:cast_circle(r, x, y, dx, dy [, mask]), world:cast_box(hw, hh, x, y, dx, dy [, mask])
+ *                      --> body, hit_x, hit_y, nx, ny, fraction | nil   (as world:raycast)
  *   world:set_sleeping(on) / sleeping()  set_sleep_thresholds(speed, time)
  *   world:set_solver_iterations(velocity [, position]) (position kept when omitted)
  *   world:solver_iterations() --> velocity, position  set_contact_tuning(slop, bias_rate,
@@ -36,6 +40,11 @@
  *   hw, hh | "none"   restitution() / set_restitution(e)  friction() / set_friction(mu)
  *   is_sensor() / set_sensor(on)  filter() / set_filter(category, mask)  grounded()
  *   is_awake()  wake()  is_valid()  destroy() (also <close>)
+ *   body:set_one_way(nx, ny) ((0, 0): two-way)  one_way() --> nx, ny  pass_through(other)
+ *   body:contacts() --> { { other, nx, ny, x, y, separation, normal_impulse, tangent_impulse,
+ *                       sensor }... }   (after the last step, by the other body's handle)
+ *   body:move(tx, ty [, { mask = m, response = "slide" | "touch" | "cross" }]) --> x, y,
+ *                       { { body, x, y, nx, ny, fraction }... }   (the surfaces met)
  *   spring:destroy()  spring:is_valid()
  * A body is one Lua value wherever it appears (world:body, world:bodies, events, queries),
  * also after it is destroyed, for as long as anyone holds it; a world stays alive while any

@@ -1,4 +1,6 @@
-/* lsvg.h: records a world while it runs (bodies, trails, contacts) and draws it as SVG. */
+/* lsvg.h: a picture of a run as SVG: the world at the moment shown (the last frame recorded)
+ * as rg_world_draw draws it (shapes in their state's colour, touching contacts, springs),
+ * velocity arrows, the paths that led there, and a legend that says what each mark means. */
 #ifndef LSVG_H
 #define LSVG_H
 
@@ -9,13 +11,10 @@ typedef struct lsvg lsvg;
 lsvg *lsvg_new(void);
 void lsvg_free(lsvg *r);
 
-/* Samples the live bodies of the world value at world_idx, at simulated time t (s).  Uses
- * malloc, not the state's allocator, and bounds what it keeps (trails of the first 1024
- * bodies, at most 512 points each, thinned evenly as a run grows). */
+/* Samples the world value at world_idx, at simulated time t (s), through lsample.c.  Uses
+ * malloc, not the state's allocator, and bounds what it keeps (paths of the first 1024
+ * moving bodies, at most 512 points each, thinned evenly as a run grows). */
 void lsvg_record(lsvg *r, lua_State *L, int world_idx, double t);
-/* A contact point (begin event) in world coordinates. */
-void lsvg_contact(lsvg *r, double x, double y);
-int lsvg_contact_count(const lsvg *r);
 
 /* Writes the picture; title and subtitle are plain text (escaped here).  0 on success. */
 int lsvg_write(const lsvg *r, const char *path, const char *title, const char *subtitle);

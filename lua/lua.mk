@@ -9,8 +9,12 @@ LOVE_BIN ?= love
 
 LUA_MOD := $(B)/rigid.so
 LUA_HOST := $(B)/rigid
-LUA_HOST_SRC := lua/host.c lua/lsandbox.c lua/llong.c lua/lcount.c lua/lpattern.c lua/lutf8.c lua/lsvg.c
-LUA_HOST_OBJ := $(patsubst lua/%.c,$(B)/lua/%.o,$(LUA_HOST_SRC))
+LUA_HOST_SRC := lua/host.c lua/lsandbox.c lua/llong.c lua/lcount.c lua/lpattern.c lua/lutf8.c \
+                lua/lsvg.c lua/lsample.c lua/lhtml.c lua/lframes.c lua/lenc.c
+# The replay viewer's page, compiled in as an array of lines (lua/viewer.mk).
+LUA_VIEWER := $(B)/lua/lviewer_html.o
+LUA_HOST_OBJ := $(patsubst lua/%.c,$(B)/lua/%.o,$(LUA_HOST_SRC)) $(LUA_VIEWER)
+ZLIB_LIBS := $(shell pkg-config --libs zlib 2>/dev/null || echo -lz)
 # The binding: checks, world, body, springs, events and queries, registration.
 LUA_BIND_SRC := lua/lcheck.c lua/lworld.c lua/lbody.c lua/lspring.c lua/lquery.c lua/lcontact.c lua/lrigid.c
 LUA_BIND_OBJ := $(patsubst lua/%.c,$(B)/lua/%.o,$(LUA_BIND_SRC))
@@ -31,7 +35,8 @@ $(LUA_MOD): $(LUA_BIND_OBJ) $(LIB_A) lua/rigid.map
 	$(CC) -shared -Wl,--version-script=lua/rigid.map $(LDFLAGS) -o $@ $(LUA_BIND_OBJ) $(LIB_A) $(LDLIBS)
 
 $(LUA_HOST): $(LUA_HOST_OBJ) $(LUA_BIND_OBJ) $(LIB_A)
-	$(CC) $(LDFLAGS) -o $@ $(LUA_HOST_OBJ) $(LUA_BIND_OBJ) $(LIB_A) $(LUA_PKG_LIBS) $(LDLIBS)
+	$(CC) $(LDFLAGS) -o $@ $(LUA_HOST_OBJ) $(LUA_BIND_OBJ) $(LIB_A) $(LUA_PKG_LIBS) $(ZLIB_LIBS) $(LDLIBS)
+
 
 # The bounded pattern matcher checked against stock Lua's on random cases.
 $(LUA_PATFUZZ): tests/lua/pattern_fuzz.c $(B)/lua/lpattern.o
@@ -56,9 +61,18 @@ check-ffi-cdef:
 ffi-cdef:
 	CC="$(CC)" $(LUA_BIN) tools/ffi_cdef.lua --update lua/rigid_jit/ffi.lua
 
-# The main job (make run): the platformer, a line per second, its picture in $(B)/run.svg.
+# The examples' pictures say what the world was at the moment they show: bodies alive then,
+# contacts where bodies touch, labels off the bodies, text inside the picture.
+TEST_RUNS += check-pictures
+.PHONY: check-pictures
+check-pictures: $(LUA_HOST)
+	@echo "== tests/pictures/check_svg.py"
+	$(PYTHON) tests/pictures/check_svg.py --host $(LUA_HOST) --out $(B)/picture-check
+
+# The main job (make run): the platformer, a line per second, its picture in $(B)/run.svg
+# and its replay in $(B)/run.html.
 run-main: $(LUA_HOST)
-	@$(LUA_HOST) lua/examples/platformer.lua --svg $(B)/run.svg
+	@$(LUA_HOST) lua/examples/platformer.lua --svg $(B)/run.svg --html $(B)/run.html
 
 # Cost of one Lua call into the binding, in stock lua5.4, in the host and in LuaJIT.
 bench: bench-lua
@@ -94,7 +108,8 @@ check-readme-lua: $(LUA_HOST) $(B)/readme_example.lua
 # LuaJIT binding loads the double library too, by RIGID_LIBRARY).
 LUA_CMOD_DIR ?= $(PREFIX)/lib/lua/5.4
 LUA_LMOD_DIR ?= $(PREFIX)/share/lua/5.1
-LUA_JIT_FILES := rigid_jit.lua rigid_jit/ffi.lua rigid_jit/check.lua
+LUA_JIT_FILES := rigid_jit.lua rigid_jit/ffi.lua rigid_jit/check.lua rigid_jit/query.lua \
+                 rigid_jit/contact.lua
 .PHONY: install-lua uninstall-lua rock-build rock-install check-rock
 ifeq ($(REAL),float)
 install: install-lua

@@ -3,7 +3,9 @@
 -- comment of lua/lrigid.c lists.  `local rigid = require "rigid_jit"`.
 --
 -- Its parts: rigid_jit/ffi.lua loads the library (RIGID_LIBRARY, else librigid) and
--- declares the header; rigid_jit/check.lua checks arguments and words the errors.
+-- declares the header; rigid_jit/check.lua checks arguments and words the errors;
+-- rigid_jit/query.lua has the events and queries of a world, rigid_jit/contact.lua a body's
+-- contacts, passing through and moving (as lua/lquery.c and lua/lcontact.c).
 -- Bodies, worlds and springs are tables with a protected metatable.  A body is one value
 -- wherever it appears (world:body, world:bodies, events, queries), so tables can be keyed
 -- by it, also after it is destroyed, for as long as anyone holds it; a world stays alive
@@ -31,7 +33,6 @@ local i32 = ffi.new("int32_t[2]")
 local u32 = ffi.new("uint32_t[2]")
 local u64 = ffi.new("uint64_t[1]")
 local wptr = ffi.new("rg_world *[1]")
-local hit = ffi.new("rg_ray_hit[1]")
 local INT64, UINT64 = ffi.typeof("int64_t"), ffi.typeof("uint64_t")
 
 -- A 64-bit integer as Lua 5.4 shows it (signed): a number when that is exact.
@@ -293,7 +294,7 @@ end
 local BODY_OPTIONS = {
   "type", "mass", "x", "y", "vx", "vy", "gravity_scale", "drag", "surface_friction",
   "min_speed", "max_speed", "user_data", "name",
-  "circle", "aabb", "restitution", "friction", "sensor", "category", "mask",
+  "circle", "aabb", "restitution", "friction", "sensor", "category", "mask", "one_way",
 }
 
 -- A 64-bit user data value (a number or integer cdata) as uint64_t, bits kept.
@@ -335,6 +336,7 @@ function World.body(w, ...)
   local sensor = check.option_boolean(opts, "sensor", what)
   local category = option_integer(opts, "category", what, 0, 0xFFFFFFFF)
   local mask = option_integer(opts, "mask", what, 0, 0xFFFFFFFF)
+  local o1, o2 = option_pair(opts, "one_way", what)
   if circle and a1 then raise(what .. ": options 'circle' and 'aabb' exclude each other") end
 
   local st = V.rg_body_create(p, type_, mass, x, y, u64)
@@ -367,6 +369,8 @@ function World.body(w, ...)
                          C.rg_body_set_sensor, p, h, sensor and 1 or 0)
   st, failed, hint = try(st, failed, hint, category or mask, "category/mask", nil,
                          C.rg_body_set_filter, p, h, category or 1, mask or 0xFFFFFFFF)
+  st, failed, hint = try(st, failed, hint, o1, "one_way", "a unit normal, or {0, 0}",
+                         V.rg_body_set_one_way, p, h, o1, o2)
   if st ~= 0 then
     C.rg_body_destroy(p, h)
     status_error(st, what .. ": option '" .. failed .. "'", hint)
@@ -478,10 +482,12 @@ get_vec2("position", C.rg_body_get_position)
 get_vec2("velocity", C.rg_body_get_velocity)
 get_vec2("interpolated_position", C.rg_body_get_interpolated_position)
 get_vec2("acceleration", C.rg_body_get_acceleration)
+get_vec2("one_way", C.rg_body_get_one_way)
 set_vec2("set_position", V.rg_body_set_position, nil)
 set_vec2("set_velocity", V.rg_body_set_velocity, "a static body cannot move")
 set_vec2("apply_force", V.rg_body_apply_force, nil)
 set_vec2("apply_impulse", V.rg_body_apply_impulse, nil)
+set_vec2("set_one_way", V.rg_body_set_one_way, "a unit normal, or (0, 0)")
 get_real("mass", C.rg_body_get_mass)
 get_real("restitution", C.rg_body_get_restitution)
 get_real("friction", C.rg_body_get_friction)
@@ -614,51 +620,12 @@ function Spring.is_valid(s) return spring_live(s) end
 spring_mt.__close = Spring.destroy
 function spring_mt.__tostring(s) return "rigid.spring (" .. (spring_live(s) and "live" or "destroyed") .. ")" end
 
--- ---------------------------------------------------------------- events and queries
+-- ---------------------------------------------------------------- events, queries, contacts
 
-local events, events_cap = nil, 0
-
--- The events of the last step, or of every step of the last advance.
-function World.events(w)
-  local p = open_world(w)
-  local n = C.rg_world_get_contact_events(p, nil, 0)
-  if n < 0 then status_error(n, "events") end
-  if n > events_cap then events, events_cap = ffi.new("rg_contact_event[?]", n), n end
-  if n > 0 then n = C.rg_world_get_contact_events(p, events, n) end
-  local out = {}
-  for i = 0, n - 1 do
-    local e = events[i]
-    out[i + 1] = { kind = e.kind == C.RG_CONTACT_BEGIN and "begin" or "end",
-                   a = push_body(w, e.a), b = push_body(w, e.b),
-                   nx = e.normal.x, ny = e.normal.y, x = e.point.x, y = e.point.y,
-                   depth = e.depth, speed = e.speed, sensor = e.sensor ~= 0 }
-  end
-  return out
-end
-
-function World.raycast(w, ...)
-  local p = open_world(w)
-  local ox, oy, dx, dy = real4(2, ...)
-  local r = V.rg_world_raycast(p, ox, oy, dx, dy, check.optmask(6, select(5, ...)), hit)
-  if r < 0 then status_error(r, "raycast") end
-  if r == 0 then return nil end
-  local e = hit[0]
-  return push_body(w, e.body), e.point.x, e.point.y, e.normal.x, e.normal.y, e.fraction
-end
-
-local found, found_cap = nil, 0
-
-function World.query_aabb(w, ...)
-  local p = open_world(w)
-  local x0, y0, x1, y1 = real4(2, ...)
-  local mask = check.optmask(6, select(5, ...))
-  local n = V.rg_world_query_aabb(p, x0, y0, x1, y1, mask, nil, 0)
-  if n < 0 then status_error(n, "query_aabb", "lower must not exceed upper") end
-  if n > found_cap then found, found_cap = ffi.new("rg_body[?]", n), n end
-  if n > 0 then n = V.rg_world_query_aabb(p, x0, y0, x1, y1, mask, found, n) end
-  local out = {}
-  for i = 0, n - 1 do out[i + 1] = push_body(w, found[i]) end
-  return out
+do
+  local core = { World = World, Body = Body, open_world = open_world, body_wh = body_wh,
+                 push_body = push_body, B_BOX = B_BOX, B_H = B_H, B_WORLD = B_WORLD }
+  require("rigid_jit.contact")(core, require("rigid_jit.query")(core))
 end
 
 -- ---------------------------------------------------------------- module

@@ -6,6 +6,7 @@
 
 #include <stdint.h>
 
+#include "arg.h"
 #include "state.h"
 
 
@@ -16,17 +17,22 @@ struct rg_world;
 int32_t body_lookup(const struct rg_world *w, rg_body body);
 /* body_dense(w, slot) (state.h, inline): the dense index of the live body in pool slot. */
 
+/* Declares the dense index `i` of `body` in an entry point that opened the world
+ * (ERROR_BEGIN or WORLD_WRITABLE), or returns RG_ERR_STALE_HANDLE, the error naming it. */
+#define BODY_LOOKUP(world, body, i)                                                 \
+    int32_t i = arg_handle((world), __func__, #body, &(world)->body_pool, (body));  \
+    if (i < 0) return RG_ERR_STALE_HANDLE
+
 /* Looks up `body` at the top of an API call: declares the dense index `i`, or returns
  * RG_ERR_INVALID_ARGUMENT (NULL world) or RG_ERR_STALE_HANDLE. */
-#define BODY_GET(world, body, i)                               \
-    if ((world) == NULL) return RG_ERR_INVALID_ARGUMENT;       \
-    int32_t i = body_lookup((world), (body));                  \
-    if (i < 0) return RG_ERR_STALE_HANDLE
+#define BODY_GET(world, body, i) \
+    ERROR_BEGIN(world);          \
+    BODY_LOOKUP(world, body, i)
 
 /* BODY_GET for a call that changes the world: RG_ERR_LOCKED inside a step's callback. */
 #define BODY_SET(world, body, i) \
     WORLD_WRITABLE(world);       \
-    BODY_GET(world, body, i)
+    BODY_LOOKUP(world, body, i)
 
 /* Grows storage so one more body fits; all-or-nothing. */
 rg_status body_reserve(struct rg_world *w);

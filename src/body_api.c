@@ -1,4 +1,5 @@
 /* body_api.c: the rg_body_* API of body lifetime, state and forces. */
+#include "arg.h"
 #include "body.h"
 #include "island.h"
 #include "pairs.h"
@@ -11,23 +12,22 @@ RG_API rg_status rg_body_create(rg_world *world, int32_t type, rg_real mass, rg_
                                 rg_body *out_body)
 {
     WORLD_WRITABLE(world);
-    if (world == NULL || out_body == NULL || !rg_vec2_finite(position) || !rg_finite(mass))
-        return RG_ERR_INVALID_ARGUMENT;
-    if (type != RG_BODY_STATIC && type != RG_BODY_KINEMATIC && type != RG_BODY_DYNAMIC)
-        return RG_ERR_INVALID_ARGUMENT;
-    if (type == RG_BODY_DYNAMIC && !(mass > 0)) return RG_ERR_INVALID_ARGUMENT;
+    ARG_INT(world, type, RG_BODY_STATIC, RG_BODY_DYNAMIC, "one of RG_BODY_* (0..2)");
+    if (type == RG_BODY_DYNAMIC)
+        ARG_IN(world, mass, RG_MIN_MASS, RG_MAX_MASS);
+    else
+        ARG_FINITE(world, mass);
+    ARG_VEC(world, position, RG_MAX_COORD);
+    ARG_PTR(world, out_body);
     rg_status st = body_reserve(world);
-    if (st != RG_OK) return st;
+    if (st != RG_OK) return error_alloc(world, __func__, st, "body storage", "RG_MAX_BODIES");
     *out_body = body_add(world, type, mass, position);
     return RG_OK;
 }
 
 RG_API rg_status rg_body_destroy(rg_world *world, rg_body body)
 {
-    WORLD_WRITABLE(world);
-    if (world == NULL) return RG_ERR_INVALID_ARGUMENT;
-    int32_t i = body_lookup(world, body);
-    if (i < 0) return RG_ERR_STALE_HANDLE;
+    BODY_SET(world, body, i);
     int32_t s = world->b.slot[i];
     shape_remove(world, s); /* ends its contacts, wakes what rested on it */
     spring_detach_body(world, s);
@@ -37,13 +37,15 @@ RG_API rg_status rg_body_destroy(rg_world *world, rg_body body)
 
 RG_API int32_t rg_body_is_valid(const rg_world *world, rg_body body)
 {
-    return world != NULL && body_lookup(world, body) >= 0;
+    if (world == NULL) return 0;
+    ERROR_CLEAR(world);
+    return body_lookup(world, body) >= 0;
 }
 
 RG_API rg_status rg_body_get_type(const rg_world *world, rg_body body, int32_t *out_type)
 {
     BODY_GET(world, body, i);
-    if (out_type == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ARG_PTR(world, out_type);
     *out_type = world->b.type[i];
     return RG_OK;
 }
@@ -51,7 +53,7 @@ RG_API rg_status rg_body_get_type(const rg_world *world, rg_body body, int32_t *
 RG_API rg_status rg_body_get_mass(const rg_world *world, rg_body body, rg_real *out_mass)
 {
     BODY_GET(world, body, i);
-    if (out_mass == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ARG_PTR(world, out_mass);
     *out_mass = world->b.mass[i];
     return RG_OK;
 }
@@ -59,18 +61,21 @@ RG_API rg_status rg_body_get_mass(const rg_world *world, rg_body body, rg_real *
 RG_API rg_status rg_body_set_mass(rg_world *world, rg_body body, rg_real mass)
 {
     BODY_SET(world, body, i);
-    if (!rg_finite(mass) || !(mass > 0) || world->b.type[i] != RG_BODY_DYNAMIC)
-        return RG_ERR_INVALID_ARGUMENT;
+    ARG_IN(world, mass, RG_MIN_MASS, RG_MAX_MASS);
+    if (world->b.type[i] != RG_BODY_DYNAMIC)
+        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "body is not dynamic (only a dynamic body has a mass)");
     world->b.mass[i] = mass;
     world->b.inv_mass[i] = 1 / mass;
     return RG_OK;
 }
 
-static rg_status get_pair(const rg_world *world, rg_body body, const rg_real *xs,
-                          const rg_real *ys, rg_vec2 *out)
+/* (xs[i], ys[i]) of body into *out, for the getter `func` of a pair of fields. */
+static rg_status get_pair(const rg_world *world, const char *func, rg_body body,
+                          const rg_real *xs, const rg_real *ys, rg_vec2 *out)
 {
-    BODY_GET(world, body, i);
-    if (out == NULL) return RG_ERR_INVALID_ARGUMENT;
+    int32_t i = arg_handle(world, func, "body", &world->body_pool, body);
+    if (i < 0) return RG_ERR_STALE_HANDLE;
+    if (!arg_ptr(world, func, "out", out)) return RG_ERR_INVALID_ARGUMENT;
     out->x = xs[i];
     out->y = ys[i];
     return RG_OK;
@@ -78,27 +83,27 @@ static rg_status get_pair(const rg_world *world, rg_body body, const rg_real *xs
 
 RG_API rg_status rg_body_get_position(const rg_world *world, rg_body body, rg_vec2 *out)
 {
-    if (world == NULL) return RG_ERR_INVALID_ARGUMENT;
-    return get_pair(world, body, world->b.x, world->b.y, out);
+    ERROR_BEGIN(world);
+    return get_pair(world, __func__, body, world->b.x, world->b.y, out);
 }
 
 RG_API rg_status rg_body_get_velocity(const rg_world *world, rg_body body, rg_vec2 *out)
 {
-    if (world == NULL) return RG_ERR_INVALID_ARGUMENT;
-    return get_pair(world, body, world->b.vx, world->b.vy, out);
+    ERROR_BEGIN(world);
+    return get_pair(world, __func__, body, world->b.vx, world->b.vy, out);
 }
 
 RG_API rg_status rg_body_get_acceleration(const rg_world *world, rg_body body, rg_vec2 *out)
 {
-    if (world == NULL) return RG_ERR_INVALID_ARGUMENT;
-    return get_pair(world, body, world->b.ax, world->b.ay, out);
+    ERROR_BEGIN(world);
+    return get_pair(world, __func__, body, world->b.ax, world->b.ay, out);
 }
 
 RG_API rg_status rg_body_get_interpolated_position(const rg_world *world, rg_body body,
                                                    rg_vec2 *out)
 {
     BODY_GET(world, body, i);
-    if (out == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ARG_PTR(world, out);
     const body_store *b = &world->b;
     if (!world->prev_valid) {
         out->x = b->x[i];
@@ -114,7 +119,7 @@ RG_API rg_status rg_body_get_interpolated_position(const rg_world *world, rg_bod
 RG_API rg_status rg_body_set_position(rg_world *world, rg_body body, rg_vec2 position)
 {
     BODY_SET(world, body, i);
-    if (!rg_vec2_finite(position)) return RG_ERR_INVALID_ARGUMENT;
+    ARG_VEC(world, position, RG_MAX_COORD);
     body_store *b = &world->b;
     int32_t s = b->slot[i];
     b->x[i] = b->px[i] = position.x; /* a teleport is not interpolated */
@@ -127,10 +132,11 @@ RG_API rg_status rg_body_set_position(rg_world *world, rg_body body, rg_vec2 pos
 RG_API rg_status rg_body_set_velocity(rg_world *world, rg_body body, rg_vec2 velocity)
 {
     BODY_SET(world, body, i);
-    if (!rg_vec2_finite(velocity)) return RG_ERR_INVALID_ARGUMENT;
+    ARG_VEC(world, velocity, RG_MAX_SPEED);
     body_store *b = &world->b;
     if (b->type[i] == RG_BODY_STATIC && (velocity.x != 0 || velocity.y != 0))
-        return RG_ERR_INVALID_ARGUMENT;
+        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "velocity (%g, %g) of a static body is not 0",
+                       (double)velocity.x, (double)velocity.y);
     b->vx[i] = velocity.x;
     b->vy[i] = velocity.y;
     island_touch(world, b->slot[i]);
@@ -140,11 +146,16 @@ RG_API rg_status rg_body_set_velocity(rg_world *world, rg_body body, rg_vec2 vel
 RG_API rg_status rg_body_apply_force(rg_world *world, rg_body body, rg_vec2 force)
 {
     BODY_SET(world, body, i);
-    if (!rg_vec2_finite(force)) return RG_ERR_INVALID_ARGUMENT;
+    ARG_VEC(world, force, RG_MAX_FORCE);
     body_store *b = &world->b;
     if (b->type[i] != RG_BODY_DYNAMIC) return RG_OK;
     rg_real fx = b->fx[i] + force.x, fy = b->fy[i] + force.y;
-    if (!rg_finite(fx) || !rg_finite(fy)) return RG_ERR_INVALID_ARGUMENT; /* sum overflowed */
+    if (!(rg_fabs(fx) <= (rg_real)RG_MAX_FORCE && rg_fabs(fy) <= (rg_real)RG_MAX_FORCE)) {
+        int g = arg_digits((double)rg_max(rg_fabs(fx), rg_fabs(fy)), RG_MAX_FORCE);
+        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT,
+                       "force (%g, %g) makes the step's applied force (%.*g, %.*g), beyond RG_MAX_FORCE (%g)",
+                       (double)force.x, (double)force.y, g, (double)fx, g, (double)fy, RG_MAX_FORCE);
+    }
     b->fx[i] = fx;
     b->fy[i] = fy;
     island_touch(world, b->slot[i]);
@@ -154,12 +165,17 @@ RG_API rg_status rg_body_apply_force(rg_world *world, rg_body body, rg_vec2 forc
 RG_API rg_status rg_body_apply_impulse(rg_world *world, rg_body body, rg_vec2 impulse)
 {
     BODY_SET(world, body, i);
-    if (!rg_vec2_finite(impulse)) return RG_ERR_INVALID_ARGUMENT;
+    ARG_VEC(world, impulse, RG_MAX_FORCE);
     body_store *b = &world->b;
     if (b->type[i] != RG_BODY_DYNAMIC) return RG_OK;
     rg_real vx = b->vx[i] + impulse.x * b->inv_mass[i];
     rg_real vy = b->vy[i] + impulse.y * b->inv_mass[i];
-    if (!rg_finite(vx) || !rg_finite(vy)) return RG_ERR_INVALID_ARGUMENT;
+    if (!(rg_fabs(vx) <= (rg_real)RG_MAX_SPEED && rg_fabs(vy) <= (rg_real)RG_MAX_SPEED)) {
+        int g = arg_digits((double)rg_max(rg_fabs(vx), rg_fabs(vy)), RG_MAX_SPEED);
+        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT,
+                       "impulse (%g, %g) makes the velocity (%.*g, %.*g), beyond RG_MAX_SPEED (%g)",
+                       (double)impulse.x, (double)impulse.y, g, (double)vx, g, (double)vy, RG_MAX_SPEED);
+    }
     b->vx[i] = vx;
     b->vy[i] = vy;
     island_touch(world, b->slot[i]);
@@ -169,7 +185,7 @@ RG_API rg_status rg_body_apply_impulse(rg_world *world, rg_body body, rg_vec2 im
 RG_API rg_status rg_body_set_gravity_scale(rg_world *world, rg_body body, rg_real scale)
 {
     BODY_SET(world, body, i);
-    if (!rg_finite(scale)) return RG_ERR_INVALID_ARGUMENT;
+    ARG_ABS(world, scale, RG_MAX_GRAVITY_SCALE);
     if (world->b.type[i] == RG_BODY_DYNAMIC) world->b.gscale[i] = scale;
     return RG_OK;
 }
@@ -177,8 +193,8 @@ RG_API rg_status rg_body_set_gravity_scale(rg_world *world, rg_body body, rg_rea
 RG_API rg_status rg_body_set_drag(rg_world *world, rg_body body, rg_real linear, rg_real quadratic)
 {
     BODY_SET(world, body, i);
-    if (!rg_finite(linear) || !rg_finite(quadratic) || linear < 0 || quadratic < 0)
-        return RG_ERR_INVALID_ARGUMENT;
+    ARG_IN(world, linear, 0, RG_MAX_DRAG);
+    ARG_IN(world, quadratic, 0, RG_MAX_DRAG);
     world->b.drag_lin[i] = linear;
     world->b.drag_quad[i] = quadratic;
     body_update_flags(world, i);
@@ -189,11 +205,9 @@ RG_API rg_status rg_body_set_surface_friction(rg_world *world, rg_body body, rg_
                                               rg_real normal_force)
 {
     BODY_SET(world, body, i);
-    if (!rg_finite(mu) || !rg_finite(normal_force) || mu < 0 || normal_force < 0)
-        return RG_ERR_INVALID_ARGUMENT;
-    rg_real f = mu * normal_force;
-    if (!rg_finite(f)) return RG_ERR_INVALID_ARGUMENT;
-    world->b.fric[i] = f;
+    ARG_IN(world, mu, 0, RG_MAX_FRICTION);
+    ARG_IN(world, normal_force, 0, RG_MAX_FORCE);
+    world->b.fric[i] = mu * normal_force; /* <= 1e15 N */
     body_update_flags(world, i);
     return RG_OK;
 }
@@ -202,9 +216,11 @@ RG_API rg_status rg_body_set_speed_limits(rg_world *world, rg_body body, rg_real
                                           rg_real max_speed)
 {
     BODY_SET(world, body, i);
-    if (!rg_finite(min_speed) || !rg_finite(max_speed) || min_speed < 0 || max_speed < 0 ||
-        (max_speed > 0 && max_speed < min_speed))
-        return RG_ERR_INVALID_ARGUMENT;
+    ARG_IN(world, min_speed, 0, RG_MAX_SPEED);
+    ARG_IN(world, max_speed, 0, RG_MAX_SPEED);
+    if (max_speed > 0 && max_speed < min_speed)
+        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "max_speed %g is below min_speed %g (and not 0: no limit)",
+                       (double)max_speed, (double)min_speed);
     world->b.min_speed[i] = min_speed;
     world->b.max_speed[i] = max_speed;
     body_update_flags(world, i);
@@ -221,7 +237,7 @@ RG_API rg_status rg_body_set_user_data(rg_world *world, rg_body body, uint64_t u
 RG_API rg_status rg_body_get_user_data(const rg_world *world, rg_body body, uint64_t *out)
 {
     BODY_GET(world, body, i);
-    if (out == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ARG_PTR(world, out);
     *out = world->b.user[i];
     return RG_OK;
 }

@@ -262,22 +262,30 @@ rg_status broadphase_reserve_slots(broadphase *bp, const rg_mem *m, int32_t slot
 
 void broadphase_clear(broadphase *bp, const rg_mem *m, int32_t *head, int bits)
 {
-    if (bits != bp->bucket_bits) {
+    int fresh = bits != bp->bucket_bits;
+    if (fresh) {
         if (bp->head != NULL) mem_free(m, bp->head, ((size_t)1 << bp->bucket_bits) * sizeof *bp->head);
         bp->head = head;
         bp->bucket_bits = bits;
+    } else if (bp->head != NULL) {
+        /* the chains' heads are the members' buckets: reset those alone */
+        for (int32_t i = 0; i < bp->count; i++) {
+            const bp_entry *e = &bp->e[bp->members[i]];
+            if (e->level != BP_HUGE) bp->head[bucket_of(bp, e->key)] = -1;
+        }
     }
-    bp->count = bp->n_huge = bp->n_moved = bp->n_active = 0;
-    for (int32_t s = 0; s < bp->cap; s++) {
-        bp_entry *e = &bp->e[s];
+    /* only members' entries differ from an empty slot's */
+    for (int32_t i = 0; i < bp->count; i++) {
+        bp_entry *e = &bp->e[bp->members[i]];
         memset(e, 0, sizeof *e);
         e->member = -1;
         e->next = e->prev = -1;
         e->lnext = e->lprev = -1;
         e->apos = -1;
     }
-    if (bp->head != NULL)
-        for (size_t k = 0; k < ((size_t)1 << bp->bucket_bits); k++) bp->head[k] = -1;
+    if (fresh && bp->head != NULL)
+        for (size_t k = 0; k < ((size_t)1 << bits); k++) bp->head[k] = -1;
+    bp->count = bp->n_huge = bp->n_moved = bp->n_active = 0;
     for (int li = 0; li <= BP_LEVELS; li++) bp->level_count[li] = 0;
     for (int li = 0; li < BP_LEVELS; li++) bp->level_head[li] = -1;
     bp->levels = 0;

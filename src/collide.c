@@ -2,6 +2,7 @@
  * API (solver iterations, contact tuning, continuous collision). */
 #include <string.h>
 
+#include "arg.h"
 #include "collide.h"
 #include "contact.h"
 #include "island.h"
@@ -107,14 +108,16 @@ void collide_step_begin(rg_world *w, collide_step *x, rg_real dt)
 
 RG_API int32_t rg_world_touching_count(const rg_world *world)
 {
-    return world != NULL ? world->coll.contacts.n_touching : 0;
+    if (world == NULL) return 0;
+    ERROR_CLEAR(world);
+    return world->coll.contacts.n_touching;
 }
 
 RG_API rg_status rg_world_set_solver_iterations(rg_world *world, int32_t velocity, int32_t position)
 {
     WORLD_WRITABLE(world);
-    if (world == NULL || velocity < 1 || velocity > 64 || position < 0 || position > 64)
-        return RG_ERR_INVALID_ARGUMENT;
+    ARG_INT(world, velocity, 1, 64, "in 1..64");
+    ARG_INT(world, position, 0, 64, "in 0..64");
     world->coll.iterations = velocity;
     world->coll.position = position;
     return RG_OK;
@@ -123,7 +126,9 @@ RG_API rg_status rg_world_set_solver_iterations(rg_world *world, int32_t velocit
 RG_API rg_status rg_world_get_solver_iterations(const rg_world *world, int32_t *out_velocity,
                                                 int32_t *out_position)
 {
-    if (world == NULL || out_velocity == NULL || out_position == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    ARG_PTR(world, out_velocity);
+    ARG_PTR(world, out_position);
     *out_velocity = world->coll.iterations;
     *out_position = world->coll.position;
     return RG_OK;
@@ -133,10 +138,10 @@ RG_API rg_status rg_world_set_contact_tuning(rg_world *world, rg_real slop, rg_r
                                              rg_real max_push, rg_real restitution_threshold)
 {
     WORLD_WRITABLE(world);
-    if (world == NULL || !rg_finite(slop) || !rg_finite(bias_rate) || !rg_finite(max_push) ||
-        !rg_finite(restitution_threshold) || slop < 0 || !(bias_rate > 0) || bias_rate > 1 ||
-        !(max_push > 0) || restitution_threshold < 0)
-        return RG_ERR_INVALID_ARGUMENT;
+    ARG_IN(world, slop, 0, RG_MAX_SHAPE_SIZE);
+    ARG_ABOVE(world, bias_rate, 0, 1);
+    ARG_ABOVE(world, max_push, 0, RG_MAX_SPEED);
+    ARG_IN(world, restitution_threshold, 0, RG_MAX_SPEED);
     collide_world *cw = &world->coll;
     cw->slop = slop;
     cw->bias_rate = bias_rate;
@@ -149,9 +154,11 @@ RG_API rg_status rg_world_get_contact_tuning(const rg_world *world, rg_real *out
                                              rg_real *out_bias_rate, rg_real *out_max_push,
                                              rg_real *out_restitution_threshold)
 {
-    if (world == NULL || out_slop == NULL || out_bias_rate == NULL || out_max_push == NULL ||
-        out_restitution_threshold == NULL)
-        return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    ARG_PTR(world, out_slop);
+    ARG_PTR(world, out_bias_rate);
+    ARG_PTR(world, out_max_push);
+    ARG_PTR(world, out_restitution_threshold);
     const collide_world *cw = &world->coll;
     *out_slop = cw->slop;
     *out_bias_rate = cw->bias_rate;
@@ -163,14 +170,15 @@ RG_API rg_status rg_world_get_contact_tuning(const rg_world *world, rg_real *out
 RG_API rg_status rg_world_set_continuous(rg_world *world, int32_t enabled)
 {
     WORLD_WRITABLE(world);
-    if (world == NULL || (enabled != 0 && enabled != 1)) return RG_ERR_INVALID_ARGUMENT;
+    ARG_INT(world, enabled, 0, 1, "0 or 1");
     world->coll.continuous = enabled;
     return RG_OK;
 }
 
 RG_API rg_status rg_world_get_continuous(const rg_world *world, int32_t *out_enabled)
 {
-    if (world == NULL || out_enabled == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    ARG_PTR(world, out_enabled);
     *out_enabled = world->coll.continuous;
     return RG_OK;
 }

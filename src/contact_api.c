@@ -1,5 +1,6 @@
 /* contact_api.c: the public calls on pairs: a body's contacts, passing through, and the
  * pre-solve hook. */
+#include "arg.h"
 #include "body.h"
 #include "collision.h"
 #include "contact.h"
@@ -11,7 +12,6 @@
 RG_API rg_status rg_world_set_pre_solve(rg_world *world, rg_pre_solve_fn *fn, void *user)
 {
     WORLD_WRITABLE(world);
-    if (world == NULL) return RG_ERR_INVALID_ARGUMENT;
     world->pre_solve = fn;
     world->pre_solve_user = fn != NULL ? user : NULL;
     return RG_OK;
@@ -28,10 +28,11 @@ static void contact_api_manifold(const rg_world *w, int32_t i, int32_t j, coll_m
 RG_API rg_status rg_body_pass_through(rg_world *world, rg_body body, rg_body other)
 {
     BODY_SET(world, body, i);
-    int32_t j = body_lookup(world, other);
-    if (j < 0) return RG_ERR_STALE_HANDLE;
+    BODY_LOOKUP(world, other, j);
     body_store *b = &world->b;
-    if (i == j || b->shape[i] == RG_SHAPE_NONE || b->shape[j] == RG_SHAPE_NONE) return RG_ERR_INVALID_ARGUMENT;
+    if (i == j) return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "other is body (a pair is two bodies)");
+    if (b->shape[i] == RG_SHAPE_NONE) return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "body has no shape");
+    if (b->shape[j] == RG_SHAPE_NONE) return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "other has no shape");
     int32_t s = b->slot[i], t = b->slot[j];
     int32_t id = contact_find(world, s, t);
     if (id < 0) {
@@ -41,7 +42,7 @@ RG_API rg_status rg_body_pass_through(rg_world *world, rg_body body, rg_body oth
         contact_api_manifold(world, i, j, &m);
         if (!(m.depth >= -world->coll.slop) || !pairs_admitted(world, i, j)) return RG_OK;
         id = contact_create(world, s, t);
-        if (id < 0) return RG_ERR_OUT_OF_MEMORY;
+        if (id < 0) return error_alloc(world, __func__, RG_ERR_OUT_OF_MEMORY, "contact storage", "INT32_MAX / 8");
     }
     world->coll.contacts.c[id].flags |= CT_PASS;
     island_touch(world, s);
@@ -66,7 +67,7 @@ RG_API int32_t rg_body_get_contacts(const rg_world *world, rg_body body, rg_cont
                                     int32_t capacity)
 {
     BODY_GET(world, body, i);
-    if (capacity < 0 || (out == NULL && capacity > 0)) return RG_ERR_INVALID_ARGUMENT;
+    ARG_BUFFER(world, out, capacity);
     const contact_store *cs = &world->coll.contacts;
     const body_store *b = &world->b;
     int32_t s = b->slot[i], count = 0, held = 0;

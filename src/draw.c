@@ -1,5 +1,6 @@
 /* draw.c: the debug-draw walk (rg_world_draw): shapes, contacts, velocities, fat boxes and
  * springs handed to the caller's callbacks in a fixed order. */
+#include "arg.h"
 #include "body.h"
 #include "state.h"
 #include "vec2.h"
@@ -85,15 +86,18 @@ static void draw_springs(const rg_world *w, const rg_debug_draw *d)
 
 RG_API rg_status rg_world_draw(const rg_world *world, const rg_debug_draw *draw)
 {
-    if (world == NULL || draw == NULL) return RG_ERR_INVALID_ARGUMENT;
-    if (draw->flags & ~(uint32_t)(RG_DRAW_SHAPES | RG_DRAW_CONTACTS | RG_DRAW_VELOCITIES |
-                                  RG_DRAW_BOUNDS | RG_DRAW_SPRINGS))
-        return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    ARG_PTR(world, draw);
+    const uint32_t all = RG_DRAW_SHAPES | RG_DRAW_CONTACTS | RG_DRAW_VELOCITIES | RG_DRAW_BOUNDS | RG_DRAW_SPRINGS;
+    if (draw->flags & ~all)
+        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "draw->flags 0x%x has bits outside RG_DRAW_* (0x%x)",
+                       (unsigned)draw->flags, (unsigned)all);
     /* layers bottom-up: shapes, fat boxes, springs, velocities, contacts */
     if (draw->flags & RG_DRAW_SHAPES) draw_bodies(world, draw, RG_DRAW_SHAPES);
     if (draw->flags & RG_DRAW_BOUNDS) draw_bodies(world, draw, RG_DRAW_BOUNDS);
     if (draw->flags & RG_DRAW_SPRINGS) draw_springs(world, draw);
     if (draw->flags & RG_DRAW_VELOCITIES) draw_bodies(world, draw, RG_DRAW_VELOCITIES);
     if (draw->flags & RG_DRAW_CONTACTS) draw_contacts(world, draw);
+    ERROR_CLEAR(world); /* the callbacks' own calls on the world are not this call's */
     return RG_OK;
 }

@@ -1,6 +1,7 @@
 /* events.c: the contact event buffer and rg_world_get_contact_events. */
 #include <string.h>
 
+#include "arg.h"
 #include "events.h"
 #include "state.h"
 #include "vec2.h"
@@ -143,7 +144,8 @@ void events_end_step(event_store *es)
 RG_API int32_t rg_world_get_contact_events(const rg_world *world, rg_contact_event *out,
                                            int32_t capacity)
 {
-    if (world == NULL || capacity < 0 || (out == NULL && capacity > 0)) return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    ARG_BUFFER(world, out, capacity);
     const event_store *es = &world->coll.events;
     int32_t n = es->n < capacity ? es->n : capacity;
     if (n > 0) memcpy(out, es->ev, (size_t)n * sizeof *out);

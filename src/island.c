@@ -1,4 +1,5 @@
 /* island.c: islands, the sleep stage, waking, and the sleeping API. */
+#include "arg.h"
 #include "body.h"
 #include "contact.h"
 #include "island.h"
@@ -185,7 +186,7 @@ void island_sleep(rg_world *w, rg_real dt, int united)
 RG_API rg_status rg_body_is_awake(const rg_world *world, rg_body body, int32_t *out_awake)
 {
     BODY_GET(world, body, i);
-    if (out_awake == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ARG_PTR(world, out_awake);
     *out_awake = body_partition(world, i) == BODY_PART_ACTIVE;
     return RG_OK;
 }
@@ -199,13 +200,15 @@ RG_API rg_status rg_body_wake(rg_world *world, rg_body body)
 
 RG_API int32_t rg_world_awake_body_count(const rg_world *world)
 {
-    return world != NULL ? world->b.n_active : 0;
+    if (world == NULL) return 0;
+    ERROR_CLEAR(world);
+    return world->b.n_active;
 }
 
 RG_API rg_status rg_world_set_sleeping(rg_world *world, int32_t enabled)
 {
     WORLD_WRITABLE(world);
-    if (world == NULL || (enabled != 0 && enabled != 1)) return RG_ERR_INVALID_ARGUMENT;
+    ARG_INT(world, enabled, 0, 1, "0 or 1");
     if (!enabled) island_wake_all(world);
     world->coll.sleeping = enabled;
     return RG_OK;
@@ -213,7 +216,8 @@ RG_API rg_status rg_world_set_sleeping(rg_world *world, int32_t enabled)
 
 RG_API rg_status rg_world_get_sleeping(const rg_world *world, int32_t *out_enabled)
 {
-    if (world == NULL || out_enabled == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    ARG_PTR(world, out_enabled);
     *out_enabled = world->coll.sleeping;
     return RG_OK;
 }
@@ -221,8 +225,8 @@ RG_API rg_status rg_world_get_sleeping(const rg_world *world, int32_t *out_enabl
 RG_API rg_status rg_world_set_sleep_thresholds(rg_world *world, rg_real speed, rg_real time)
 {
     WORLD_WRITABLE(world);
-    if (world == NULL || !rg_finite(speed) || !rg_finite(time) || speed < 0 || !(time > 0))
-        return RG_ERR_INVALID_ARGUMENT;
+    ARG_IN(world, speed, 0, RG_MAX_SPEED);
+    ARG_ABOVE(world, time, 0, HUGE_VAL);
     world->coll.sleep_speed = speed;
     world->coll.sleep_time = time;
     return RG_OK;
@@ -231,7 +235,9 @@ RG_API rg_status rg_world_set_sleep_thresholds(rg_world *world, rg_real speed, r
 RG_API rg_status rg_world_get_sleep_thresholds(const rg_world *world, rg_real *out_speed,
                                                rg_real *out_time)
 {
-    if (world == NULL || out_speed == NULL || out_time == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    ARG_PTR(world, out_speed);
+    ARG_PTR(world, out_time);
     *out_speed = world->coll.sleep_speed;
     *out_time = world->coll.sleep_time;
     return RG_OK;

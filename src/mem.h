@@ -73,6 +73,7 @@ static inline void *mem_block(const rg_mem *m, mem_layout_fn layout, void *ctx, 
 {
     mem_layout l = mem_layout_measure();
     layout(&l, ctx);
+    if (l.size == 0) l.size = 1; /* an empty layout is still a block */
     void *block = mem_alloc(m, l.size);
     if (block == NULL) return NULL;
     *size = l.size;

@@ -1,5 +1,6 @@
 /* mover.c: the character mover, rg_body_move: a body's shape swept toward a target against
  * the shapes around it, sliding along what it meets (or stopping, or crossing). */
+#include "arg.h"
 #include "body.h"
 #include "collision.h"
 #include "island.h"
@@ -150,12 +151,15 @@ RG_API rg_status rg_body_move(rg_world *world, rg_body body, rg_vec2 target, uin
 {
     BODY_SET(world, body, i);
     body_store *b = &world->b;
-    if (!rg_vec2_finite(target) || response < RG_MOVE_SLIDE || response > RG_MOVE_CROSS || capacity < 0 ||
-        (out_hits == NULL && capacity > 0) || b->shape[i] == RG_SHAPE_NONE)
-        return RG_ERR_INVALID_ARGUMENT;
+    ARG_VEC(world, target, RG_MAX_COORD);
+    ARG_INT(world, response, RG_MOVE_SLIDE, RG_MOVE_CROSS, "one of RG_MOVE_* (0..2)");
+    ARG_BUFFER(world, out_hits, capacity);
+    if (b->shape[i] == RG_SHAPE_NONE) return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "body has no shape");
     rg_vec2 start = rg_v2(b->x[i], b->y[i]), total = rg_v2_sub(target, start);
     rg_real length = rg_v2_len(total);
-    if (!rg_finite(length)) return RG_ERR_INVALID_ARGUMENT;
+    if (!rg_finite(length)) /* a body the steps carried far beyond RG_MAX_COORD */
+        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "target: the path from the body at (%g, %g) is too long",
+                       (double)start.x, (double)start.y);
     mover q;
     q.w = world;
     q.self = b->slot[i];

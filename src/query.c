@@ -1,5 +1,6 @@
 /* query.c: raycasts, shape casts, box and point queries over the broadphase, as bodies are
  * now. */
+#include "arg.h"
 #include "collision.h"
 #include "query.h"
 #include "vec2.h"
@@ -41,8 +42,10 @@ static rg_real ray_visit(void *p, int32_t slot, rg_real max_t)
 RG_API int32_t rg_world_raycast(const rg_world *world, rg_vec2 origin, rg_vec2 translation,
                                 uint32_t mask, rg_ray_hit *out_hit)
 {
-    if (world == NULL || out_hit == NULL || !rg_vec2_finite(origin) || !rg_vec2_finite(translation))
-        return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    ARG_VEC(world, origin, RG_MAX_QUERY_COORD);
+    ARG_VEC(world, translation, RG_MAX_QUERY_COORD);
+    ARG_PTR(world, out_hit);
     ray_query q;
     q.w = world;
     q.o = origin;
@@ -125,9 +128,13 @@ static void query_keep(box_query *q, rg_body h)
 RG_API int32_t rg_world_query_aabb(const rg_world *world, rg_vec2 lower, rg_vec2 upper, uint32_t mask,
                                    rg_body *out, int32_t capacity)
 {
-    if (world == NULL || !rg_vec2_finite(lower) || !rg_vec2_finite(upper) || lower.x > upper.x ||
-        lower.y > upper.y || capacity < 0 || (out == NULL && capacity > 0))
-        return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    ARG_VEC(world, lower, RG_MAX_QUERY_COORD);
+    ARG_VEC(world, upper, RG_MAX_QUERY_COORD);
+    if (lower.x > upper.x || lower.y > upper.y)
+        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "lower (%g, %g) is not <= upper (%g, %g)",
+                       (double)lower.x, (double)lower.y, (double)upper.x, (double)upper.y);
+    ARG_BUFFER(world, out, capacity);
     box_query q;
     q.w = world;
     q.lx = lower.x;
@@ -172,8 +179,9 @@ static void point_visit(void *p, int32_t slot)
 RG_API int32_t rg_world_query_point(const rg_world *world, rg_vec2 point, uint32_t mask,
                                     rg_body *out, int32_t capacity)
 {
-    if (world == NULL || !rg_vec2_finite(point) || capacity < 0 || (out == NULL && capacity > 0))
-        return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    ARG_VEC(world, point, RG_MAX_QUERY_COORD);
+    ARG_BUFFER(world, out, capacity);
     box_query q;
     q.w = world;
     q.lx = q.ux = point.x;
@@ -254,9 +262,10 @@ static rg_real ray_all_visit(void *p, int32_t slot, rg_real max_t)
 RG_API int32_t rg_world_raycast_all(const rg_world *world, rg_vec2 origin, rg_vec2 translation,
                                     uint32_t mask, rg_ray_hit *out, int32_t capacity)
 {
-    if (world == NULL || !rg_vec2_finite(origin) || !rg_vec2_finite(translation) || capacity < 0 ||
-        (out == NULL && capacity > 0))
-        return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    ARG_VEC(world, origin, RG_MAX_QUERY_COORD);
+    ARG_VEC(world, translation, RG_MAX_QUERY_COORD);
+    ARG_BUFFER(world, out, capacity);
     ray_all q;
     q.w = world;
     q.o = origin;
@@ -326,18 +335,19 @@ RG_API int32_t rg_world_cast_shape(const rg_world *world, int32_t shape, rg_vec2
                                    rg_vec2 origin, rg_vec2 translation, uint32_t mask,
                                    rg_ray_hit *out_hit)
 {
-    if (world == NULL || out_hit == NULL || !rg_vec2_finite(size) || !rg_vec2_finite(origin) ||
-        !rg_vec2_finite(translation))
+    ERROR_BEGIN(world);
+    ARG_INT(world, shape, RG_SHAPE_CIRCLE, RG_SHAPE_AABB, "RG_SHAPE_CIRCLE (1) or RG_SHAPE_AABB (2)");
+    /* size: (radius, any finite number) or half extents */
+    if (!arg_real(world, __func__, "size", ".x", size.x,
+                  ARG_RULE(RG_MIN_SHAPE_SIZE, RG_MAX_SHAPE_SIZE, "RG_MIN_SHAPE_SIZE", "RG_MAX_SHAPE_SIZE", 0)) ||
+        !arg_real(world, __func__, "size", ".y", size.y,
+                  shape == RG_SHAPE_CIRCLE ? NULL
+                  : ARG_RULE(RG_MIN_SHAPE_SIZE, RG_MAX_SHAPE_SIZE, "RG_MIN_SHAPE_SIZE", "RG_MAX_SHAPE_SIZE", 0)))
         return RG_ERR_INVALID_ARGUMENT;
-    rg_vec2 h;
-    if (shape == RG_SHAPE_CIRCLE)
-        h = rg_v2(size.x, size.x);
-    else if (shape == RG_SHAPE_AABB)
-        h = size;
-    else
-        return RG_ERR_INVALID_ARGUMENT;
-    if (!(h.x > 0 && h.y > 0 && h.x <= (rg_real)RG_MAX_SHAPE_SIZE && h.y <= (rg_real)RG_MAX_SHAPE_SIZE))
-        return RG_ERR_INVALID_ARGUMENT;
+    ARG_VEC(world, origin, RG_MAX_QUERY_COORD);
+    ARG_VEC(world, translation, RG_MAX_QUERY_COORD);
+    ARG_PTR(world, out_hit);
+    rg_vec2 h = shape == RG_SHAPE_CIRCLE ? rg_v2(size.x, size.x) : size;
     cast_query q;
     q.w = world;
     q.kind = shape;

@@ -4,23 +4,17 @@
 #include "body.h"
 #include "broadphase.h"
 #include "contact.h"
+#include "error.h"
 #include "events.h"
 #include "snapshot.h"
 #include "spring.h"
 #include "vec2.h"
-
-#define RG_FIELD_ENUM(T, name) SNAP_F_##name,
-enum { RG_BODY_FIELDS(RG_FIELD_ENUM) SNAP_FIELDS };
-#undef RG_FIELD_ENUM
-typedef char snap_fields_fit[SNAP_FIELDS <= 64 ? 1 : -1];
 
 typedef struct snap_in {
     const uint8_t *p;
     size_t size;
     snap_scalars s;
     snap_layout l;
-    int32_t *seen;      /* scratch, nseen entries */
-    size_t nseen;
 } snap_in;
 
 #define BAD 0
@@ -37,17 +31,12 @@ static inline uint32_t rd_u32(const snap_in *in, size_t off, int32_t i)
     return snap_get32(in->p + off + 4 * (size_t)i);
 }
 
-static inline rg_real rd_real(const snap_in *in, size_t off, int32_t i)
-{
-    return snap_get_real(in->p + off + SNAP_REAL * (size_t)i);
-}
+/* Body field f of body i. */
+#define BF_AT(in, f, i) ((in)->p + (in)->l.field[SNAP_F_##f] + (in)->l.stride[SNAP_F_##f] * (size_t)(i))
+#define BF_I(in, f, i) ((int32_t)snap_get32(BF_AT(in, f, i)))
+#define BF_U(in, f, i) (snap_get32(BF_AT(in, f, i)))
+#define BF_R(in, f, i) (snap_get_real(BF_AT(in, f, i)))
 
-/* Field k of body i (an int32/uint32 or an rg_real array). */
-#define BF_I(in, f, i) rd_i32((in), (in)->l.field[SNAP_F_##f], (i))
-#define BF_U(in, f, i) rd_u32((in), (in)->l.field[SNAP_F_##f], (i))
-#define BF_R(in, f, i) rd_real((in), (in)->l.field[SNAP_F_##f], (i))
-
-/* A record field: byte offset within record `rec` of size `size` of the array at `off`. */
 static inline const uint8_t *rec(const snap_in *in, size_t off, size_t size, int32_t k)
 {
     return in->p + off + size * (size_t)k;
@@ -131,7 +120,6 @@ static void restore_read_scalars(snap_in *in)
     s->springs = cur_i32(&c);
     s->ccap = cur_i32(&c);
     s->clive = cur_i32(&c);
-    s->cfree = cur_i32(&c);
     s->n_awake = cur_i32(&c);
     s->n_touching = cur_i32(&c);
     s->n_ev = cur_i32(&c);
@@ -144,20 +132,90 @@ static void restore_read_scalars(snap_in *in)
     s->mark = cur_u32(&c);
 }
 
+/* The layout, read in order; 0 when an array would run past the end. */
+typedef struct snap_walk {
+    const snap_in *in;
+    size_t at;
+    int ok;
+} snap_walk;
+
+static size_t walk_take(snap_walk *wk, int64_t n, size_t elem)
+{
+    size_t start = (wk->at + 7u) & ~(size_t)7u;
+    if (n < 0 || start > wk->in->size || (uint64_t)n > (uint64_t)(wk->in->size - start) / elem) {
+        wk->ok = 0;
+        return start;
+    }
+    wk->at = start + (size_t)n * elem;
+    return start;
+}
+
+static int restore_layout(snap_in *in)
+{
+    const snap_scalars *s = &in->s;
+    snap_layout *l = &in->l;
+    snap_walk wk = { in, SNAP_HEADER + snap_scalars_size(), 1 };
+    l->bgen = walk_take(&wk, s->bslots, 4);
+    l->bindex = walk_take(&wk, s->bslots, 4);
+    int f = 0;
+#define SNAP_FIELD_LAYOUT(T, name)                                                        \
+    {                                                                                     \
+        size_t flag = walk_take(&wk, 1, 4);                                               \
+        uint32_t uniform = wk.ok ? snap_get32(in->p + flag) : 0;                         \
+        if (uniform > 1 || (uniform && s->count == 0)) wk.ok = 0;                         \
+        l->field[f] = walk_take(&wk, uniform ? 1 : s->count, sizeof(T));                  \
+        l->stride[f++] = uniform ? 0 : sizeof(T);                                         \
+    }
+    SNAP_BODY_FIELDS(SNAP_FIELD_LAYOUT)
+#undef SNAP_FIELD_LAYOUT
+    l->sgen = walk_take(&wk, s->sslots, 4);
+    l->sindex = walk_take(&wk, s->sslots, 4);
+    l->springs = walk_take(&wk, s->springs, SNAP_SPRING);
+    l->contacts = walk_take(&wk, s->clive, SNAP_CONTACT);
+    l->free = walk_take(&wk, (int64_t)s->ccap - s->clive, 4);
+    l->awake = walk_take(&wk, s->n_awake, 4);
+    l->ev = walk_take(&wk, s->n_ev, SNAP_EVENT);
+    l->pend = walk_take(&wk, s->n_pend, SNAP_EVENT);
+    l->members = walk_take(&wk, s->members, SNAP_MEMBER);
+    l->moved = walk_take(&wk, s->n_moved, 4);
+    l->size = (wk.at + 7u) & ~(size_t)7u;
+    return wk.ok && l->size == in->size;
+}
+
 /* ---------------------------------------------------------------- checks */
 
 static int fin(rg_real v) { return rg_finite(v); }
 static int nonneg(rg_real v) { return rg_finite(v) && v >= 0; }
 
-static int restore_check_header(snap_in *in, const void *data, size_t size)
+/* The header; 1, or 0 with the reason set. */
+static int restore_check_header(const rg_world *w, snap_in *in, const void *data, size_t size)
 {
+    const char *f = "rg_world_restore";
     in->p = data;
     in->size = size;
-    if (size < SNAP_HEADER + snap_scalars_size()) return BAD;
-    if (memcmp(in->p, SNAP_MAGIC, 8) != 0) return BAD;
-    if (snap_get32(in->p + 8) != SNAP_VERSION || snap_get32(in->p + 12) != sizeof(rg_real)) return BAD;
-    if (snap_get64(in->p + 16) != (uint64_t)size) return BAD;
-    if (snap_get64(in->p + 24) != snap_hash(in->p + SNAP_HEADER, size - SNAP_HEADER)) return BAD;
+    if (size < SNAP_HEADER + snap_scalars_size() || memcmp(in->p, SNAP_MAGIC, 8) != 0) {
+        error_set(w, RG_ERR_INVALID_ARGUMENT, f, "data (%lu bytes) is no snapshot", (unsigned long)size);
+        return 0;
+    }
+    if (snap_get32(in->p + 8) != SNAP_VERSION) {
+        error_set(w, RG_ERR_INVALID_ARGUMENT, f, "snapshot of format %u; this build reads format %u",
+                  (unsigned)snap_get32(in->p + 8), (unsigned)SNAP_VERSION);
+        return 0;
+    }
+    if (snap_get32(in->p + 12) != sizeof(rg_real)) {
+        error_set(w, RG_ERR_INVALID_ARGUMENT, f, "snapshot of a build with rg_real of %u bytes; this build's has %u",
+                  (unsigned)snap_get32(in->p + 12), (unsigned)sizeof(rg_real));
+        return 0;
+    }
+    if (snap_get64(in->p + 16) != (uint64_t)size) {
+        error_set(w, RG_ERR_INVALID_ARGUMENT, f, "size %lu, the snapshot says %llu (truncated or extended)",
+                  (unsigned long)size, (unsigned long long)snap_get64(in->p + 16));
+        return 0;
+    }
+    if (snap_get64(in->p + 24) != snap_hash(in->p + SNAP_HEADER, size - SNAP_HEADER)) {
+        error_set(w, RG_ERR_INVALID_ARGUMENT, f, "checksum mismatch (the snapshot is corrupted)");
+        return 0;
+    }
     restore_read_scalars(in);
     return 1;
 }
@@ -196,11 +254,11 @@ static int restore_check_scalars(snap_in *in)
     if (s->slive != s->springs || s->springs < 0 || s->springs > s->sslots) return BAD;
     /* contacts: 0 or 256 doubled */
     if (s->ccap != 0) {
-        if (s->ccap < 256 || s->ccap > INT32_MAX / 4) return BAD;
+        if (s->ccap < 256 || s->ccap > INT32_MAX / 8) return BAD;
         for (int32_t c = s->ccap; c > 256; c /= 2)
             if (c % 2) return BAD;
     }
-    if (s->clive < 0 || s->clive > s->ccap || s->cfree < -1 || s->cfree >= s->ccap) return BAD;
+    if (s->clive < 0 || s->clive > s->ccap) return BAD;
     if (s->n_awake < 0 || s->n_awake > s->clive || s->n_touching < 0 || s->n_touching > s->clive) return BAD;
     if (s->n_ev < 0 || s->n_pend < 0 || s->n_pend > s->ccap) return BAD;
     if (s->members < 0 || s->members > s->count) return BAD;
@@ -208,15 +266,14 @@ static int restore_check_scalars(snap_in *in)
     if (s->bucket_bits == 0 && s->members > 0) return BAD;
     if (s->n_huge < 0 || s->n_huge > s->members || s->n_moved < 0 || s->n_moved > s->members) return BAD;
     if (s->n_bp_active < 0 || s->n_bp_active > s->members) return BAD;
-    snap_layout_of(s, &in->l);
-    return in->l.ok && in->l.size == in->size;
+    return restore_layout(in);
 }
 
 /* A pool's slots: live ones map to distinct dense places, free ones form one list from
  * `head` (a walk that ends in exactly as many steps as there are free slots cannot repeat).
- * slot_of(dense) must give back the slot. */
+ * slot_at(dense) must give back the slot. */
 static int restore_check_pool(const snap_in *in, size_t gen, size_t index, int32_t slots, uint32_t max_gen,
-                              int32_t head, int32_t live, size_t slot_field, size_t slot_stride)
+                              int32_t head, int32_t live, const uint8_t *slot_of, size_t slot_stride)
 {
     int32_t nlive = 0, nfree = 0;
     for (int32_t s = 0; s < slots; s++) {
@@ -225,7 +282,7 @@ static int restore_check_pool(const snap_in *in, size_t gen, size_t index, int32
         if (g > max_gen) return BAD;
         if (i >= 0) {
             if (g == 0 || i >= live) return BAD;
-            if ((int32_t)snap_get32(in->p + slot_field + slot_stride * (size_t)i) != s) return BAD;
+            if ((int32_t)snap_get32(slot_of + slot_stride * (size_t)i) != s) return BAD;
             nlive++;
         } else if (g == 0) {
             if (i != -1) return BAD; /* retired */
@@ -277,25 +334,19 @@ static int restore_check_bodies(const snap_in *in)
         if ((part == BODY_PART_STATIC) != (type == RG_BODY_STATIC)) return BAD;
         rg_real reals[] = { BF_R(in, x, i), BF_R(in, y, i), BF_R(in, vx, i), BF_R(in, vy, i), BF_R(in, fx, i),
                             BF_R(in, fy, i), BF_R(in, ax, i), BF_R(in, ay, i), BF_R(in, px, i), BF_R(in, py, i),
-                            BF_R(in, gscale, i), BF_R(in, dx, i), BF_R(in, dy, i) };
+                            BF_R(in, gscale, i) };
         for (size_t k = 0; k < sizeof reals / sizeof reals[0]; k++)
             if (!fin(reals[k])) return BAD;
-        rg_real mass = BF_R(in, mass, i), inv = BF_R(in, inv_mass, i);
+        rg_real mass = BF_R(in, mass, i);
         if (type == RG_BODY_DYNAMIC) {
-            if (!(fin(mass) && mass > 0) || inv != 1 / mass || !fin(inv)) return BAD;
-        } else if (mass != 0 || inv != 0 || BF_R(in, gscale, i) != 0) {
+            if (!(fin(mass) && mass > 0 && rg_finite(1 / mass))) return BAD;
+        } else if (mass != 0 || BF_R(in, gscale, i) != 0) {
             return BAD;
         }
         rg_real lin = BF_R(in, drag_lin, i), quad = BF_R(in, drag_quad, i), fric = BF_R(in, fric, i);
         rg_real lo = BF_R(in, min_speed, i), hi = BF_R(in, max_speed, i);
         if (!nonneg(lin) || !nonneg(quad) || !nonneg(fric) || !nonneg(lo) || !nonneg(hi) || (hi > 0 && hi < lo))
             return BAD;
-        uint32_t f = 0;
-        if (type == RG_BODY_DYNAMIC) {
-            if (lin > 0 || quad > 0 || fric > 0) f |= BODY_F_DISSIPATIVE;
-            if (lo > 0 || hi > 0) f |= BODY_F_LIMITED;
-        }
-        if (BF_U(in, flags, i) != f) return BAD;
         int32_t shape = BF_I(in, shape, i);
         rg_real hx = BF_R(in, hx, i), hy = BF_R(in, hy, i);
         if (shape == RG_SHAPE_NONE) {
@@ -345,7 +396,7 @@ static int restore_check_springs(const snap_in *in)
 {
     const snap_scalars *s = &in->s;
     if (!restore_check_pool(in, in->l.sgen, in->l.sindex, s->sslots, s->smax_gen, s->sfree, s->springs,
-                            in->l.springs + 8, SNAP_SPRING))
+                            in->p + in->l.springs + 8, SNAP_SPRING))
         return BAD;
     for (int32_t k = 0; k < s->springs; k++) {
         snap_cursor c = { rec(in, in->l.springs, SNAP_SPRING, k) };
@@ -358,27 +409,50 @@ static int restore_check_springs(const snap_in *in)
     return 1;
 }
 
-/* The int fields of contact k: sa, sb, na, pa, nb, pb, awake, flags. */
+/* What the contact and broadphase checks work with, kept for the load: per contact id its
+ * record + 1 (live) or -1 (free); per slot its member index + 1; per member its level and
+ * key (computed once); marks for the bucket heads, huge indices and active places. */
+typedef struct restore_scratch {
+    int32_t *rec_of;        /* [ccap] */
+    int32_t *member_of;     /* [bslots] */
+    uint64_t *key;          /* [members] */
+    int16_t *level;         /* [members] */
+    uint8_t *bucket_head;   /* [2^bucket_bits] */
+    uint8_t *huge_used;     /* [n_huge] */
+    uint8_t *active_used;   /* [n_bp_active] */
+    const snap_scalars *s;
+} restore_scratch;
+
+static void restore_scratch_layout(mem_layout *l, void *ctx)
+{
+    restore_scratch *r = ctx;
+    const snap_scalars *s = r->s;
+    r->rec_of = mem_take(l, (size_t)s->ccap, sizeof(int32_t));
+    r->member_of = mem_take(l, (size_t)s->bslots, sizeof(int32_t));
+    r->key = mem_take(l, (size_t)s->members, sizeof(uint64_t));
+    r->level = mem_take(l, (size_t)s->members, sizeof(int16_t));
+    r->bucket_head = mem_take(l, s->bucket_bits > 0 ? (size_t)1 << s->bucket_bits : 0, 1);
+    r->huge_used = mem_take(l, (size_t)s->n_huge, 1);
+    r->active_used = mem_take(l, (size_t)s->n_bp_active, 1);
+}
+
+/* The int fields of live contact record k. */
+enum { CT_ID, CT_SA, CT_SB, CT_NA, CT_PA, CT_NB, CT_PB, CT_FLAGS };
+
 static inline int32_t ct_i(const snap_in *in, int32_t k, int field)
 {
     return (int32_t)snap_get32(rec(in, in->l.contacts, SNAP_CONTACT, k) + 4 * field);
 }
 
-enum { CT_SA, CT_SB, CT_NA, CT_PA, CT_NB, CT_PB, CT_AWAKE, CT_FLAGS };
-
-static int restore_check_contacts(const snap_in *in)
+static int restore_check_contacts(const snap_in *in, restore_scratch *r)
 {
     const snap_scalars *s = &in->s;
-    int32_t nfree = 0, live = 0, touching = 0, awake = 0;
+    int32_t touching = 0, should_wake = 0;
     const uint32_t valid = CT_TOUCHING | CT_SENSOR | CT_SOLVE | CT_CLOSING | CT_ONEWAY | CT_PASS;
-    for (int32_t k = 0; k < s->ccap; k++) {
-        int32_t sa = ct_i(in, k, CT_SA), sb = ct_i(in, k, CT_SB);
-        if (sa == -1) {
-            int32_t next = ct_i(in, k, CT_NA);
-            if (next < -1 || next >= s->ccap) return BAD;
-            nfree++;
-            continue;
-        }
+    for (int32_t k = 0; k < s->clive; k++) {
+        int32_t id = ct_i(in, k, CT_ID), sa = ct_i(in, k, CT_SA), sb = ct_i(in, k, CT_SB);
+        if (id < 0 || id >= s->ccap || (k > 0 && id <= ct_i(in, k - 1, CT_ID))) return BAD; /* ascending ids */
+        r->rec_of[id] = k + 1;
         int32_t ia = restore_dense(in, sa), ib = restore_dense(in, sb);
         if (ia < 0 || ib < 0 || sa == sb || !(restore_handle(in, sa) < restore_handle(in, sb))) return BAD;
         if (BF_I(in, shape, ia) == RG_SHAPE_NONE || BF_I(in, shape, ib) == RG_SHAPE_NONE) return BAD;
@@ -388,24 +462,33 @@ static int restore_check_contacts(const snap_in *in)
         int one_way = BF_R(in, owx, ia) != 0 || BF_R(in, owy, ia) != 0 || BF_R(in, owx, ib) != 0 ||
                       BF_R(in, owy, ib) != 0;
         if (((flags & CT_SENSOR) != 0) != sensor || ((flags & CT_ONEWAY) != 0) != one_way) return BAD;
-        int32_t a = ct_i(in, k, CT_AWAKE);
-        int should = ia < s->n_active || ib < s->n_active;
-        if ((a >= 0) != should || a >= s->n_awake || a < -1) return BAD;
-        if (a >= 0 && rd_i32(in, in->l.awake, a) != k) return BAD;
         for (int f = CT_NA; f <= CT_PB; f++)
             if (ct_i(in, k, f) < -1 || ct_i(in, k, f) >= s->ccap) return BAD;
-        const uint8_t *r = rec(in, in->l.contacts, SNAP_CONTACT, k) + 32;
-        for (int q = 0; q < 13; q++)
-            if (!fin(snap_get_real(r + SNAP_REAL * (size_t)q))) return BAD;
-        live++;
-        awake += a >= 0;
+        const uint8_t *reals = rec(in, in->l.contacts, SNAP_CONTACT, k) + 32;
+        for (int q = 0; q < 10; q++)
+            if (!fin(snap_get_real(reals + SNAP_REAL * (size_t)q))) return BAD;
         touching += (flags & CT_TOUCHING) != 0;
+        should_wake += ia < s->n_active || ib < s->n_active;
     }
-    if (live != s->clive || awake != s->n_awake || touching != s->n_touching || nfree != s->ccap - s->clive)
-        return BAD;
-    for (int32_t at = s->cfree, steps = 0; at >= 0; steps++) {
-        if (steps >= nfree || ct_i(in, at, CT_SA) != -1) return BAD;
-        at = ct_i(in, at, CT_NA);
+    if (touching != s->n_touching || should_wake != s->n_awake) return BAD;
+    /* the free ids: the rest, each once */
+    for (int32_t k = 0; k < s->ccap - s->clive; k++) {
+        int32_t id = rd_i32(in, in->l.free, k);
+        if (id < 0 || id >= s->ccap || r->rec_of[id] != 0) return BAD;
+        r->rec_of[id] = -1;
+    }
+    /* the awake list: every contact with an awake body, each once */
+    for (int32_t k = 0; k < s->n_awake; k++) {
+        int32_t id = rd_i32(in, in->l.awake, k);
+        if (id < 0 || id >= s->ccap || r->rec_of[id] <= 0) return BAD;
+        int32_t q = r->rec_of[id] - 1;
+        int32_t ia = restore_dense(in, ct_i(in, q, CT_SA)), ib = restore_dense(in, ct_i(in, q, CT_SB));
+        if (!(ia < s->n_active || ib < s->n_active)) return BAD;
+        r->rec_of[id] = -r->rec_of[id] - 2; /* listed; a second listing finds it negative */
+    }
+    for (int32_t k = 0; k < s->n_awake; k++) {
+        int32_t id = rd_i32(in, in->l.awake, k);
+        r->rec_of[id] = -(r->rec_of[id] + 2);
     }
     /* each body's list: its contacts, each once, linked both ways; all lists together hold
      * every live contact twice */
@@ -413,12 +496,13 @@ static int restore_check_contacts(const snap_in *in)
     for (int32_t i = 0; i < s->count; i++) {
         int32_t slot = BF_I(in, slot, i), prev = -1, steps = 0;
         for (int32_t id = BF_I(in, chead, i) - 1; id >= 0; steps++) {
-            if (steps >= s->clive) return BAD;
-            int32_t sa = ct_i(in, id, CT_SA), sb = ct_i(in, id, CT_SB);
-            if (sa == -1 || (sa != slot && sb != slot)) return BAD;
-            if ((sa == slot ? ct_i(in, id, CT_PA) : ct_i(in, id, CT_PB)) != prev) return BAD;
+            if (steps >= s->clive || r->rec_of[id] <= 0) return BAD;
+            int32_t q = r->rec_of[id] - 1;
+            int32_t sa = ct_i(in, q, CT_SA), sb = ct_i(in, q, CT_SB);
+            if (sa != slot && sb != slot) return BAD;
+            if ((sa == slot ? ct_i(in, q, CT_PA) : ct_i(in, q, CT_PB)) != prev) return BAD;
             prev = id;
-            id = sa == slot ? ct_i(in, id, CT_NA) : ct_i(in, id, CT_NB);
+            id = sa == slot ? ct_i(in, q, CT_NA) : ct_i(in, q, CT_NB);
             visits++;
         }
     }
@@ -428,10 +512,10 @@ static int restore_check_contacts(const snap_in *in)
 static int restore_check_events(const snap_in *in, size_t off, int32_t n)
 {
     for (int32_t k = 0; k < n; k++) {
-        const uint8_t *r = rec(in, off, SNAP_EVENT, k) + 16;
-        for (int q = 0; q < 6; q++)
-            if (!fin(snap_get_real(r + SNAP_REAL * (size_t)q))) return BAD;
-        uint32_t kind = snap_get32(r + 6 * SNAP_REAL), sensor = snap_get32(r + 6 * SNAP_REAL + 4);
+        const uint8_t *q = rec(in, off, SNAP_EVENT, k) + 16;
+        for (int f = 0; f < 6; f++)
+            if (!fin(snap_get_real(q + SNAP_REAL * (size_t)f))) return BAD;
+        uint32_t kind = snap_get32(q + 6 * SNAP_REAL), sensor = snap_get32(q + 6 * SNAP_REAL + 4);
         if (kind > 1 || sensor > 1) return BAD;
     }
     return 1;
@@ -442,8 +526,6 @@ typedef struct snap_member {
     int32_t slot;
     rg_real lx, ly, ux, uy;
     int32_t next, prev, lnext, lprev, moved, apos;
-    int16_t level;
-    uint64_t key;
 } snap_member;
 
 static void restore_member(const snap_in *in, int32_t k, snap_member *m)
@@ -460,35 +542,32 @@ static void restore_member(const snap_in *in, int32_t k, snap_member *m)
     m->lprev = cur_i32(&c);
     m->moved = cur_i32(&c);
     m->apos = cur_i32(&c);
-    broadphase_locate(m->lx, m->ly, m->ux, m->uy, &m->level, &m->key);
 }
 
-/* The scratch restore_check_broadphase needs: member_of (slots), bucket heads (buckets),
- * huge indices and active places used. */
-static size_t restore_scratch_size(const snap_scalars *s)
+/* A member's link (0 next, 1 prev, 2 lnext, 3 lprev, 4 moved) without reading the rest. */
+static inline int32_t restore_link(const snap_in *in, int32_t k, int which)
 {
-    size_t nb = s->bucket_bits > 0 ? (size_t)1 << s->bucket_bits : 0;
-    return (size_t)s->bslots + nb + (size_t)s->n_huge + (size_t)s->n_bp_active + 1;
+    return (int32_t)snap_get32(rec(in, in->l.members, SNAP_MEMBER, k) + 4 + 4 * SNAP_REAL + 4 * (size_t)which);
 }
 
 /* Walks the list starting at member `head` along next (chain) or lnext (level), checking
  * the back links and that every node is a member like the head (same bucket or level);
  * returns the length, or -1. */
-static int32_t restore_walk(const snap_in *in, const int32_t *member_of, const snap_member *head, int level_list)
+static int32_t restore_walk(const snap_in *in, const restore_scratch *r, int32_t head, int level_list)
 {
     const snap_scalars *s = &in->s;
-    uint32_t bk = broadphase_bucket(s->bucket_bits, head->key);
+    uint32_t bk = broadphase_bucket(s->bucket_bits, r->key[head]);
+    int16_t lv = r->level[head];
     int32_t prev = -1, steps = 0;
-    for (int32_t at = head->slot; at >= 0; steps++) {
-        if (steps >= s->members || at >= s->bslots || member_of[at] == 0) return -1;
-        snap_member m;
-        restore_member(in, member_of[at] - 1, &m);
-        if (m.level == BP_HUGE) return -1;
-        if (level_list ? (m.level != head->level || m.lprev != prev)
-                       : (m.prev != prev || broadphase_bucket(s->bucket_bits, m.key) != bk))
+    for (int32_t at = (int32_t)snap_get32(rec(in, in->l.members, SNAP_MEMBER, head)); at >= 0; steps++) {
+        if (steps >= s->members || at >= s->bslots || r->member_of[at] <= 0) return -1;
+        int32_t k = r->member_of[at] - 1;
+        if (r->level[k] == BP_HUGE) return -1;
+        if (level_list ? (r->level[k] != lv || restore_link(in, k, 3) != prev)
+                       : (restore_link(in, k, 1) != prev || broadphase_bucket(s->bucket_bits, r->key[k]) != bk))
             return -1;
         prev = at;
-        at = level_list ? m.lnext : m.next;
+        at = restore_link(in, k, level_list ? 2 : 0);
     }
     return steps;
 }
@@ -497,81 +576,80 @@ static int32_t restore_walk(const snap_in *in, const int32_t *member_of, const s
  * every bucket chain and level list is a consistent doubly linked list of members of that
  * bucket or level, at most one per bucket or level, together holding each member once; the
  * huge indices, the active places and the move buffer are permutations of their members. */
-static int restore_check_broadphase(snap_in *in)
+static int restore_check_broadphase(const snap_in *in, restore_scratch *r)
 {
     const snap_scalars *s = &in->s;
-    size_t nb = s->bucket_bits > 0 ? (size_t)1 << s->bucket_bits : 0;
-    int32_t *member_of = in->seen;                            /* slot -> member index + 1 */
-    int32_t *bucket_head = member_of + s->bslots;             /* bucket -> has a head */
-    int32_t *huge_used = bucket_head + nb;                    /* huge index -> used */
-    int32_t *active_used = huge_used + s->n_huge;             /* active place -> used */
-    memset(in->seen, 0, in->nseen * sizeof *in->seen);
     int32_t huge = 0, moved = 0, active = 0;
     uint32_t level_seen = 0;
     for (int32_t k = 0; k < s->members; k++) {
         snap_member m;
         restore_member(in, k, &m);
         int32_t i = restore_dense(in, m.slot);
-        if (i < 0 || BF_I(in, shape, i) == RG_SHAPE_NONE || member_of[m.slot] != 0) return BAD;
-        member_of[m.slot] = k + 1;
+        if (i < 0 || BF_I(in, shape, i) == RG_SHAPE_NONE || r->member_of[m.slot] != 0) return BAD;
+        r->member_of[m.slot] = k + 1;
         if (!(fin(m.lx) && fin(m.ly) && fin(m.ux) && fin(m.uy) && m.lx <= m.ux && m.ly <= m.uy)) return BAD;
+        broadphase_locate(m.lx, m.ly, m.ux, m.uy, &r->level[k], &r->key[k]);
         if ((m.moved & ~1) != 0) return BAD;
         moved += m.moved;
         if ((m.apos >= 0) != (i < s->n_active) || m.apos < -1 || m.apos >= s->n_bp_active) return BAD;
         if (m.apos >= 0) {
-            if (active_used[m.apos]++) return BAD;
+            if (r->active_used[m.apos]++) return BAD;
             active++;
         }
-        if (m.level == BP_HUGE) {
-            if (m.next < 0 || m.next >= s->n_huge || huge_used[m.next]++) return BAD;
+        if (r->level[k] == BP_HUGE) {
+            if (m.next < 0 || m.next >= s->n_huge || r->huge_used[m.next]++) return BAD;
             huge++;
             continue;
         }
-        if (m.prev == -1) {
-            uint32_t bk = broadphase_bucket(s->bucket_bits, m.key);
-            if (bucket_head[bk]++) return BAD; /* two chains in one bucket */
-        }
+        if (m.prev == -1 && r->bucket_head[broadphase_bucket(s->bucket_bits, r->key[k])]++) return BAD;
         if (m.lprev == -1) {
-            if (level_seen & (1u << m.level)) return BAD;
-            level_seen |= 1u << m.level;
+            if (level_seen & (1u << r->level[k])) return BAD; /* two lists of one level */
+            level_seen |= 1u << r->level[k];
         }
     }
     if (huge != s->n_huge || moved != s->n_moved || active != s->n_bp_active) return BAD;
     int32_t chained = 0, listed = 0;
     for (int32_t k = 0; k < s->members; k++) {
-        snap_member h;
-        restore_member(in, k, &h);
-        if (h.level == BP_HUGE) continue;
-        if (h.prev == -1) {
-            int32_t n = restore_walk(in, member_of, &h, 0);
+        if (r->level[k] == BP_HUGE) continue;
+        if (restore_link(in, k, 1) == -1) {
+            int32_t n = restore_walk(in, r, k, 0);
             if (n < 0) return BAD;
             chained += n;
         }
-        if (h.lprev == -1) {
-            int32_t n = restore_walk(in, member_of, &h, 1);
+        if (restore_link(in, k, 3) == -1) {
+            int32_t n = restore_walk(in, r, k, 1);
             if (n < 0) return BAD;
             listed += n;
         }
     }
     if (chained != s->members - s->n_huge || listed != s->members - s->n_huge) return BAD;
-    /* the move buffer: members marked moved, each listed once (a listing flips the mark) */
+    /* the move buffer: members marked moved, each listed once (a listing flips the sign of
+     * member_of; the load reads it through its absolute value) */
     for (int32_t k = 0; k < s->n_moved; k++) {
         int32_t slot = rd_i32(in, in->l.moved, k);
-        if (slot < 0 || slot >= s->bslots || member_of[slot] <= 0) return BAD;
-        snap_member m;
-        restore_member(in, member_of[slot] - 1, &m);
-        if (m.moved != 1) return BAD;
-        member_of[slot] = -member_of[slot];
+        if (slot < 0 || slot >= s->bslots || r->member_of[slot] <= 0) return BAD;
+        if (restore_link(in, r->member_of[slot] - 1, 4) != 1) return BAD;
+        r->member_of[slot] = -r->member_of[slot];
     }
     return 1;
 }
 
 /* ---------------------------------------------------------------- loading */
 
-/* n elements of elem (4 or 8) bytes from the file's order into dst. */
-static void restore_array(void *dst, const uint8_t *src, int32_t n, size_t elem)
+/* n elements of elem (4 or 8) bytes from the file's order into dst; stride 0 repeats one. */
+static void restore_array(void *dst, const uint8_t *src, int32_t n, size_t elem, size_t stride)
 {
     if (n <= 0) return;
+    if (stride == 0) { /* one value for all: the same bits in every element */
+        if (elem == 8) {
+            uint64_t u = snap_get64(src), *q = dst;
+            for (int32_t i = 0; i < n; i++) q[i] = u;
+        } else {
+            uint32_t u = snap_get32(src), *q = dst;
+            for (int32_t i = 0; i < n; i++) q[i] = u;
+        }
+        return;
+    }
 #if SNAP_NATIVE
     memcpy(dst, src, (size_t)n * elem);
 #else
@@ -591,8 +669,8 @@ static void restore_array(void *dst, const uint8_t *src, int32_t n, size_t elem)
 static void restore_pool(pool *p, const snap_in *in, size_t gen, size_t index, int32_t slots, uint32_t tag,
                          uint32_t max_gen, int32_t max_slots, int32_t head, int32_t live)
 {
-    restore_array(p->gen, in->p + gen, slots, 4);
-    restore_array(p->index, in->p + index, slots, 4);
+    restore_array(p->gen, in->p + gen, slots, 4, 4);
+    restore_array(p->index, in->p + index, slots, 4, 4);
     p->slot_count = slots;
     p->free_head = head;
     p->live = live;
@@ -619,43 +697,57 @@ static void restore_events(rg_contact_event *e, const snap_in *in, size_t off, i
     }
 }
 
-static void restore_contacts(contact_store *cs, const snap_in *in)
+/* After the bodies: the contacts, their mixed materials from their bodies, the free list
+ * in its order, the awake list and each contact's place in it. */
+static void restore_contacts(rg_world *w, const snap_in *in)
 {
-    for (int32_t k = 0; k < in->s.ccap; k++) {
-        contact *c = &cs->c[k];
-        const uint8_t *r = rec(in, in->l.contacts, SNAP_CONTACT, k);
-        if ((int32_t)snap_get32(r) == -1) {
-            memset(c, 0, sizeof *c);
-            c->sa = c->sb = -1;
-            c->awake = -1;
-            c->na = (int32_t)snap_get32(r + 8);
-            continue;
-        }
-#if SNAP_NATIVE
-        memcpy(c, r, SNAP_CONTACT);
-#else
-        snap_cursor q = { r };
+    contact_store *cs = &w->coll.contacts;
+    const body_store *b = &w->b;
+    const snap_scalars *s = &in->s;
+    for (int32_t k = 0; k < s->clive; k++) {
+        snap_cursor q = { rec(in, in->l.contacts, SNAP_CONTACT, k) };
+        contact *c = &cs->c[cur_i32(&q)];
         c->sa = cur_i32(&q);
         c->sb = cur_i32(&q);
         c->na = cur_i32(&q);
         c->pa = cur_i32(&q);
         c->nb = cur_i32(&q);
         c->pb = cur_i32(&q);
-        c->awake = cur_i32(&q);
         c->flags = cur_u32(&q);
-        rg_real *reals = &c->mu;
-        for (int f = 0; f < 13; f++) reals[f] = cur_real(&q);
-#endif
+        c->nx = cur_real(&q);
+        c->ny = cur_real(&q);
+        c->px = cur_real(&q);
+        c->py = cur_real(&q);
+        c->s0 = cur_real(&q);
+        c->vn0 = cur_real(&q);
+        c->depth = cur_real(&q);
+        c->speed = cur_real(&q);
+        c->pn = cur_real(&q);
+        c->pt = cur_real(&q);
+        c->toi = 0;
+        c->awake = -1;
+        int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
+        c->mu = rg_sqrt(b->mu[ia] * b->mu[ib]);
+        c->e = rg_max(b->rest[ia], b->rest[ib]);
     }
-    cs->cap = in->s.ccap;
-    cs->live = in->s.clive;
-    cs->free_head = in->s.cfree;
-    cs->n_awake = in->s.n_awake;
-    cs->n_touching = in->s.n_touching;
-    restore_array(cs->awake, in->p + in->l.awake, in->s.n_awake, 4);
+    int32_t nfree = s->ccap - s->clive;
+    for (int32_t k = 0; k < nfree; k++) {
+        contact *c = &cs->c[rd_i32(in, in->l.free, k)];
+        memset(c, 0, sizeof *c);
+        c->sa = c->sb = -1;
+        c->awake = -1;
+        c->na = k + 1 < nfree ? rd_i32(in, in->l.free, k + 1) : -1;
+    }
+    cs->cap = s->ccap;
+    cs->live = s->clive;
+    cs->free_head = nfree > 0 ? rd_i32(in, in->l.free, 0) : -1;
+    cs->n_awake = s->n_awake;
+    cs->n_touching = s->n_touching;
+    restore_array(cs->awake, in->p + in->l.awake, s->n_awake, 4, 4);
+    for (int32_t k = 0; k < s->n_awake; k++) cs->c[cs->awake[k]].awake = k;
 }
 
-static void restore_broadphase(broadphase *bp, const snap_in *in)
+static void restore_broadphase(broadphase *bp, const snap_in *in, const restore_scratch *r)
 {
     for (int32_t k = 0; k < in->s.members; k++) {
         snap_member m;
@@ -665,8 +757,8 @@ static void restore_broadphase(broadphase *bp, const snap_in *in)
         e->ly = m.ly;
         e->ux = m.ux;
         e->uy = m.uy;
-        e->level = m.level;
-        e->key = m.key;
+        e->level = r->level[k];
+        e->key = r->key[k];
         e->next = m.next;
         e->prev = m.prev;
         e->lnext = m.lnext;
@@ -678,13 +770,13 @@ static void restore_broadphase(broadphase *bp, const snap_in *in)
         bp->members[k] = m.slot;
     }
     bp->count = in->s.members;
-    restore_array(bp->moved, in->p + in->l.moved, in->s.n_moved, 4);
+    restore_array(bp->moved, in->p + in->l.moved, in->s.n_moved, 4, 4);
     bp->n_moved = in->s.n_moved;
     bp->mark = in->s.mark;
     broadphase_restore_finish(bp);
 }
 
-static void restore_load(rg_world *w, const snap_in *in)
+static void restore_load(rg_world *w, const snap_in *in, const restore_scratch *r)
 {
     const snap_scalars *s = &in->s;
     collide_world *cw = &w->coll;
@@ -711,17 +803,30 @@ static void restore_load(rg_world *w, const snap_in *in)
     restore_pool(&w->body_pool, in, in->l.bgen, in->l.bindex, s->bslots, s->btag, s->bmax_gen, s->bmax_slots,
                  s->bfree, s->blive);
     int f = 0;
-#define RG_FIELD_LOAD(T, name) restore_array(b->name, in->p + in->l.field[f++], s->count, sizeof(T));
-    RG_BODY_FIELDS(RG_FIELD_LOAD)
-#undef RG_FIELD_LOAD
+#define SNAP_FIELD_LOAD(T, name)                                                          \
+    restore_array(b->name, in->p + in->l.field[f], s->count, sizeof(T), in->l.stride[f]); \
+    f++;
+    SNAP_BODY_FIELDS(SNAP_FIELD_LOAD)
+#undef SNAP_FIELD_LOAD
     b->count = s->count;
     b->n_active = s->n_active;
     b->n_moving = s->n_moving;
-    w->dissipative_count = w->limit_count = 0;
+    /* what the snapshot leaves out: inverse masses, flags (as body_update_flags makes them)
+     * and the step's displacements */
+    int32_t dissipative = 0, limited = 0;
     for (int32_t i = 0; i < b->count; i++) {
-        w->dissipative_count += (b->flags[i] & BODY_F_DISSIPATIVE) != 0;
-        w->limit_count += (b->flags[i] & BODY_F_LIMITED) != 0;
+        int dynamic = b->type[i] == RG_BODY_DYNAMIC;
+        b->inv_mass[i] = dynamic ? 1 / b->mass[i] : 0;
+        b->dx[i] = b->dy[i] = 0;
+        uint32_t fl = 0;
+        if (dynamic && (b->drag_lin[i] > 0 || b->drag_quad[i] > 0 || b->fric[i] > 0)) fl |= BODY_F_DISSIPATIVE;
+        if (dynamic && (b->min_speed[i] > 0 || b->max_speed[i] > 0)) fl |= BODY_F_LIMITED;
+        b->flags[i] = fl;
+        dissipative += (fl & BODY_F_DISSIPATIVE) != 0;
+        limited += (fl & BODY_F_LIMITED) != 0;
     }
+    w->dissipative_count = dissipative;
+    w->limit_count = limited;
     restore_pool(&w->springs.pool, in, in->l.sgen, in->l.sindex, s->sslots, s->stag, s->smax_gen,
                  s->smax_slots, s->sfree, s->slive);
     for (int32_t k = 0; k < s->springs; k++) {
@@ -737,14 +842,14 @@ static void restore_load(rg_world *w, const snap_in *in)
         sp->c = cur_real(&c);
     }
     w->springs.count = s->springs;
-    restore_contacts(&cw->contacts, in);
+    restore_contacts(w, in);
     event_store *es = &cw->events;
     restore_events(es->ev, in, in->l.ev, s->n_ev);
     restore_events(es->pend, in, in->l.pend, s->n_pend);
     es->n = es->base = s->n_ev;
     es->n_pend = s->n_pend;
     es->in_step = 0;
-    restore_broadphase(&cw->bp, in);
+    restore_broadphase(&cw->bp, in, r);
     cw->shape_count = s->members;
     cw->resolve.gen = 0;
     cw->resolve.pv_valid = 0;
@@ -753,57 +858,80 @@ static void restore_load(rg_world *w, const snap_in *in)
 
 /* ---------------------------------------------------------------- the call */
 
+/* A snapshot whose checksum holds but whose state breaks an invariant: forged, or damaged
+ * before it was sealed. */
+static rg_status restore_refuse(const rg_world *w, const char *what)
+{
+    return error_set(w, RG_ERR_INVALID_ARGUMENT, "rg_world_restore",
+                     "the snapshot's %s break the state's invariants (forged or damaged before it was sealed)", what);
+}
+
 static rg_status restore_checked(rg_world *w, snap_in *in)
 {
     const snap_scalars *s = &in->s;
     const rg_mem *m = &w->mem;
+    const char *bad = NULL;
     if (!restore_check_pool(in, in->l.bgen, in->l.bindex, s->bslots, s->bmax_gen, s->bfree, s->count,
-                            in->l.field[SNAP_F_slot], 4) ||
-        !restore_check_bodies(in) || !restore_check_springs(in) || !restore_check_contacts(in) ||
-        !restore_check_events(in, in->l.ev, s->n_ev) || !restore_check_events(in, in->l.pend, s->n_pend))
-        return RG_ERR_INVALID_ARGUMENT;
-    in->nseen = restore_scratch_size(s);
-    in->seen = mem_alloc(m, mem_array_size(in->nseen, sizeof *in->seen));
-    if (in->seen == NULL) return RG_ERR_OUT_OF_MEMORY;
-    int good = restore_check_broadphase(in);
-    mem_free(m, in->seen, in->nseen * sizeof *in->seen);
-    if (!good) return RG_ERR_INVALID_ARGUMENT;
+                            in->p + in->l.field[SNAP_F_slot], in->l.stride[SNAP_F_slot]))
+        bad = "body handles";
+    else if (!restore_check_bodies(in))
+        bad = "bodies";
+    else if (!restore_check_springs(in))
+        bad = "springs";
+    else if (!restore_check_events(in, in->l.ev, s->n_ev) || !restore_check_events(in, in->l.pend, s->n_pend))
+        bad = "events";
+    if (bad != NULL) return restore_refuse(w, bad);
+    restore_scratch r;
+    size_t rsize = 0;
+    r.s = s;
+    void *rblock = mem_block(m, restore_scratch_layout, &r, &rsize);
+    if (rblock == NULL) return error_alloc(w, "rg_world_restore", RG_ERR_OUT_OF_MEMORY, "restore scratch", "RG_MAX_BODIES");
+    memset(rblock, 0, rsize);
+    rg_status st = RG_OK;
+    if (!restore_check_contacts(in, &r))
+        st = restore_refuse(w, "contacts");
+    else if (!restore_check_broadphase(in, &r))
+        st = restore_refuse(w, "broadphase");
     /* room: growth keeps the world as it is; the contact storage (of exactly the saved
      * capacity, which decides the ids of new contacts) and the bucket table (of exactly the
      * saved size, which decides the chains) are made aside and taken at the end */
-    rg_status st = pool_reserve_slots(&w->body_pool, m, s->bslots);
+    if (st == RG_OK) st = pool_reserve_slots(&w->body_pool, m, s->bslots);
     if (st == RG_OK) st = body_reserve_count(w, s->count);
     if (st == RG_OK) st = pool_reserve_slots(&w->springs.pool, m, s->sslots);
     if (st == RG_OK) st = spring_reserve(w, s->springs);
     if (st == RG_OK && (s->members > 0 || s->bucket_bits > 0))
         st = broadphase_reserve_slots(&w->coll.bp, m, s->bslots);
-    if (st != RG_OK) return st;
     contact_block cb;
-    st = contact_block_alloc(&cb, w, s->ccap, s->n_ev, s->n_pend);
-    if (st != RG_OK) return st;
+    if (st == RG_OK) st = contact_block_alloc(&cb, w, s->ccap, s->n_ev, s->n_pend);
     broadphase *bp = &w->coll.bp;
     size_t nb = s->bucket_bits > 0 ? (size_t)1 << s->bucket_bits : 0;
     int32_t *head = s->bucket_bits == bp->bucket_bits ? bp->head : NULL;
-    if (s->bucket_bits != bp->bucket_bits && s->bucket_bits > 0) {
+    if (st == RG_OK && s->bucket_bits != bp->bucket_bits && s->bucket_bits > 0) {
         head = mem_alloc(m, nb * sizeof *head);
         if (head == NULL) {
             contact_block_free(&cb, m);
-            return RG_ERR_OUT_OF_MEMORY;
+            st = RG_ERR_OUT_OF_MEMORY;
         }
     }
-    /* nothing can fail from here on */
-    contact_block_adopt(w, &cb);
-    broadphase_clear(bp, m, head, s->bucket_bits);
-    restore_load(w, in);
-    return RG_OK;
+    if (st == RG_ERR_OUT_OF_MEMORY || st == RG_ERR_CAPACITY)
+        error_alloc(w, "rg_world_restore", st, "the restored world", "RG_MAX_BODIES");
+    if (st == RG_OK) {
+        /* nothing can fail from here on */
+        contact_block_adopt(w, &cb);
+        broadphase_clear(bp, m, head, s->bucket_bits);
+        restore_load(w, in, &r);
+    }
+    mem_free(m, rblock, rsize);
+    return st;
 }
 
 RG_API rg_status rg_world_restore(rg_world *world, const void *data, size_t size)
 {
     WORLD_WRITABLE(world);
-    if (world == NULL || data == NULL) return RG_ERR_INVALID_ARGUMENT;
+    if (data == NULL) return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "data is NULL");
     snap_in in;
     memset(&in, 0, sizeof in);
-    if (!restore_check_header(&in, data, size) || !restore_check_scalars(&in)) return RG_ERR_INVALID_ARGUMENT;
+    if (!restore_check_header(world, &in, data, size)) return RG_ERR_INVALID_ARGUMENT;
+    if (!restore_check_scalars(&in)) return restore_refuse(world, "settings and counts");
     return restore_checked(world, &in);
 }

@@ -1,4 +1,5 @@
 /* shape.c: the shape, material, sensor, filter and grounded API of bodies. */
+#include "arg.h"
 #include "body.h"
 #include "contact.h"
 #include "island.h"
@@ -39,9 +40,8 @@ void shape_remove(rg_world *w, int32_t slot)
     if (w->b.shape[body_dense(w, slot)] != RG_SHAPE_NONE) shape_clear(w, slot);
 }
 
-static int shape_size_ok(rg_real v) { return rg_finite(v) && v > 0 && v <= (rg_real)RG_MAX_SHAPE_SIZE; }
-
-static rg_status shape_set(rg_world *w, int32_t i, int32_t kind, rg_real hx, rg_real hy)
+static rg_status shape_set(rg_world *w, const char *func, int32_t i, int32_t kind, rg_real hx,
+                           rg_real hy)
 {
     collide_world *cw = &w->coll;
     body_store *b = &w->b;
@@ -49,7 +49,7 @@ static rg_status shape_set(rg_world *w, int32_t i, int32_t kind, rg_real hx, rg_
     int fresh = b->shape[i] == RG_SHAPE_NONE;
     if (fresh) {
         rg_status st = broadphase_reserve(&cw->bp, &w->mem, w->body_pool.slot_count, cw->bp.count + 1);
-        if (st != RG_OK) return st;
+        if (st != RG_OK) return error_alloc(w, func, st, "broadphase", "RG_MAX_BODIES");
     }
     island_touch(w, s);
     i = body_dense(w, s);
@@ -67,16 +67,17 @@ static rg_status shape_set(rg_world *w, int32_t i, int32_t kind, rg_real hx, rg_
 RG_API rg_status rg_body_set_circle(rg_world *world, rg_body body, rg_real radius)
 {
     BODY_SET(world, body, i);
-    if (!shape_size_ok(radius)) return RG_ERR_INVALID_ARGUMENT;
-    return shape_set(world, i, RG_SHAPE_CIRCLE, radius, radius);
+    ARG_IN(world, radius, RG_MIN_SHAPE_SIZE, RG_MAX_SHAPE_SIZE);
+    return shape_set(world, __func__, i, RG_SHAPE_CIRCLE, radius, radius);
 }
 
 RG_API rg_status rg_body_set_aabb(rg_world *world, rg_body body, rg_real half_width,
                                   rg_real half_height)
 {
     BODY_SET(world, body, i);
-    if (!shape_size_ok(half_width) || !shape_size_ok(half_height)) return RG_ERR_INVALID_ARGUMENT;
-    return shape_set(world, i, RG_SHAPE_AABB, half_width, half_height);
+    ARG_IN(world, half_width, RG_MIN_SHAPE_SIZE, RG_MAX_SHAPE_SIZE);
+    ARG_IN(world, half_height, RG_MIN_SHAPE_SIZE, RG_MAX_SHAPE_SIZE);
+    return shape_set(world, __func__, i, RG_SHAPE_AABB, half_width, half_height);
 }
 
 RG_API rg_status rg_body_clear_shape(rg_world *world, rg_body body)
@@ -91,7 +92,8 @@ RG_API rg_status rg_body_get_shape(const rg_world *world, rg_body body, int32_t 
                                    rg_vec2 *out_half_extents)
 {
     BODY_GET(world, body, i);
-    if (out_kind == NULL && out_half_extents == NULL) return RG_ERR_INVALID_ARGUMENT;
+    if (out_kind == NULL && out_half_extents == NULL)
+        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "out_kind and out_half_extents are both NULL");
     if (out_kind != NULL) *out_kind = world->b.shape[i];
     if (out_half_extents != NULL) *out_half_extents = rg_v2(world->b.hx[i], world->b.hy[i]);
     return RG_OK;
@@ -100,7 +102,7 @@ RG_API rg_status rg_body_get_shape(const rg_world *world, rg_body body, int32_t 
 RG_API rg_status rg_body_set_restitution(rg_world *world, rg_body body, rg_real restitution)
 {
     BODY_SET(world, body, i);
-    if (!rg_finite(restitution) || restitution < 0 || restitution > 1) return RG_ERR_INVALID_ARGUMENT;
+    ARG_IN(world, restitution, 0, 1);
     world->b.rest[i] = restitution;
     contact_refresh_materials(world, world->b.slot[i]);
     return RG_OK;
@@ -109,7 +111,7 @@ RG_API rg_status rg_body_set_restitution(rg_world *world, rg_body body, rg_real 
 RG_API rg_status rg_body_get_restitution(const rg_world *world, rg_body body, rg_real *out)
 {
     BODY_GET(world, body, i);
-    if (out == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ARG_PTR(world, out);
     *out = world->b.rest[i];
     return RG_OK;
 }
@@ -117,7 +119,7 @@ RG_API rg_status rg_body_get_restitution(const rg_world *world, rg_body body, rg
 RG_API rg_status rg_body_set_friction(rg_world *world, rg_body body, rg_real mu)
 {
     BODY_SET(world, body, i);
-    if (!rg_finite(mu) || mu < 0) return RG_ERR_INVALID_ARGUMENT;
+    ARG_IN(world, mu, 0, RG_MAX_FRICTION);
     world->b.mu[i] = mu;
     contact_refresh_materials(world, world->b.slot[i]);
     return RG_OK;
@@ -126,7 +128,7 @@ RG_API rg_status rg_body_set_friction(rg_world *world, rg_body body, rg_real mu)
 RG_API rg_status rg_body_get_friction(const rg_world *world, rg_body body, rg_real *out)
 {
     BODY_GET(world, body, i);
-    if (out == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ARG_PTR(world, out);
     *out = world->b.mu[i];
     return RG_OK;
 }
@@ -134,7 +136,7 @@ RG_API rg_status rg_body_get_friction(const rg_world *world, rg_body body, rg_re
 RG_API rg_status rg_body_set_sensor(rg_world *world, rg_body body, int32_t is_sensor)
 {
     BODY_SET(world, body, i);
-    if (is_sensor != 0 && is_sensor != 1) return RG_ERR_INVALID_ARGUMENT;
+    ARG_INT(world, is_sensor, 0, 1, "0 or 1");
     body_store *b = &world->b;
     if (((b->cflags[i] & CF_SENSOR) != 0) == (is_sensor != 0)) return RG_OK;
     int32_t s = b->slot[i];
@@ -150,7 +152,7 @@ RG_API rg_status rg_body_set_sensor(rg_world *world, rg_body body, int32_t is_se
 RG_API rg_status rg_body_is_sensor(const rg_world *world, rg_body body, int32_t *out_is_sensor)
 {
     BODY_GET(world, body, i);
-    if (out_is_sensor == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ARG_PTR(world, out_is_sensor);
     *out_is_sensor = (world->b.cflags[i] & CF_SENSOR) != 0;
     return RG_OK;
 }
@@ -188,7 +190,8 @@ RG_API rg_status rg_body_get_filter(const rg_world *world, rg_body body, uint32_
                                     uint32_t *out_mask)
 {
     BODY_GET(world, body, i);
-    if (out_category == NULL || out_mask == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ARG_PTR(world, out_category);
+    ARG_PTR(world, out_mask);
     *out_category = world->b.cat[i];
     *out_mask = world->b.mask[i];
     return RG_OK;
@@ -197,10 +200,12 @@ RG_API rg_status rg_body_get_filter(const rg_world *world, rg_body body, uint32_
 RG_API rg_status rg_body_set_one_way(rg_world *world, rg_body body, rg_vec2 normal)
 {
     BODY_SET(world, body, i);
-    if (!rg_vec2_finite(normal)) return RG_ERR_INVALID_ARGUMENT;
+    ARG_VEC_FINITE(world, normal);
     rg_real len = rg_v2_len(normal);
     int two_way = normal.x == 0 && normal.y == 0;
-    if (!two_way && !(rg_fabs(len - 1) <= RG_R(1e-3))) return RG_ERR_INVALID_ARGUMENT;
+    if (!two_way && !(rg_fabs(len - 1) <= RG_R(1e-3)))
+        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "normal (%g, %g) has length %g, not 1 (within 1e-3) nor 0",
+                       (double)normal.x, (double)normal.y, (double)len);
     body_store *b = &world->b;
     b->owx[i] = two_way ? 0 : normal.x / len;
     b->owy[i] = two_way ? 0 : normal.y / len;
@@ -211,7 +216,7 @@ RG_API rg_status rg_body_set_one_way(rg_world *world, rg_body body, rg_vec2 norm
 RG_API rg_status rg_body_get_one_way(const rg_world *world, rg_body body, rg_vec2 *out_normal)
 {
     BODY_GET(world, body, i);
-    if (out_normal == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ARG_PTR(world, out_normal);
     *out_normal = rg_v2(world->b.owx[i], world->b.owy[i]);
     return RG_OK;
 }
@@ -219,7 +224,7 @@ RG_API rg_status rg_body_get_one_way(const rg_world *world, rg_body body, rg_vec
 RG_API rg_status rg_body_is_grounded(const rg_world *world, rg_body body, int32_t *out_grounded)
 {
     BODY_GET(world, body, i);
-    if (out_grounded == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ARG_PTR(world, out_grounded);
     *out_grounded = world->b.type[i] == RG_BODY_DYNAMIC && (world->b.cflags[i] & CF_GROUNDED) != 0;
     return RG_OK;
 }

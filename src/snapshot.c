@@ -1,8 +1,11 @@
 /* snapshot.c: the snapshot writer (rg_world_save), the state hash (rg_world_hash), the
  * format's layout and its hash function (see snapshot.h). */
+#include "error.h"
 #include "snapshot.h"
 
-typedef char snap_contact_is_packed[sizeof(contact) == SNAP_CONTACT ? 1 : -1];
+#define SNAP_COUNT(T, name) +1
+typedef char snap_fields_are_all_there[(0 RG_BODY_FIELDS(SNAP_COUNT)) == SNAP_FIELDS + SNAP_DERIVED_FIELDS ? 1 : -1];
+#undef SNAP_COUNT
 
 /* ---------------------------------------------------------------- the hash */
 
@@ -11,10 +14,7 @@ typedef char snap_contact_is_packed[sizeof(contact) == SNAP_CONTACT ? 1 : -1];
 
 void snap_hash_init(snap_hasher *h)
 {
-    h->lane[0] = 0x243F6A8885A308D3ull;
-    h->lane[1] = 0x13198A2E03707344ull;
-    h->lane[2] = 0xA4093822299F31D0ull;
-    h->lane[3] = 0x082EFA98EC4E6C89ull;
+    for (int k = 0; k < SNAP_LANES; k++) h->lane[k] = 0x243F6A8885A308D3ull + (uint64_t)k * SNAP_K2;
     h->npending = 0;
     h->length = 0;
 }
@@ -25,13 +25,28 @@ static inline uint64_t snap_lane(uint64_t lane, uint64_t w)
     return lane ^ (lane >> 29);
 }
 
-/* 32 bytes: one word into each lane. */
-static inline void snap_block(snap_hasher *h, const uint8_t *p)
+/* A little-endian word at p (a plain load where the machine is little-endian). */
+static inline uint64_t snap_word(const uint8_t *p)
 {
-    h->lane[0] = snap_lane(h->lane[0], snap_get64(p));
-    h->lane[1] = snap_lane(h->lane[1], snap_get64(p + 8));
-    h->lane[2] = snap_lane(h->lane[2], snap_get64(p + 16));
-    h->lane[3] = snap_lane(h->lane[3], snap_get64(p + 24));
+#if SNAP_NATIVE
+    uint64_t w;
+    memcpy(&w, p, 8);
+    return w;
+#else
+    return snap_get64(p);
+#endif
+}
+
+#define SNAP_BLOCK (8 * SNAP_LANES)
+
+/* Whole blocks: one word into each lane (the lanes in registers). */
+static void snap_blocks(snap_hasher *h, const uint8_t *p, size_t n)
+{
+    uint64_t l[SNAP_LANES];
+    memcpy(l, h->lane, sizeof l);
+    for (; n >= SNAP_BLOCK; p += SNAP_BLOCK, n -= SNAP_BLOCK)
+        for (int k = 0; k < SNAP_LANES; k++) l[k] = snap_lane(l[k], snap_word(p + 8 * k));
+    memcpy(h->lane, l, sizeof l);
 }
 
 void snap_hash_bytes(snap_hasher *h, const void *data, size_t n)
@@ -39,18 +54,19 @@ void snap_hash_bytes(snap_hasher *h, const void *data, size_t n)
     const uint8_t *p = data;
     h->length += n;
     if (h->npending > 0) {
-        size_t take = 32 - h->npending < n ? 32 - h->npending : n;
+        size_t take = SNAP_BLOCK - h->npending < n ? SNAP_BLOCK - h->npending : n;
         memcpy(h->pending + h->npending, p, take);
         h->npending += take;
         p += take;
         n -= take;
-        if (h->npending < 32) return;
-        snap_block(h, h->pending);
+        if (h->npending < SNAP_BLOCK) return;
+        snap_blocks(h, h->pending, SNAP_BLOCK);
         h->npending = 0;
     }
-    for (; n >= 32; p += 32, n -= 32) snap_block(h, p);
-    memcpy(h->pending, p, n);
-    h->npending = n;
+    size_t whole = n - n % SNAP_BLOCK;
+    snap_blocks(h, p, whole);
+    memcpy(h->pending, p + whole, n - whole);
+    h->npending = n - whole;
 }
 
 static inline uint64_t snap_mix(uint64_t z)
@@ -63,12 +79,12 @@ static inline uint64_t snap_mix(uint64_t z)
 uint64_t snap_hash_final(snap_hasher *h)
 {
     if (h->npending > 0) {
-        memset(h->pending + h->npending, 0, 32 - h->npending);
-        snap_block(h, h->pending);
+        memset(h->pending + h->npending, 0, SNAP_BLOCK - h->npending);
+        snap_blocks(h, h->pending, SNAP_BLOCK);
         h->npending = 0;
     }
     uint64_t r = snap_mix(h->length * SNAP_K2);
-    for (int k = 0; k < 4; k++) r = snap_mix(r ^ snap_mix(h->lane[k] + (uint64_t)k * SNAP_K1));
+    for (int k = 0; k < SNAP_LANES; k++) r = snap_mix(r ^ snap_mix(h->lane[k] + (uint64_t)k * SNAP_K1));
     return r;
 }
 
@@ -80,64 +96,46 @@ uint64_t snap_hash(const void *p, size_t n)
     return snap_hash_final(&h);
 }
 
-/* ---------------------------------------------------------------- layout */
+/* ---------------------------------------------------------------- the writer */
 
 size_t snap_scalars_size(void)
 {
     /* 10 reals, 2 doubles, 1 uint64, the rest 4-byte words: see snap_write_scalars */
-    return 10 * SNAP_REAL + 2 * 8 + 8 + 37 * 4;
+    return 10 * SNAP_REAL + 2 * 8 + 8 + 36 * 4;
 }
 
-/* Adds an array of n elements of size elem at the next multiple of 8; returns its offset. */
-static size_t snap_take(snap_layout *l, size_t *at, int64_t n, size_t elem)
-{
-    size_t start = (*at + 7u) & ~(size_t)7u;
-    if (n < 0 || (uint64_t)n > ((uint64_t)1 << 40) / (elem > 0 ? elem : 1)) {
-        l->ok = 0;
-        return start;
-    }
-    *at = start + (size_t)n * elem;
-    return start;
-}
-
-void snap_layout_of(const snap_scalars *s, snap_layout *l)
-{
-    size_t at = SNAP_HEADER + snap_scalars_size();
-    int f = 0;
-    l->ok = 1;
-    l->bgen = snap_take(l, &at, s->bslots, 4);
-    l->bindex = snap_take(l, &at, s->bslots, 4);
-#define RG_FIELD_LAYOUT(T, name) l->field[f++] = snap_take(l, &at, s->count, sizeof(T));
-    RG_BODY_FIELDS(RG_FIELD_LAYOUT)
-#undef RG_FIELD_LAYOUT
-    l->sgen = snap_take(l, &at, s->sslots, 4);
-    l->sindex = snap_take(l, &at, s->sslots, 4);
-    l->springs = snap_take(l, &at, s->springs, SNAP_SPRING);
-    l->contacts = snap_take(l, &at, s->ccap, SNAP_CONTACT);
-    l->awake = snap_take(l, &at, s->n_awake, 4);
-    l->ev = snap_take(l, &at, s->n_ev, SNAP_EVENT);
-    l->pend = snap_take(l, &at, s->n_pend, SNAP_EVENT);
-    l->members = snap_take(l, &at, s->members, SNAP_MEMBER);
-    l->moved = snap_take(l, &at, s->n_moved, 4);
-    l->size = (at + 7u) & ~(size_t)7u;
-}
-
-/* ---------------------------------------------------------------- the writer */
-
-/* Where the stream goes: a buffer (save), a hash (hash), or both. */
+/* Where the stream goes: a buffer (save) or a hash (hash), which takes it in chunks. */
+#define SNAP_CHUNK 4096
 typedef struct snap_out {
     uint8_t *buf;
     size_t at;
     snap_hasher *hash;
     int anonymous;      /* the world tag left out (rg_world_hash) */
+    const int *uniform; /* per body field: all its values equal */
+    size_t nchunk;
+    uint8_t chunk[SNAP_CHUNK];
 } snap_out;
+
+static void snap_flush(snap_out *o)
+{
+    snap_hash_bytes(o->hash, o->chunk, o->nchunk);
+    o->nchunk = 0;
+}
 
 static void snap_emit(snap_out *o, const void *p, size_t n)
 {
-    if (n == 0) return;
-    if (o->buf != NULL) memcpy(o->buf + o->at, p, n);
-    if (o->hash != NULL) snap_hash_bytes(o->hash, p, n);
     o->at += n;
+    if (o->buf != NULL) {
+        memcpy(o->buf + o->at - n, p, n);
+        return;
+    }
+    if (o->nchunk + n > SNAP_CHUNK) snap_flush(o);
+    if (n > SNAP_CHUNK) {
+        snap_hash_bytes(o->hash, p, n);
+        return;
+    }
+    memcpy(o->chunk + o->nchunk, p, n);
+    o->nchunk += n;
 }
 
 static void snap_pad(snap_out *o)
@@ -201,6 +199,30 @@ static void snap_array(snap_out *o, const void *p, int32_t n, size_t elem)
 #endif
 }
 
+/* Whether the n values of elem (4 or 8) bytes at p are all equal, bit for bit. */
+static int snap_uniform(const void *p, int32_t n, size_t elem)
+{
+    if (n <= 0) return 0;
+    if (elem == 8) {
+        const uint64_t *q = p;
+        uint64_t diff = 0;
+        for (int32_t i = 1; i < n; i++) diff |= q[i] ^ q[0];
+        return diff == 0;
+    }
+    const uint32_t *q = p;
+    uint32_t diff = 0;
+    for (int32_t i = 1; i < n; i++) diff |= q[i] ^ q[0];
+    return diff == 0;
+}
+
+/* A body field: its uniformity word, then one element or all n. */
+static void snap_field(snap_out *o, const void *p, int32_t n, size_t elem, int uniform)
+{
+    snap_pad(o);
+    snap_u32(o, (uint32_t)uniform);
+    snap_array(o, p, uniform ? 1 : n, elem);
+}
+
 static uint64_t snap_handle(const snap_out *o, uint64_t h)
 {
     return o->anonymous ? h & ((1ull << (POOL_SLOT_BITS + POOL_GEN_BITS)) - 1u) : h;
@@ -246,13 +268,12 @@ static void snap_scalars_of(const rg_world *w, snap_scalars *s)
     s->springs = w->springs.count;
     s->ccap = cw->contacts.cap;
     s->clive = cw->contacts.live;
-    s->cfree = cw->contacts.free_head;
     s->n_awake = cw->contacts.n_awake;
     s->n_touching = cw->contacts.n_touching;
     s->n_ev = cw->events.n;
     s->n_pend = cw->events.n_pend;
     s->members = cw->bp.count;
-    s->bucket_bits = cw->bp.count > 0 || cw->bp.head != NULL ? cw->bp.bucket_bits : 0;
+    s->bucket_bits = cw->bp.head != NULL ? cw->bp.bucket_bits : 0;
     s->n_huge = cw->bp.n_huge;
     s->n_moved = cw->bp.n_moved;
     s->n_bp_active = cw->bp.n_active;
@@ -300,7 +321,6 @@ static void snap_write_scalars(snap_out *o, const snap_scalars *s)
     snap_i32(o, s->springs);
     snap_i32(o, s->ccap);
     snap_i32(o, s->clive);
-    snap_i32(o, s->cfree);
     snap_i32(o, s->n_awake);
     snap_i32(o, s->n_touching);
     snap_i32(o, s->n_ev);
@@ -317,52 +337,37 @@ static void snap_write_events(snap_out *o, const rg_contact_event *e, int32_t n)
 {
     snap_pad(o);
     for (int32_t k = 0; k < n; k++) {
-        snap_u64(o, snap_handle(o, e[k].a));
-        snap_u64(o, snap_handle(o, e[k].b));
-        snap_real(o, e[k].normal.x);
-        snap_real(o, e[k].normal.y);
-        snap_real(o, e[k].point.x);
-        snap_real(o, e[k].point.y);
-        snap_real(o, e[k].depth);
-        snap_real(o, e[k].speed);
-        snap_i32(o, e[k].kind);
-        snap_i32(o, e[k].sensor);
+        uint8_t r[SNAP_EVENT], *q = r;
+        snap_put64(q, snap_handle(o, e[k].a));
+        snap_put64(q + 8, snap_handle(o, e[k].b));
+        q += 16;
+        const rg_real reals[6] = { e[k].normal.x, e[k].normal.y, e[k].point.x, e[k].point.y, e[k].depth, e[k].speed };
+        for (int f = 0; f < 6; f++) snap_put_real(q + SNAP_REAL * (size_t)f, reals[f]);
+        q += 6 * SNAP_REAL;
+        snap_put32(q, (uint32_t)e[k].kind);
+        snap_put32(q + 4, (uint32_t)e[k].sensor);
+        snap_emit(o, r, SNAP_EVENT);
     }
 }
 
-/* Contacts by id; a free one as sa = -1 and its free-list link, the rest zero. */
+/* The live contacts by ascending id (a free id has sa = -1, contact.c), then the free ids
+ * in the order of the free list. */
 static void snap_write_contacts(snap_out *o, const contact_store *cs)
 {
     snap_pad(o);
-    contact blank;
-    memset(&blank, 0, sizeof blank);
-    blank.sa = -1;
     for (int32_t k = 0; k < cs->cap; k++) {
         const contact *c = &cs->c[k];
-        contact r;
-        if (c->sa >= 0) {
-            r = *c;
-        } else { /* free (contact.c keeps sa = -1 on free ids) */
-            r = blank;
-            r.na = c->na;
-        }
-        uint8_t b[SNAP_CONTACT];
-#if SNAP_NATIVE
-        memcpy(b, &r, SNAP_CONTACT);
-#else
-        snap_put32(b, (uint32_t)r.sa);
-        snap_put32(b + 4, (uint32_t)r.sb);
-        snap_put32(b + 8, (uint32_t)r.na);
-        snap_put32(b + 12, (uint32_t)r.pa);
-        snap_put32(b + 16, (uint32_t)r.nb);
-        snap_put32(b + 20, (uint32_t)r.pb);
-        snap_put32(b + 24, (uint32_t)r.awake);
-        snap_put32(b + 28, r.flags);
-        const rg_real *reals = &r.mu;
-        for (int q = 0; q < 13; q++) snap_put_real(b + 32 + q * SNAP_REAL, reals[q]);
-#endif
-        snap_emit(o, b, SNAP_CONTACT);
+        if (c->sa < 0) continue;
+        uint8_t r[SNAP_CONTACT], *q = r;
+        const int32_t ints[8] = { k, c->sa, c->sb, c->na, c->pa, c->nb, c->pb, (int32_t)c->flags };
+        for (int f = 0; f < 8; f++) snap_put32(q + 4 * f, (uint32_t)ints[f]);
+        q += 32;
+        const rg_real reals[10] = { c->nx, c->ny, c->px, c->py, c->s0, c->vn0, c->depth, c->speed, c->pn, c->pt };
+        for (int f = 0; f < 10; f++) snap_put_real(q + SNAP_REAL * (size_t)f, reals[f]);
+        snap_emit(o, r, SNAP_CONTACT);
     }
+    snap_pad(o);
+    for (int32_t id = cs->free_head; id >= 0; id = cs->c[id].na) snap_i32(o, id);
 }
 
 static void snap_write(const rg_world *w, snap_out *o, const snap_scalars *s)
@@ -372,22 +377,23 @@ static void snap_write(const rg_world *w, snap_out *o, const snap_scalars *s)
     snap_write_scalars(o, s);
     snap_array(o, w->body_pool.gen, s->bslots, 4);
     snap_array(o, w->body_pool.index, s->bslots, 4);
-#define RG_FIELD_WRITE(T, name) snap_array(o, b->name, s->count, sizeof(T));
-    RG_BODY_FIELDS(RG_FIELD_WRITE)
-#undef RG_FIELD_WRITE
+    int field = 0;
+#define SNAP_FIELD_WRITE(T, name) snap_field(o, b->name, s->count, sizeof(T), o->uniform[field++]);
+    SNAP_BODY_FIELDS(SNAP_FIELD_WRITE)
+#undef SNAP_FIELD_WRITE
     snap_array(o, w->springs.pool.gen, s->sslots, 4);
     snap_array(o, w->springs.pool.index, s->sslots, 4);
     snap_pad(o);
     for (int32_t k = 0; k < s->springs; k++) {
         const spring *sp = &w->springs.items[k];
-        snap_i32(o, sp->slot_a);
-        snap_i32(o, sp->slot_b);
-        snap_i32(o, sp->self_slot);
-        snap_real(o, sp->anchor.x);
-        snap_real(o, sp->anchor.y);
-        snap_real(o, sp->rest);
-        snap_real(o, sp->k);
-        snap_real(o, sp->c);
+        uint8_t r[SNAP_SPRING], *q = r;
+        snap_put32(q, (uint32_t)sp->slot_a);
+        snap_put32(q + 4, (uint32_t)sp->slot_b);
+        snap_put32(q + 8, (uint32_t)sp->self_slot);
+        q += 12;
+        const rg_real reals[5] = { sp->anchor.x, sp->anchor.y, sp->rest, sp->k, sp->c };
+        for (int f = 0; f < 5; f++) snap_put_real(q + SNAP_REAL * (size_t)f, reals[f]);
+        snap_emit(o, r, SNAP_SPRING);
     }
     snap_write_contacts(o, &cw->contacts);
     snap_array(o, cw->contacts.awake, s->n_awake, 4);
@@ -397,54 +403,115 @@ static void snap_write(const rg_world *w, snap_out *o, const snap_scalars *s)
     for (int32_t k = 0; k < s->members; k++) {
         int32_t slot = cw->bp.members[k];
         const bp_entry *e = &cw->bp.e[slot];
-        snap_i32(o, slot);
-        snap_real(o, e->lx);
-        snap_real(o, e->ly);
-        snap_real(o, e->ux);
-        snap_real(o, e->uy);
-        snap_i32(o, e->next);
-        snap_i32(o, e->prev);
-        snap_i32(o, e->lnext);
-        snap_i32(o, e->lprev);
-        snap_i32(o, e->moved);
-        snap_i32(o, e->apos);
+        uint8_t r[SNAP_MEMBER], *q = r;
+        snap_put32(q, (uint32_t)slot);
+        q += 4;
+        snap_put_real(q, e->lx);
+        snap_put_real(q + SNAP_REAL, e->ly);
+        snap_put_real(q + 2 * SNAP_REAL, e->ux);
+        snap_put_real(q + 3 * SNAP_REAL, e->uy);
+        q += 4 * SNAP_REAL;
+        const int32_t ints[6] = { e->next, e->prev, e->lnext, e->lprev, e->moved, e->apos };
+        for (int f = 0; f < 6; f++) snap_put32(q + 4 * f, (uint32_t)ints[f]);
+        snap_emit(o, r, SNAP_MEMBER);
     }
     snap_array(o, cw->bp.moved, s->n_moved, 4);
     snap_pad(o);
 }
 
+/* Which body fields are uniform. */
+static void snap_uniforms(const rg_world *w, int *uniform)
+{
+    const body_store *b = &w->b;
+    int f = 0;
+#define SNAP_FIELD_UNIFORM(T, name) uniform[f++] = snap_uniform(b->name, b->count, sizeof(T));
+    SNAP_BODY_FIELDS(SNAP_FIELD_UNIFORM)
+#undef SNAP_FIELD_UNIFORM
+}
+
+/* The size of the snapshot, from its counts and uniform fields. */
+static size_t snap_size(const snap_scalars *s, const int *uniform)
+{
+    size_t at = SNAP_HEADER + snap_scalars_size();
+#define SNAP_ADD(n, elem) at = ((at + 7u) & ~(size_t)7u) + (size_t)(n) * (elem)
+    SNAP_ADD(s->bslots, 4);
+    SNAP_ADD(s->bslots, 4);
+    int f = 0;
+#define SNAP_FIELD_SIZE(T, name)                  \
+    SNAP_ADD(1, 4);                               \
+    SNAP_ADD(uniform[f] ? 1 : s->count, sizeof(T)); \
+    f++;
+    SNAP_BODY_FIELDS(SNAP_FIELD_SIZE)
+#undef SNAP_FIELD_SIZE
+    SNAP_ADD(s->sslots, 4);
+    SNAP_ADD(s->sslots, 4);
+    SNAP_ADD(s->springs, SNAP_SPRING);
+    SNAP_ADD(s->clive, SNAP_CONTACT);
+    SNAP_ADD(s->ccap - s->clive, 4);
+    SNAP_ADD(s->n_awake, 4);
+    SNAP_ADD(s->n_ev, SNAP_EVENT);
+    SNAP_ADD(s->n_pend, SNAP_EVENT);
+    SNAP_ADD(s->members, SNAP_MEMBER);
+    SNAP_ADD(s->n_moved, 4);
+#undef SNAP_ADD
+    return (at + 7u) & ~(size_t)7u;
+}
+
 RG_API rg_status rg_world_save(const rg_world *world, void *out, size_t capacity, size_t *out_size)
 {
-    if (world == NULL || out_size == NULL || (out == NULL && capacity > 0)) return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    if (out_size == NULL) return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "out_size is NULL");
+    if (out == NULL && capacity > 0)
+        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "out is NULL with capacity %lu", (unsigned long)capacity);
     snap_scalars s;
-    snap_layout l;
+    int uniform[SNAP_FIELDS];
     snap_scalars_of(world, &s);
-    snap_layout_of(&s, &l);
-    *out_size = l.size;
+    snap_uniforms(world, uniform);
+    size_t size = snap_size(&s, uniform);
+    *out_size = size;
     if (out == NULL && capacity == 0) return RG_OK;
-    if (capacity < l.size) return RG_ERR_CAPACITY;
+    if (capacity < size)
+        return RG_FAIL(world, RG_ERR_CAPACITY, "capacity %lu is below the snapshot's size %lu", (unsigned long)capacity,
+                       (unsigned long)size);
     uint8_t *p = out;
     memcpy(p, SNAP_MAGIC, 8);
     snap_put32(p + 8, SNAP_VERSION);
     snap_put32(p + 12, (uint32_t)sizeof(rg_real));
-    snap_put64(p + 16, (uint64_t)l.size);
-    snap_out o = { p, SNAP_HEADER, NULL, 0 };
+    snap_put64(p + 16, (uint64_t)size);
+    snap_out o;
+    o.buf = p;
+    o.at = SNAP_HEADER;
+    o.hash = NULL;
+    o.anonymous = 0;
+    o.uniform = uniform;
+    o.nchunk = 0;
     snap_write(world, &o, &s);
-    snap_put64(p + 24, snap_hash(p + SNAP_HEADER, l.size - SNAP_HEADER));
+    snap_put64(p + 24, snap_hash(p + SNAP_HEADER, size - SNAP_HEADER));
     return RG_OK;
 }
 
 RG_API rg_status rg_world_hash(const rg_world *world, uint64_t *out_hash)
 {
-    if (world == NULL || out_hash == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    if (out_hash == NULL) return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "out_hash is NULL");
     snap_scalars s;
     snap_hasher h;
+    int uniform[SNAP_FIELDS];
     snap_scalars_of(world, &s);
+    snap_uniforms(world, uniform);
     snap_hash_init(&h);
-    uint32_t real_size = (uint32_t)sizeof(rg_real);
-    snap_hash_bytes(&h, &real_size, 4);
-    snap_out o = { NULL, SNAP_HEADER, &h, 1 };
+    snap_out o;
+    o.buf = NULL;
+    o.at = SNAP_HEADER;
+    o.hash = &h;
+    o.anonymous = 1;
+    o.uniform = uniform;
+    o.nchunk = 0;
+    uint8_t real_size[4];
+    snap_put32(real_size, (uint32_t)sizeof(rg_real));
+    snap_emit(&o, real_size, 4);
     snap_write(world, &o, &s);
+    snap_flush(&o);
     *out_hash = snap_hash_final(&h);
     return RG_OK;
 }

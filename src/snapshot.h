@@ -9,16 +9,18 @@
  *   12  sizeof(rg_real)                 uint32
  *   16  total size in bytes             uint64
  *   24  checksum of bytes [32, size)    uint64 (snap_hash)
- *   32  the scalars (snap_scalars: settings, counts, pool heads), SNAP_SCALARS bytes
- *   ... the arrays, in the order of snap_layout, each starting on a multiple of 8 bytes
- *       (zero padding): the body pool, every body field (RG_BODY_FIELDS order), the spring
- *       pool and the springs, the contacts (a free contact is written with sa = -1 and only
- *       its free-list link), the awake contacts, the events held and pending, the members
- *       of the broadphase with their boxes and links, and its move buffer.
+ *   32  the scalars (snap_scalars: settings, counts, pool heads)
+ *   ... the arrays, each starting on a multiple of 8 bytes (zero padding): the body pool;
+ *       the body fields of SNAP_BODY_FIELDS, each a word (0: the array follows, 1: all its
+ *       values are equal and one follows) and its data; the spring pool and the springs;
+ *       the live contacts by ascending id, then the free ids in free-list order; the awake
+ *       contacts; the events held and pending; the members of the broadphase with their
+ *       boxes and links; its move buffer.
  *
- * What is not written is scratch that every step rebuilds (the views, the solver rows and
- * indices, the union-find, the broadphase's pair-search marks), capacities, the allocator
- * and the pre-solve hook.  rg_world_hash hashes the same stream with the world tag left out
+ * What is not written is derived (a body's inverse mass and flags, a contact's mixed
+ * materials and its place in the awake list) or scratch that every step rebuilds (the
+ * views and displacements, the solver rows, indices and times of impact, the union-find,
+ * the broadphase's pair-search marks), capacities, the allocator and the pre-solve hook.  rg_world_hash hashes the same stream with the world tag left out
  * (0, and event handles without it), so equal states give equal hashes in any world. */
 #ifndef RG_SNAPSHOT_H
 #define RG_SNAPSHOT_H
@@ -32,6 +34,22 @@
 #define SNAP_MAGIC "RIGIDSNP"
 #define SNAP_VERSION 1u
 #define SNAP_HEADER 32
+
+/* The body fields a snapshot holds, in file order.  RG_BODY_FIELDS has these and the four
+ * a restore derives (inv_mass, flags) or clears (dx, dy): snapshot.c checks the count. */
+#define SNAP_BODY_FIELDS(X)                                                                  \
+    X(rg_real, x) X(rg_real, y) X(rg_real, vx) X(rg_real, vy) X(rg_real, fx) X(rg_real, fy)   \
+    X(rg_real, ax) X(rg_real, ay) X(rg_real, px) X(rg_real, py) X(rg_real, mass)              \
+    X(rg_real, gscale) X(rg_real, drag_lin) X(rg_real, drag_quad) X(rg_real, fric)            \
+    X(rg_real, min_speed) X(rg_real, max_speed) X(uint64_t, user) X(int32_t, slot)            \
+    X(int32_t, type) X(int32_t, shape) X(rg_real, hx) X(rg_real, hy) X(rg_real, rest)         \
+    X(rg_real, mu) X(uint32_t, cat) X(uint32_t, mask) X(uint32_t, cflags) X(int32_t, chead)   \
+    X(rg_real, sleep_t) X(int32_t, isl_head) X(int32_t, isl_next) X(rg_real, owx) X(rg_real, owy)
+#define SNAP_DERIVED_FIELDS 4
+
+#define SNAP_FIELD_ENUM(T, name) SNAP_F_##name,
+enum { SNAP_BODY_FIELDS(SNAP_FIELD_ENUM) SNAP_FIELDS };
+#undef SNAP_FIELD_ENUM
 
 /* The counts that size the arrays, and the scalars written before them. */
 typedef struct snap_scalars {
@@ -49,7 +67,7 @@ typedef struct snap_scalars {
     uint32_t stag, smax_gen;
     int32_t smax_slots, sslots, sfree, slive, springs;
     /* contacts */
-    int32_t ccap, clive, cfree, n_awake, n_touching;
+    int32_t ccap, clive, n_awake, n_touching;
     /* events */
     int32_t n_ev, n_pend;
     /* broadphase */
@@ -57,31 +75,33 @@ typedef struct snap_scalars {
     uint32_t mark;
 } snap_scalars;
 
-/* Byte offsets of the arrays (from the snapshot's start) and the total size, from counts. */
+/* Byte offsets of the arrays (from the snapshot's start) and the total size, found by
+ * reading them in order.  A body field's element i is at field[k] + stride[k] * i (stride 0
+ * for a uniform array). */
 typedef struct snap_layout {
     size_t bgen, bindex;                 /* [bslots] */
-    size_t field[64];                    /* body fields in RG_BODY_FIELDS order, [count] */
+    size_t field[SNAP_FIELDS], stride[SNAP_FIELDS];
     size_t sgen, sindex;                 /* [sslots] */
     size_t springs;                      /* [springs] records */
-    size_t contacts;                     /* [ccap] records */
+    size_t contacts;                     /* [clive] records */
+    size_t free;                         /* [ccap - clive] ids */
     size_t awake;                        /* [n_awake] */
     size_t ev, pend;                     /* [n_ev], [n_pend] records */
     size_t members;                      /* [members] records */
     size_t moved;                        /* [n_moved] */
     size_t size;
-    int ok;                              /* 0: the counts overflow a size */
 } snap_layout;
 
 /* Record sizes in the file. */
 #define SNAP_REAL ((size_t)sizeof(rg_real))
 #define SNAP_SPRING (3 * 4 + 5 * SNAP_REAL)              /* slot_a, slot_b, self; anchor, rest, k, c */
-#define SNAP_CONTACT (8 * 4 + 13 * SNAP_REAL)            /* ints and flags, then the reals, as contact */
+#define SNAP_CONTACT (8 * 4 + 10 * SNAP_REAL)            /* id, sa, sb, na, pa, nb, pb, flags;
+                                                            nx, ny, px, py, s0, vn0, depth, speed, pn, pt */
 #define SNAP_EVENT (2 * 8 + 6 * SNAP_REAL + 2 * 4)       /* a, b, normal, point, depth, speed, kind, sensor */
 #define SNAP_MEMBER (4 + 4 * SNAP_REAL + 6 * 4)          /* slot, box, next, prev, lnext, lprev, moved, apos */
 
 /* The scalars' size in the file. */
 size_t snap_scalars_size(void);
-void snap_layout_of(const snap_scalars *s, snap_layout *l);
 
 /* ---- little-endian encoding */
 
@@ -142,12 +162,13 @@ static inline rg_real snap_get_real(const uint8_t *p)
 #define SNAP_NATIVE 0
 #endif
 
-/* ---- the hash: 64-bit words in four lanes, each a multiply-xorshift chain (a bijection of
+/* ---- the hash: 64-bit words in eight lanes, each a multiply-xorshift chain (a bijection of
  * the lane for every word, so any change of any byte changes the result); tail bytes
  * zero-padded and the length mixed in at the end.  Streamed: bytes may come in any chunks. */
+#define SNAP_LANES 8
 typedef struct snap_hasher {
-    uint64_t lane[4];
-    uint8_t pending[32];
+    uint64_t lane[SNAP_LANES];
+    uint8_t pending[8 * SNAP_LANES];
     size_t npending;
     uint64_t length;
 } snap_hasher;

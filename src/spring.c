@@ -1,6 +1,7 @@
 /* spring.c: spring storage and the spring API. */
 #include <string.h>
 
+#include "arg.h"
 #include "body.h"
 #include "spring.h"
 #include "state.h"
@@ -39,27 +40,26 @@ RG_API rg_status rg_spring_create(rg_world *world, rg_body a, rg_body b, rg_vec2
                                   uint64_t *out_spring)
 {
     WORLD_WRITABLE(world);
-    if (world == NULL || out_spring == NULL) return RG_ERR_INVALID_ARGUMENT;
-    if (!rg_finite(rest_length) || !rg_finite(stiffness) || !rg_finite(damping) ||
-        rest_length < 0 || stiffness < 0 || damping < 0)
-        return RG_ERR_INVALID_ARGUMENT;
-    int32_t ia = body_lookup(world, a);
-    if (ia < 0) return RG_ERR_STALE_HANDLE;
+    ARG_PTR(world, out_spring);
+    ARG_IN(world, rest_length, 0, RG_MAX_COORD);
+    ARG_IN(world, stiffness, 0, RG_MAX_STIFFNESS);
+    ARG_IN(world, damping, 0, RG_MAX_DAMPING);
+    BODY_LOOKUP(world, a, ia);
     int32_t slot_b = -1;
     if (b != 0) {
-        if (b == a) return RG_ERR_INVALID_ARGUMENT;
-        int32_t ib = body_lookup(world, b);
-        if (ib < 0) return RG_ERR_STALE_HANDLE;
+        if (b == a) return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "b is a (a spring joins two bodies)");
+        BODY_LOOKUP(world, b, ib);
         slot_b = world->b.slot[ib];
-    } else if (!rg_vec2_finite(anchor)) {
-        return RG_ERR_INVALID_ARGUMENT;
+    } else {
+        ARG_VEC(world, anchor, RG_MAX_COORD);
     }
     spring_store *ss = &world->springs;
     rg_status st = pool_reserve(&ss->pool, &world->mem);
-    if (st == RG_OK) st = spring_reserve(world, ss->count + 1);
-    if (st != RG_OK) return st;
+    if (st != RG_OK) return error_alloc(world, __func__, st, "spring storage", "RG_MAX_SPRINGS");
+    st = spring_reserve(world, ss->count + 1);
+    if (st != RG_OK) return error_alloc(world, __func__, st, "spring storage", "RG_MAX_SPRINGS");
     st = body_scratch_reserve(world);  /* springs are summed through the scratch arrays */
-    if (st != RG_OK) return st;
+    if (st != RG_OK) return error_alloc(world, __func__, st, "integrator scratch", "RG_MAX_BODIES");
     int32_t s = ss->count++;
     uint64_t h = pool_alloc(&ss->pool, s);
     spring *sp = &ss->items[s];
@@ -77,8 +77,7 @@ RG_API rg_status rg_spring_create(rg_world *world, rg_body a, rg_body b, rg_vec2
 RG_API rg_status rg_spring_destroy(rg_world *world, uint64_t spring_handle)
 {
     WORLD_WRITABLE(world);
-    if (world == NULL) return RG_ERR_INVALID_ARGUMENT;
-    int32_t s = pool_lookup(&world->springs.pool, spring_handle);
+    int32_t s = arg_handle(world, __func__, "spring", &world->springs.pool, spring_handle);
     if (s < 0) return RG_ERR_STALE_HANDLE;
     spring_remove_dense(world, s);
     return RG_OK;
@@ -86,12 +85,16 @@ RG_API rg_status rg_spring_destroy(rg_world *world, uint64_t spring_handle)
 
 RG_API int32_t rg_spring_is_valid(const rg_world *world, uint64_t spring_handle)
 {
-    return world != NULL && pool_lookup(&world->springs.pool, spring_handle) >= 0;
+    if (world == NULL) return 0;
+    ERROR_CLEAR(world);
+    return pool_lookup(&world->springs.pool, spring_handle) >= 0;
 }
 
 RG_API int32_t rg_world_spring_count(const rg_world *world)
 {
-    return world != NULL ? world->springs.count : 0;
+    if (world == NULL) return 0;
+    ERROR_CLEAR(world);
+    return world->springs.count;
 }
 
 void spring_detach_body(rg_world *w, int32_t slot)

@@ -8,6 +8,7 @@
 #include <stdint.h>
 
 #include "broadphase.h"
+#include "error.h"
 #include "mem.h"
 #include "pool.h"
 #include "rigid.h"
@@ -244,6 +245,7 @@ typedef struct collide_step {
 
 struct rg_world {
     rg_mem mem;
+    char *err;             /* the last error (error.h): ERROR_SIZE bytes allocated with the world */
     pool body_pool;
     body_store b;          /* dense structure-of-arrays body storage */
     spring_store springs;
@@ -276,9 +278,11 @@ struct rg_world {
     int32_t locked;
 };
 
-/* At the top of every call that changes the world. */
+/* At the top of every call that changes the world: ERROR_BEGIN, and RG_ERR_LOCKED inside a
+ * step's callback. */
 #define WORLD_WRITABLE(world) \
-    if ((world) != NULL && (world)->locked) return RG_ERR_LOCKED
+    ERROR_BEGIN(world);       \
+    if ((world)->locked) return RG_FAIL((world), RG_ERR_LOCKED, "locked: called from inside a step's callback")
 
 /* Dense index of the live body in pool slot `slot`.  Slots never move; dense indices move
  * whenever a body changes partition (falls asleep, wakes, is created or destroyed), so code

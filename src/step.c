@@ -2,6 +2,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "arg.h"
 #include "collide.h"
 #include "continuous.h"
 #include "events.h"
@@ -65,31 +66,35 @@ static void step_run(rg_world *w, rg_real dt)
     w->step_count++;
 }
 
-/* What a step allocates, before anything changes, so that a failing step changes nothing. */
-static rg_status step_prepare(rg_world *w)
+/* What a step allocates, before anything changes, so that a failing step changes nothing;
+ * `func` is the entry point that steps. */
+static rg_status step_prepare(rg_world *w, const char *func)
 {
     rg_status st = integrator_prepare(w);
-    if (st == RG_OK) st = collide_prepare(w);
-    return st;
+    if (st != RG_OK) return error_alloc(w, func, st, "integrator scratch", "RG_MAX_BODIES");
+    st = collide_prepare(w);
+    if (st != RG_OK) return error_alloc(w, func, st, "collision scratch", "RG_MAX_BODIES");
+    return RG_OK;
 }
 
 RG_API rg_status rg_world_step(rg_world *world, rg_real dt)
 {
     WORLD_WRITABLE(world);
-    if (world == NULL || !rg_finite(dt) || !(dt > 0)) return RG_ERR_INVALID_ARGUMENT;
-    rg_status st = step_prepare(world);
+    ARG_ABOVE(world, dt, 0, RG_MAX_DT);
+    rg_status st = step_prepare(world, __func__);
     if (st != RG_OK) return st;
     events_clear(&world->coll.events);
     step_run(world, dt);
     world->prev_valid = 0;
+    ERROR_CLEAR(world); /* a callback's failed call inside the step is not this call's */
     return RG_OK;
 }
 
 RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *out_steps)
 {
     WORLD_WRITABLE(world);
-    if (world == NULL || !rg_finite(frame_time) || frame_time < 0) return RG_ERR_INVALID_ARGUMENT;
-    rg_status st = step_prepare(world);
+    ARG_IN(world, frame_time, 0, HUGE_VAL);
+    rg_status st = step_prepare(world, __func__);
     if (st != RG_OK) return st;
     body_store *b = &world->b;
     rg_real dt = (rg_real)world->fixed_dt;
@@ -120,12 +125,14 @@ RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *
         world->accumulator = fmod(world->accumulator, world->fixed_dt);
     if (steps > 0) world->prev_valid = 1;
     if (out_steps != NULL) *out_steps = steps;
+    ERROR_CLEAR(world); /* a callback's failed call inside a step is not this call's */
     return RG_OK;
 }
 
 RG_API rg_status rg_world_get_alpha(const rg_world *world, rg_real *out_alpha)
 {
-    if (world == NULL || out_alpha == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    ARG_PTR(world, out_alpha);
     *out_alpha = (rg_real)(world->accumulator / world->fixed_dt);
     return RG_OK;
 }

@@ -1,7 +1,9 @@
 /* world.c: world lifetime and settings, status strings and the version. */
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
+#include "arg.h"
 #include "body.h"
 #include "collide.h"
 #include "spring.h"
@@ -35,22 +37,46 @@ RG_API const char *rg_status_string(rg_status s)
 RG_API int32_t rg_version(void) { return RG_VERSION; }
 RG_API int32_t rg_real_size(void) { return (int32_t)sizeof(rg_real); }
 
-/* The tag that makes one world's handles foreign to another: taken from the world's
- * address, so two live worlds never share it while they lie within 16 MiB of each other
- * (and otherwise only by a 2^-20 chance), with no global counter. */
+/* A counter of the machine that moves on between any two calls: the time-stamp counter
+ * where the compiler can read it, else the process clock (which a fast destroy-and-create
+ * may not see move). */
+static uint64_t world_ticks(void)
+{
+#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
+    return __builtin_ia32_rdtsc();
+#elif (defined(__GNUC__) || defined(__clang__)) && defined(__aarch64__)
+    uint64_t v;
+    __asm__ __volatile__("mrs %0, cntvct_el0" : "=r"(v));
+    return v;
+#else
+    return (uint64_t)clock();
+#endif
+}
+
+/* The tag that makes one world's handles foreign to another: per world and random, from
+ * the world's address (every bit of it), the machine's tick counter and the time, mixed.
+ * No state outlives a world, so nothing but chance (2^-20) lets two live worlds, or a
+ * world and the one destroyed before it in the same block (a level reload), share a tag;
+ * an address alone would give a reloaded level its predecessor's tag every time.  The tag
+ * decides no result: every handle of a world carries the same one. */
 static uint32_t world_tag(const rg_world *w)
 {
-    uintptr_t a = (uintptr_t)w;
-    uint32_t t = (uint32_t)(a >> 4) & POOL_TAG_MASK;
-    return t;
+    uint64_t z = (uint64_t)(uintptr_t)w ^ world_ticks() * 0x9E3779B97F4A7C15ull ^ (uint64_t)time(NULL) << 32 ^
+                 (uint64_t)clock() << 16;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return (uint32_t)z & POOL_TAG_MASK;
 }
 
 RG_API rg_status rg_world_create_with_allocator(rg_alloc_fn alloc, void *user, rg_world **out_world)
 {
     if (alloc == NULL || out_world == NULL) return RG_ERR_INVALID_ARGUMENT;
-    rg_world *w = alloc(user, NULL, 0, sizeof *w);
+    /* the world and the text of its last error, in one block */
+    rg_world *w = alloc(user, NULL, 0, sizeof *w + ERROR_SIZE);
     if (w == NULL) return RG_ERR_OUT_OF_MEMORY;
-    memset(w, 0, sizeof *w);
+    memset(w, 0, sizeof *w + ERROR_SIZE);
+    w->err = (char *)(w + 1);
     w->mem.fn = alloc;
     w->mem.user = user;
     uint32_t tag = world_tag(w);
@@ -77,20 +103,21 @@ RG_API void rg_world_destroy(rg_world *world)
     collide_release(world);
     body_store_release(world);
     rg_mem mem = world->mem;
-    mem_free(&mem, world, sizeof *world);
+    mem_free(&mem, world, sizeof *world + ERROR_SIZE);
 }
 
 RG_API rg_status rg_world_set_gravity(rg_world *world, rg_vec2 gravity)
 {
     WORLD_WRITABLE(world);
-    if (world == NULL || !rg_vec2_finite(gravity)) return RG_ERR_INVALID_ARGUMENT;
+    ARG_VEC(world, gravity, RG_MAX_ACCELERATION);
     world->gravity = gravity;
     return RG_OK;
 }
 
 RG_API rg_status rg_world_get_gravity(const rg_world *world, rg_vec2 *out_gravity)
 {
-    if (world == NULL || out_gravity == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    ARG_PTR(world, out_gravity);
     *out_gravity = world->gravity;
     return RG_OK;
 }
@@ -98,14 +125,15 @@ RG_API rg_status rg_world_get_gravity(const rg_world *world, rg_vec2 *out_gravit
 RG_API rg_status rg_world_set_wind(rg_world *world, rg_vec2 force)
 {
     WORLD_WRITABLE(world);
-    if (world == NULL || !rg_vec2_finite(force)) return RG_ERR_INVALID_ARGUMENT;
+    ARG_VEC(world, force, RG_MAX_FORCE);
     world->wind = force;
     return RG_OK;
 }
 
 RG_API rg_status rg_world_get_wind(const rg_world *world, rg_vec2 *out_force)
 {
-    if (world == NULL || out_force == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    ARG_PTR(world, out_force);
     *out_force = world->wind;
     return RG_OK;
 }
@@ -113,15 +141,15 @@ RG_API rg_status rg_world_get_wind(const rg_world *world, rg_vec2 *out_force)
 RG_API rg_status rg_world_set_integrator(rg_world *world, int32_t integrator)
 {
     WORLD_WRITABLE(world);
-    if (world == NULL || integrator < RG_INTEGRATOR_EXPLICIT_EULER || integrator > RG_INTEGRATOR_RK4)
-        return RG_ERR_INVALID_ARGUMENT;
+    ARG_INT(world, integrator, RG_INTEGRATOR_EXPLICIT_EULER, RG_INTEGRATOR_RK4, "one of RG_INTEGRATOR_* (0..3)");
     world->integrator = integrator;
     return RG_OK;
 }
 
 RG_API rg_status rg_world_get_integrator(const rg_world *world, int32_t *out_integrator)
 {
-    if (world == NULL || out_integrator == NULL) return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    ARG_PTR(world, out_integrator);
     *out_integrator = world->integrator;
     return RG_OK;
 }
@@ -129,8 +157,8 @@ RG_API rg_status rg_world_get_integrator(const rg_world *world, int32_t *out_int
 RG_API rg_status rg_world_set_fixed_step(rg_world *world, rg_real dt, int32_t max_steps_per_advance)
 {
     WORLD_WRITABLE(world);
-    if (world == NULL || !rg_finite(dt) || !(dt > 0) || max_steps_per_advance < 1)
-        return RG_ERR_INVALID_ARGUMENT;
+    ARG_ABOVE(world, dt, 0, RG_MAX_DT);
+    ARG_INT(world, max_steps_per_advance, 1, INT32_MAX, ">= 1");
     world->fixed_dt = (double)dt;
     world->max_steps = max_steps_per_advance;
     return RG_OK;
@@ -138,7 +166,9 @@ RG_API rg_status rg_world_set_fixed_step(rg_world *world, rg_real dt, int32_t ma
 
 RG_API rg_status rg_world_get_fixed_step(const rg_world *world, rg_real *out_dt, int32_t *out_max_steps)
 {
-    if (world == NULL || (out_dt == NULL && out_max_steps == NULL)) return RG_ERR_INVALID_ARGUMENT;
+    ERROR_BEGIN(world);
+    if (out_dt == NULL && out_max_steps == NULL)
+        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "out_dt and out_max_steps are both NULL");
     if (out_dt != NULL) *out_dt = (rg_real)world->fixed_dt;
     if (out_max_steps != NULL) *out_max_steps = world->max_steps;
     return RG_OK;
@@ -146,5 +176,7 @@ RG_API rg_status rg_world_get_fixed_step(const rg_world *world, rg_real *out_dt,
 
 RG_API int32_t rg_world_body_count(const rg_world *world)
 {
-    return world != NULL ? world->b.count : 0;
+    if (world == NULL) return 0;
+    ERROR_CLEAR(world);
+    return world->b.count;
 }

@@ -92,20 +92,30 @@ static void test_contacts_that_cannot_be_stored_are_found_again_later(void **sta
     assert_int_equal(ta.live_blocks, 0);
 }
 
+/* Bodies at the edges of the accepted ranges (RG_MAX_COORD away, RG_MAX_SPEED fast,
+ * RG_MIN_MASS light, a RG_MAX_SHAPE_SIZE floor) do no harm to the others; values beyond them
+ * (the 3e37 m, 1e-30 kg and 1e38 m/s this test used before the ranges) are refused and
+ * change nothing. */
 static void test_bodies_far_away_or_thrown_to_infinity_do_no_harm(void **state)
 {
     (void)state;
     rg_world *w = gravity_world(-10);
     floor_of(w);
-    rg_body ok = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5);
-    rg_body far = circle_body(w, RG_BODY_DYNAMIC, 1, 3e37, -3e37, 0.5);
-    rg_body fast = box_body(w, RG_BODY_DYNAMIC, 1e-30, 5, 5, 0.5, 0.5);
-    assert_ok(rg_body_apply_impulse(w, fast, v2(1e8, 0))); /* 1e38 m/s */
-    rg_body huge = box_body(w, RG_BODY_STATIC, 0, 0, -1e6, (double)(rg_real)RG_MAX_SHAPE_SIZE, 1);
+    rg_body ok = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5), refused = 0;
+    rg_body far = circle_body(w, RG_BODY_DYNAMIC, 1, RG_MAX_COORD, -RG_MAX_COORD, 0.5);
+    rg_body fast = box_body(w, RG_BODY_DYNAMIC, RG_MIN_MASS, 5, 5, 0.5, 0.5);
+    assert_ok(rg_body_set_velocity(w, fast, v2(RG_MAX_SPEED, 0)));
+    assert_status(rg_body_create(w, RG_BODY_DYNAMIC, 1, v2(3e37, -3e37), &refused), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_body_create(w, RG_BODY_DYNAMIC, (rg_real)1e-30, v2(5, 5), &refused), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_body_apply_impulse(w, fast, v2(1e8, 0)), RG_ERR_INVALID_ARGUMENT); /* 1e14 m/s */
+    assert_true(refused == 0 && rg_world_body_count(w) == 4);
+    assert_true(VX(w, fast) == (double)(rg_real)RG_MAX_SPEED);
+    rg_body huge = box_body(w, RG_BODY_STATIC, 0, 0, -1e6, (rg_real)RG_MAX_SHAPE_SIZE, 1);
     (void)huge;
     step_n(w, 200, DT);
     assert_near(PY(w, ok), 0.5, 0.006);
-    assert_true(isfinite(PX(w, far)));
+    assert_true(isfinite(PX(w, far)) && isfinite(PY(w, far)));
+    assert_true(isfinite(PX(w, fast)) && isfinite(PY(w, fast)) && isfinite(VX(w, fast)));
     rg_ray_hit hit;
     assert_true(rg_world_raycast(w, v2(0, 5), v2(0, -10), 0xFFFFFFFFu, &hit) == 1);
     assert_true(hit.body == ok);

@@ -45,7 +45,9 @@ $expected
 lib/lua/5.4/rigid.so
 share/lua/5.1/rigid_jit.lua
 share/lua/5.1/rigid_jit/check.lua
-share/lua/5.1/rigid_jit/ffi.lua"
+share/lua/5.1/rigid_jit/contact.lua
+share/lua/5.1/rigid_jit/ffi.lua
+share/lua/5.1/rigid_jit/query.lua"
 fi
 (cd "$root" && find . -type f -o -type l | sed 's|^\./||' | LC_ALL=C sort) > "$tmp/files"
 echo "$expected" | LC_ALL=C sort > "$tmp/expected"

@@ -111,7 +111,10 @@ static void sweep(lab *L)
                 p->cost = p->ns * p->rate;
             }
         }
-        /* Pareto front: no other run is both cheaper (or as cheap) and more accurate. */
+        /* Pareto front: no other run is both cheaper (or as cheap) and more accurate.  Errors
+         * within a millionth of each other are the same result (runs that end identically
+         * but for rounding, such as friction stops inside one step), as the CSV's six digits
+         * show them: of those the cheapest is on the front, not every one. */
         for (int ig = 0; ig < ACC_INTEGRATORS; ig++)
             for (int ri = 0; ri < L->n_rates; ri++) {
                 point *p = &L->pts[si][ig][ri];
@@ -119,9 +122,10 @@ static void sweep(lab *L)
                 for (int jg = 0; jg < ACC_INTEGRATORS && !dominated; jg++)
                     for (int rj = 0; rj < L->n_rates && !dominated; rj++) {
                         const point *q = &L->pts[si][jg][rj];
+                        double tie = 1e-6 * fmax(q->r.error, p->r.error);
+                        int better = q->r.error < p->r.error - tie, same = fabs(q->r.error - p->r.error) <= tie;
                         if (q == p) continue;
-                        if (q->cost <= p->cost && q->r.error <= p->r.error &&
-                            (q->cost < p->cost || q->r.error < p->r.error))
+                        if (q->cost <= p->cost && (better || same) && (q->cost < p->cost || better))
                             dominated = 1;
                     }
                 p->pareto = !dominated;

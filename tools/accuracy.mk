@@ -51,3 +51,21 @@ charts-accuracy:
 # Refreshes the README's copies from the last `make charts`.
 charts-accuracy-copy:
 	for c in $(ACC_README_CHARTS); do cp $(ACC_CHARTS)/$$c.png $(ACC_CHARTS)/$$c.svg tools/charts/; done
+
+# Every chart held against its CSV (tests/pictures/check_charts.py): the lab's quick sweep in
+# both builds, gnuplot in table mode (the points each curve draws), the checker.  Skipped,
+# and said so, without gnuplot (tools/install-deps.sh --charts installs it).
+TEST_RUNS += check-charts
+.PHONY: check-charts
+ACC_CHECK := $(B)/chart-check
+check-charts:
+	@echo "== tests/pictures/check_charts.py"
+	@if ! command -v gnuplot >/dev/null 2>&1; then \
+	  echo "SKIPPED: the chart check needs gnuplot (tools/install-deps.sh --charts)"; exit 0; fi; \
+	 $(MAKE) --no-print-directory REAL=float B=$(ACC_FB) $(ACC_FB)/accuracy >/dev/null && \
+	 $(MAKE) --no-print-directory REAL=double B=$(ACC_DB) $(ACC_DB)/accuracy >/dev/null && \
+	 rm -rf $(ACC_CHECK) && mkdir -p $(ACC_CHECK)/tables && \
+	 $(ACC_FB)/accuracy --quick --out $(ACC_CHECK) >/dev/null && \
+	 $(ACC_DB)/accuracy --quick --out $(ACC_CHECK) >/dev/null && \
+	 gnuplot -e "dir='$(ACC_CHECK)'; check='$(ACC_CHECK)/tables'" tools/charts/accuracy.gp 2>/dev/null && \
+	 $(PYTHON) tests/pictures/check_charts.py --csv $(ACC_CHECK) --tables $(ACC_CHECK)/tables

@@ -167,16 +167,44 @@ typedef struct scene_def {
     int32_t quick_size;
     int shaped;   /* needs collision */
     int settles;  /* a pile that should come to rest */
+    const char *base;   /* a gameplay variant (rigid only, tools/bench_gameplay.c): the scene
+                           it builds; NULL for the others */
+    int32_t variant;    /* BENCH_PLAIN, BENCH_AWAKE, BENCH_ONE_WAY, BENCH_PRE_SOLVE */
 } scene_def;
 
 static const scene_def SCENES[] = {
-    { "rain", "circles r 0.5 falling into a container", { 1000, 4000, 10000, 0 }, 1000, 1, 1 },
-    { "boxes", "unit boxes falling into a container", { 4000, 10000, 0, 0 }, 1000, 1, 1 },
-    { "free0", "bodies without shapes, gravity + linear drag 0.1*m", { 100000, 0, 0, 0 }, 10000, 0, 0 },
-    { "free-nodrag", "free0 without drag (a force nobody set)", { 100000, 0, 0, 0 }, 10000, 0, 0 },
-    { "sparse", "N bodies, 1% of them circles raining in a container", { 100000, 0, 0, 0 }, 10000, 1, 0 },
-    { "platformer", "N static tiles, 256 walkers pushing and jumping", { 10000, 100000, 0, 0 }, 10000, 1, 0 },
-    { "sensors", "N static sensor boxes, N/10 circles drifting through", { 10000, 0, 0, 0 }, 2000, 1, 0 },
+    { "rain", "circles r 0.5 falling into a container", { 1000, 4000, 10000, 0 },
+      1000, 1, 1, NULL, BENCH_PLAIN },
+    { "boxes", "unit boxes falling into a container", { 4000, 10000, 0, 0 },
+      1000, 1, 1, NULL, BENCH_PLAIN },
+    { "free0", "bodies without shapes, gravity + linear drag 0.1*m", { 100000, 0, 0, 0 },
+      10000, 0, 0, NULL, BENCH_PLAIN },
+    { "free-nodrag", "free0 without drag (a force nobody set)", { 100000, 0, 0, 0 },
+      10000, 0, 0, NULL, BENCH_PLAIN },
+    { "sparse", "N bodies, 1% of them circles raining in a container", { 100000, 0, 0, 0 },
+      10000, 1, 0, NULL, BENCH_PLAIN },
+    { "platformer", "N static tiles, 256 walkers pushing and jumping", { 10000, 100000, 0, 0 },
+      10000, 1, 0, NULL, BENCH_PLAIN },
+    { "sensors", "N static sensor boxes, N/10 circles drifting through", { 10000, 0, 0, 0 },
+      2000, 1, 0, NULL, BENCH_PLAIN },
+    /* rigid's gameplay collision, sleeping off (tools/bench_gameplay.c) */
+    { "rain-awake", "rain, sleeping off (what the two below compare with)", { 4000, 0, 0, 0 },
+      1000, 1, 1, "rain", BENCH_AWAKE },
+    { "rain-oneway", "rain-awake, floor and walls one-way", { 4000, 0, 0, 0 },
+      1000, 1, 1, "rain", BENCH_ONE_WAY },
+    { "rain-presolve", "rain-awake, a pre-solve hook keeping every pair", { 4000, 0, 0, 0 },
+      1000, 1, 1, "rain", BENCH_PRE_SOLVE },
+    { "boxes-awake", "boxes, sleeping off", { 4000, 0, 0, 0 }, 1000, 1, 1, "boxes", BENCH_AWAKE },
+    { "boxes-oneway", "boxes-awake, floor and walls one-way", { 4000, 0, 0, 0 },
+      1000, 1, 1, "boxes", BENCH_ONE_WAY },
+    { "boxes-presolve", "boxes-awake, a pre-solve hook keeping every pair", { 4000, 0, 0, 0 },
+      1000, 1, 1, "boxes", BENCH_PRE_SOLVE },
+    { "platformer-awake", "platformer, sleeping off", { 10000, 0, 0, 0 },
+      10000, 1, 0, "platformer", BENCH_AWAKE },
+    { "platformer-oneway", "platformer-awake, every tile one-way, facing up", { 10000, 0, 0, 0 },
+      10000, 1, 0, "platformer", BENCH_ONE_WAY },
+    { "platformer-presolve", "platformer-awake, a pre-solve hook keeping every pair",
+      { 10000, 0, 0, 0 }, 10000, 1, 0, "platformer", BENCH_PRE_SOLVE },
 };
 #define NSCENES ((int)(sizeof SCENES / sizeof SCENES[0]))
 
@@ -189,34 +217,36 @@ static const scene_def *scene_find(const char *name)
 
 static int scene_build(bench_scene *s, const scene_def *d, int32_t n)
 {
+    const char *kind = d->base != NULL ? d->base : d->name;
     memset(s, 0, sizeof *s);
     snprintf(s->name, sizeof s->name, "%s", d->name);
     s->size = n;
     s->gy = -10;
     s->friction = 0.6;
     int32_t cap = n + 3;
-    if (strcmp(d->name, "platformer") == 0) cap = n + PLATFORMER_WALKERS;
-    if (strcmp(d->name, "sensors") == 0) cap = n + n / 10 + 1;
+    if (strcmp(kind, "platformer") == 0) cap = n + PLATFORMER_WALKERS;
+    if (strcmp(kind, "sensors") == 0) cap = n + n / 10 + 1;
     s->bodies = malloc((size_t)cap * sizeof *s->bodies);
     if (s->bodies == NULL) return 0;
-    if (strcmp(d->name, "rain") == 0) {
+    if (strcmp(kind, "rain") == 0) {
         pile(s, n, BENCH_SHAPE_CIRCLE, 0);
-    } else if (strcmp(d->name, "boxes") == 0) {
+    } else if (strcmp(kind, "boxes") == 0) {
         pile(s, n, BENCH_SHAPE_BOX, 0);
-    } else if (strcmp(d->name, "free0") == 0) {
+    } else if (strcmp(kind, "free0") == 0) {
         particles(s, n, 0);
         s->damping = 0.1;
-    } else if (strcmp(d->name, "free-nodrag") == 0) {
+    } else if (strcmp(kind, "free-nodrag") == 0) {
         particles(s, n, 0);
-    } else if (strcmp(d->name, "sparse") == 0) {
+    } else if (strcmp(kind, "sparse") == 0) {
         int32_t shaped = n / 100 > 0 ? n / 100 : 1;
         pile(s, shaped, BENCH_SHAPE_CIRCLE, 0);
         particles(s, n - shaped, 100.0 + ceil(sqrt((double)shaped)));
-    } else if (strcmp(d->name, "platformer") == 0) {
+    } else if (strcmp(kind, "platformer") == 0) {
         platformer(s, n);
-    } else if (strcmp(d->name, "sensors") == 0) {
+    } else if (strcmp(kind, "sensors") == 0) {
         sensors(s, n);
     }
+    bench_gameplay_variant(s, d->variant);
     return 1;
 }
 
@@ -339,7 +369,7 @@ static const char *floor_version(void) { return "floor: a vectorised C loop over
 
 static const bench_engine floor_engine = {
     "floor", floor_create, floor_step, floor_push, floor_push, floor_read, floor_bytes,
-    floor_destroy, NULL, floor_version,
+    floor_destroy, NULL, floor_version, NULL,
 };
 
 /* ---------------------------------------------------------------- engines */
@@ -568,6 +598,7 @@ typedef struct run_result {
     size_t bytes, peak;
     int64_t steady_allocs;     /* allocator calls in the second half of the steps; -1 unknown */
     quality q;
+    bench_contacts contacts;   /* mean per step over all steps */
 } run_result;
 
 typedef struct state_buf {
@@ -617,6 +648,13 @@ static run_result run_once(const bench_engine *e, const bench_scene *s, const sc
         if (s->drive != NULL) s->drive(s, i, &pusher);
         e->step(ctx, BENCH_DT);
         times[i] = now_ms() - t0;
+        if (e->contacts != NULL) {
+            bench_contacts c;
+            e->contacts(ctx, &c);
+            r.contacts.touching += c.touching / steps;
+            r.contacts.one_way += c.one_way / steps;
+            r.contacts.pre_solve_calls += c.pre_solve_calls / steps;
+        }
         if (sample && (i + 1) % SAMPLE_EVERY == 0) {
             e->read(ctx, st->x, st->y, st->vx, st->vy);
             if (max_speed(s, st->vx, st->vy, 1) >= REST_SPEED) last_moving = (i + 1) * BENCH_DT;
@@ -670,11 +708,13 @@ typedef struct result {
     double bytes_body, peak_body; /* peak_body 0: unknown */
     int64_t steady_allocs;        /* most over the runs; -1 unknown */
     quality q;          /* of the last run (every run of a deterministic engine agrees) */
+    const scene_def *def;
+    bench_contacts contacts;      /* medians over the runs of the means per step */
 } result;
 
 static void combine(result *res, run_result *runs, int32_t nruns)
 {
-    double med[64], mean[64], p95[64], settle[64];
+    double med[64], mean[64], p95[64], settle[64], touching[64], one_way[64], calls[64];
     int32_t k = 0;
     for (int32_t i = 0; i < nruns && k < 64; i++) {
         if (!runs[i].ok) continue;
@@ -682,6 +722,9 @@ static void combine(result *res, run_result *runs, int32_t nruns)
         mean[k] = runs[i].mean;
         p95[k] = runs[i].p95;
         settle[k] = runs[i].settling;
+        touching[k] = runs[i].contacts.touching;
+        one_way[k] = runs[i].contacts.one_way;
+        calls[k] = runs[i].contacts.pre_solve_calls;
         res->q = runs[i].q;
         res->bytes_body = (double)runs[i].bytes / (res->nbodies > 0 ? res->nbodies : 1);
         res->peak_body = (double)runs[i].peak / (res->nbodies > 0 ? res->nbodies : 1);
@@ -699,6 +742,9 @@ static void combine(result *res, run_result *runs, int32_t nruns)
     res->mean = quantile(mean, k, 0.5);
     res->p95 = quantile(p95, k, 0.5);
     res->settling = quantile(settle, k, 0.5);
+    res->contacts.touching = quantile(touching, k, 0.5);
+    res->contacts.one_way = quantile(one_way, k, 0.5);
+    res->contacts.pre_solve_calls = quantile(calls, k, 0.5);
     res->ns_body = res->median * 1e6 / (res->ndynamic > 0 ? res->ndynamic : 1);
 }
 
@@ -711,17 +757,17 @@ static void fmt_q(char *buf, size_t size, double v, const char *f)
 
 static void print_header(void)
 {
-    printf("%-11s %7s %-9s %8s %8s %8s %7s %8s %8s %8s %8s %7s %6s %5s %12s\n", "scene", "N",
+    printf("%-19s %7s %-9s %8s %8s %8s %7s %8s %8s %8s %8s %7s %6s %5s %12s\n", "scene", "N",
            "engine", "median", "mean", "p95", "spread", "ns/body", "B/body", "overlap", "wall",
            "vmax", "rest", "lost", "rigid/engine");
-    printf("%-11s %7s %-9s %8s %8s %8s %7s %8s %8s %8s %8s %7s %6s %5s %12s\n", "", "", "",
+    printf("%-19s %7s %-9s %8s %8s %8s %7s %8s %8s %8s %8s %7s %6s %5s %12s\n", "", "", "",
            "ms/step", "ms/step", "ms/step", "%", "-step", "", "m", "m", "m/s", "s", "", "");
 }
 
 static void print_result(const result *r, const result *rigid)
 {
     if (!r->ok) {
-        printf("%-11s %7d %-9s %s\n", r->scene, (int)r->n, r->engine->name,
+        printf("%-19s %7d %-9s %s\n", r->scene, (int)r->n, r->engine->name,
                r->engine == &bench_rigid_engine ? "n/a: scene needs collision this build lacks"
                                                 : "n/a");
         return;
@@ -737,7 +783,7 @@ static void print_result(const result *r, const result *rigid)
     else
         snprintf(ratio, sizeof ratio, "-");
     double spread = r->median > 0 ? 100.0 * (r->max_median - r->min_median) / r->median : 0;
-    printf("%-11s %7d %-9s %8.3f %8.3f %8.3f %7.1f %8.2f %8.1f %8s %8s %7.3f %6s %5d %12s\n",
+    printf("%-19s %7d %-9s %8.3f %8.3f %8.3f %7.1f %8.2f %8.1f %8s %8s %7.3f %6s %5d %12s\n",
            r->scene, (int)r->n, r->engine->name, r->median, r->mean, r->p95, spread, r->ns_body,
            r->bytes_body, ov, wl, r->q.vmax, rest, (int)r->q.lost, ratio);
 }
@@ -901,6 +947,23 @@ static void print_stage_costs(const result *rs, int32_t nr)
     }
 }
 
+/* The gameplay variants against their plain scenes (tools/bench_gameplay.c). */
+static void print_gameplay(const result *rs, int32_t nr)
+{
+    bench_gameplay_row *rows = calloc((size_t)(nr > 0 ? nr : 1), sizeof *rows);
+    int32_t n = 0;
+    if (rows == NULL) return;
+    for (int32_t i = 0; i < nr; i++) {
+        const result *r = &rs[i];
+        if (!r->ok || r->engine != &bench_rigid_engine) continue;
+        rows[n++] = (bench_gameplay_row){ r->scene, r->def->base != NULL ? r->def->base : r->scene,
+                                          r->n, r->def->variant, r->median, r->min_median,
+                                          r->max_median, r->contacts };
+    }
+    bench_gameplay_report(rows, n);
+    free(rows);
+}
+
 /* ---------------------------------------------------------------- main */
 
 typedef struct job {
@@ -936,7 +999,7 @@ int main(int argc, char **argv)
             quick = 1;
         } else if (strcmp(a, "--list") == 0) {
             for (int k = 0; k < NSCENES; k++)
-                printf("%-12s %s (default N:%d%s%s)\n", SCENES[k].name, SCENES[k].what,
+                printf("%-20s %s (default N:%d%s%s)\n", SCENES[k].name, SCENES[k].what,
                        (int)SCENES[k].default_sizes[0], SCENES[k].default_sizes[1] ? "," : "",
                        SCENES[k].default_sizes[1] ? "..." : "");
             return 0;
@@ -1072,12 +1135,18 @@ int main(int argc, char **argv)
         st.vx = st.y + nd;
         st.vy = st.vx + nd;
         memset(runs, 0, (size_t)repeats * (size_t)nengines * sizeof *runs);
+        /* a gameplay variant runs on rigid only */
+        const int rigid_only = jobs[j].def->variant != BENCH_PLAIN;
         for (int32_t rep = 0; rep < repeats; rep++)
             for (int e = 0; e < nengines; e++)
-                runs[e * repeats + rep] = run_once(engines[e], &s, jobs[j].def, steps, times, &st);
+                if (!rigid_only || engines[e] == &bench_rigid_engine)
+                    runs[e * repeats + rep] = run_once(engines[e], &s, jobs[j].def, steps, times,
+                                                       &st);
         const result *rigid = NULL;
         for (int e = 0; e < nengines; e++) {
+            if (rigid_only && engines[e] != &bench_rigid_engine) continue;
             result *r = &results[nres++];
+            r->def = jobs[j].def;
             snprintf(r->scene, sizeof r->scene, "%s", s.name);
             r->n = s.size;
             r->engine = engines[e];
@@ -1096,6 +1165,7 @@ int main(int argc, char **argv)
     }
     print_reference(results, nres);
     print_stage_costs(results, nres);
+    print_gameplay(results, nres);
     print_allocs(results, nres);
     printf("\n");
     machine(stdout);

@@ -25,6 +25,7 @@ typedef struct bench_body {
     int32_t type;      /* BENCH_STATIC | BENCH_DYNAMIC */
     int32_t sensor;    /* 1: reports overlaps, never pushes */
     int32_t pad;
+    double nx, ny;     /* static only: a one-way shape's normal, (0, 0) two-way (rigid only) */
 } bench_body;
 
 /* A scene that pushes its bodies every step (the platformer's walkers) does it through
@@ -51,7 +52,19 @@ typedef struct bench_scene {
     double half_width;
     /* Called before every step with the step index, or NULL. */
     void (*drive)(const struct bench_scene *s, int32_t step, const bench_pusher *p);
+    /* Rigid's gameplay collision (tools/bench_gameplay.c): BENCH_PLAIN, or with sleeping
+     * off BENCH_AWAKE, BENCH_ONE_WAY (bodies[].nx, ny set) or BENCH_PRE_SOLVE (a hook that
+     * keeps every pair). */
+    int32_t variant;
 } bench_scene;
+
+enum { BENCH_PLAIN = 0, BENCH_AWAKE = 1, BENCH_ONE_WAY = 2, BENCH_PRE_SOLVE = 3 };
+
+/* What the contacts of the last step were: touching pairs, those of them with a one-way
+ * shape, and the calls the pre-solve hook had in that step. */
+typedef struct bench_contacts {
+    double touching, one_way, pre_solve_calls;
+} bench_contacts;
 
 /* One engine.  create returns NULL when the scene needs what the engine lacks. */
 typedef struct bench_engine {
@@ -71,7 +84,25 @@ typedef struct bench_engine {
     int64_t (*alloc_calls)(void *ctx);
     /* Name and version of the library actually linked. */
     const char *(*version)(void);
+    /* The contacts of the last step, or NULL when the engine cannot tell. */
+    void (*contacts)(void *ctx, bench_contacts *out);
 } bench_engine;
+
+/* tools/bench_gameplay.c: the scenes that measure what one-way shapes and a pre-solve hook
+ * cost (rigid only), and their report.  bench_gameplay_variant turns a built scene into
+ * its variant: for BENCH_ONE_WAY every static box one-way (a box taller than wide is a wall
+ * facing the line x = 0, any other a floor or platform facing up). */
+void bench_gameplay_variant(bench_scene *s, int32_t variant);
+
+/* One result for the report. */
+typedef struct bench_gameplay_row {
+    const char *scene, *base;   /* base: the scene built (a variant is compared with its
+                                   BENCH_AWAKE row of the same base and n) */
+    int32_t n, variant;
+    double ms, ms_lo, ms_hi;    /* median ms per step: over the runs, and their range */
+    bench_contacts per_step;    /* mean contacts per step over all steps */
+} bench_gameplay_row;
+void bench_gameplay_report(const bench_gameplay_row *rows, int32_t nrows);
 
 extern const bench_engine bench_rigid_engine;
 #ifdef RG_BENCH_PEERS

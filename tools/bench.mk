@@ -11,7 +11,8 @@
 # Scenes with shapes need the collision API: enabled as soon as the header declares it and
 # src/ defines every function the bench calls (so a half-landed API never breaks `make`).
 BENCH_COLLISION_FNS := rg_body_set_circle rg_body_set_aabb rg_body_set_friction \
-                       rg_body_set_restitution rg_body_set_sensor
+                       rg_body_set_restitution rg_body_set_sensor rg_body_set_one_way \
+                       rg_world_set_pre_solve rg_body_get_contacts rg_world_touching_count
 BENCH_OPEN := (
 BENCH_COLLISION_MISSING := $(foreach f,$(BENCH_COLLISION_FNS),\
   $(if $(shell grep -l '^RG_API[^;]*[ *]$(f)[$(BENCH_OPEN)]' src/*.c 2>/dev/null),,$(f)))
@@ -40,7 +41,11 @@ $(B)/bench_obj/bench_rigid.o: tools/bench_rigid.c tools/bench.h include/rigid.h 
 	@mkdir -p $(@D)
 	$(CC) $(BENCH_CFLAGS) -c $< -o $@
 
-$(B)/bench: $(B)/bench_obj/bench.o $(B)/bench_obj/bench_rigid.o $(LIB_A)
+$(B)/bench_obj/bench_gameplay.o: tools/bench_gameplay.c tools/bench.h
+	@mkdir -p $(@D)
+	$(CC) $(BENCH_CFLAGS) -c $< -o $@
+
+$(B)/bench: $(B)/bench_obj/bench.o $(B)/bench_obj/bench_rigid.o $(B)/bench_obj/bench_gameplay.o $(LIB_A)
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
 # ---------------------------------------------------------------- with the peers
@@ -56,7 +61,7 @@ $(B)/bench_obj/bench_chipmunk.o: tools/bench_chipmunk.c tools/bench.h
 	@mkdir -p $(@D)
 	$(CC) -std=gnu99 -O2 -Itools -c $< -o $@
 
-$(B)/bench-peers: $(B)/bench_obj/bench_peers.o $(B)/bench_obj/bench_rigid.o \
+$(B)/bench-peers: $(B)/bench_obj/bench_peers.o $(B)/bench_obj/bench_rigid.o $(B)/bench_obj/bench_gameplay.o \
                   $(B)/bench_obj/bench_box2d.o $(B)/bench_obj/bench_chipmunk.o $(LIB_A)
 	$(BENCH_CXX) $(LDFLAGS) -o $@ $^ $(BENCH_PEER_LIBS) $(LDLIBS)
 
@@ -100,4 +105,5 @@ charts-bench: bench-deps
 	@echo "charts: $(B)/charts/bench_scaling.svg $(B)/charts/bench_scaling.png" \
 	      "(the README's copy: tools/charts/bench_scaling.*)"
 
--include $(B)/bench_obj/bench.d $(B)/bench_obj/bench_rigid.d $(B)/bench_obj/bench_peers.d
+-include $(B)/bench_obj/bench.d $(B)/bench_obj/bench_rigid.d $(B)/bench_obj/bench_peers.d \
+         $(B)/bench_obj/bench_gameplay.d

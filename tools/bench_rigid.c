@@ -38,6 +38,9 @@ typedef struct rigid_ctx {
     rg_world *w;
     rg_body *dyn;   /* handles of the dynamic bodies, in list order */
     int32_t ndyn;
+    rg_body *one_way;      /* the one-way bodies (BENCH_ONE_WAY), whose pairs are counted */
+    int32_t none_way;
+    int64_t hook_calls;    /* pre-solve calls since the last contacts read (BENCH_PRE_SOLVE) */
 } rigid_ctx;
 
 static rg_vec2 v2(double x, double y)
@@ -54,6 +57,7 @@ static void rigid_destroy(void *p)
     if (c == NULL) return;
     rg_world_destroy(c->w);
     free(c->dyn);
+    free(c->one_way);
     free(c);
 }
 
@@ -70,6 +74,10 @@ static int rigid_add_shape(rigid_ctx *c, rg_body h, const bench_body *bb, const 
     if (st == RG_OK && s->restitution != 0)
         st = rg_body_set_restitution(c->w, h, (rg_real)s->restitution);
     if (st == RG_OK && bb->sensor) st = rg_body_set_sensor(c->w, h, 1);
+    if (st == RG_OK && (bb->nx != 0 || bb->ny != 0)) {
+        st = rg_body_set_one_way(c->w, h, v2(bb->nx, bb->ny));
+        c->one_way[c->none_way++] = h;
+    }
     return st == RG_OK;
 #else
     (void)c;
@@ -80,16 +88,38 @@ static int rigid_add_shape(rigid_ctx *c, rg_body h, const bench_body *bb, const 
 #endif
 }
 
+#ifdef RG_BENCH_COLLISION
+/* The pre-solve hook of BENCH_PRE_SOLVE: counts its calls and keeps every pair. */
+static int32_t rigid_keep_pair(rg_body a, rg_body b, rg_vec2 normal, rg_real separation, void *user)
+{
+    (void)a;
+    (void)b;
+    (void)normal;
+    (void)separation;
+    ((rigid_ctx *)user)->hook_calls++;
+    return 1;
+}
+#endif
+
 static void *rigid_create(const bench_scene *s)
 {
     rigid_ctx *c = calloc(1, sizeof *c);
     if (c == NULL) return NULL;
     c->dyn = malloc((size_t)(s->ndynamic > 0 ? s->ndynamic : 1) * sizeof *c->dyn);
-    if (c->dyn == NULL || rg_world_create_with_allocator(count_alloc, &c->mem, &c->w) != RG_OK) {
+    if (s->variant == BENCH_ONE_WAY) c->one_way = malloc((size_t)s->nbodies * sizeof *c->one_way);
+    if (c->dyn == NULL || (s->variant == BENCH_ONE_WAY && c->one_way == NULL) ||
+        rg_world_create_with_allocator(count_alloc, &c->mem, &c->w) != RG_OK) {
         rigid_destroy(c);
         return NULL;
     }
     rg_world_set_gravity(c->w, v2(s->gx, s->gy));
+#ifdef RG_BENCH_COLLISION
+    if (s->variant != BENCH_PLAIN && rg_world_set_sleeping(c->w, 0) != RG_OK) goto fail;
+    if (s->variant == BENCH_PRE_SOLVE && rg_world_set_pre_solve(c->w, rigid_keep_pair, c) != RG_OK)
+        goto fail;
+#else
+    if (s->variant != BENCH_PLAIN) goto fail;
+#endif
     for (int32_t i = 0; i < s->nbodies; i++) {
         const bench_body *bb = &s->bodies[i];
         int dyn = bb->type == BENCH_DYNAMIC;
@@ -164,6 +194,21 @@ static int64_t rigid_alloc_calls(void *p)
 #define RIGID_BUILD "float"
 #endif
 
+static void rigid_contacts(void *p, bench_contacts *out)
+{
+    rigid_ctx *c = p;
+    int64_t pairs = 0;
+#ifdef RG_BENCH_COLLISION
+    out->touching = rg_world_touching_count(c->w);
+    for (int32_t k = 0; k < c->none_way; k++) pairs += rg_body_get_contacts(c->w, c->one_way[k], NULL, 0);
+#else
+    out->touching = 0;
+#endif
+    out->one_way = (double)pairs;
+    out->pre_solve_calls = (double)c->hook_calls;
+    c->hook_calls = 0;
+}
+
 static const char *rigid_version(void)
 {
     static char text[48];
@@ -175,5 +220,5 @@ static const char *rigid_version(void)
 
 const bench_engine bench_rigid_engine = {
     "rigid", rigid_create, rigid_step, rigid_force, rigid_impulse, rigid_read, rigid_bytes,
-    rigid_destroy, rigid_alloc_calls, rigid_version,
+    rigid_destroy, rigid_alloc_calls, rigid_version, rigid_contacts,
 };

@@ -2,21 +2,23 @@
 # Installs from Debian's packages what rigid needs and is missing; does nothing when all is
 # there.  --bench adds the peers of the side-by-side benchmark (Box2D 2.4, Chipmunk 7);
 # --charts adds gnuplot; --love adds LOVE and a headless X server for the LOVE game's test
-# (make test skips it without them); --cross adds an aarch64 cross compiler and qemu-user
-# for the snapshot's across-machines check (make test skips it without them); --fuzz adds
-# clang's sanitizer and libFuzzer runtimes (make fuzz, make sanitize CC=clang).  clang is
-# always installed: make test compares the state hash of a clang build with gcc's.  Uses
-# sudo when not root.
+# (make test skips it without them); --browser adds Chromium for the replay viewer's test
+# and bench (make test skips it without); --cross adds an aarch64 cross compiler and
+# qemu-user for the snapshot's across-machines check (make test skips it without them);
+# --fuzz adds clang's sanitizer and libFuzzer runtimes (make fuzz, make sanitize CC=clang).
+# clang is always installed: make test compares the state hash of a clang build with gcc's.
+# Uses sudo when not root.
 set -e
-pkgs="libcmocka-dev liblua5.4-dev lua5.4 luajit luarocks pkg-config python3 clang"
+pkgs="libcmocka-dev liblua5.4-dev lua5.4 luajit luarocks pkg-config python3 zlib1g-dev clang"
 for arg in "$@"; do
     case "$arg" in
     --bench) pkgs="$pkgs libbox2d-dev libchipmunk-dev g++" ;;
     --charts) pkgs="$pkgs gnuplot-nox" ;;
     --love) pkgs="$pkgs love xvfb xauth" ;;
     --cross) pkgs="$pkgs gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user" ;;
+    --browser) pkgs="$pkgs chromium" ;;
     --fuzz) pkgs="$pkgs libclang-rt-14-dev" ;;
-    *) echo "usage: $0 [--bench] [--charts] [--love] [--cross] [--fuzz]" >&2; exit 2 ;;
+    *) echo "usage: $0 [--bench] [--charts] [--love] [--browser] [--cross] [--fuzz]" >&2; exit 2 ;;
     esac
 done
 missing=""

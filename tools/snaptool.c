@@ -32,41 +32,41 @@ static rg_world *scene(void)
 {
     rg_world *w;
     CHECK(rg_world_create(&w));
-    CHECK(rg_world_set_gravity(w, (rg_vec2){ 0, (rg_real)-9.81f }));
+    CHECK(rg_world_set_gravity(w, (rg_vec2){ 0, -(rg_real)9.81 }));
     rg_body floor = body(w, RG_BODY_STATIC, 0, 0, -0.5);
-    CHECK(rg_body_set_aabb(w, floor, 12, (rg_real)0.5f));
+    CHECK(rg_body_set_aabb(w, floor, 12, (rg_real)0.5));
     for (int side = -1; side <= 1; side += 2) {
         rg_body wall = body(w, RG_BODY_STATIC, 0, side * 12.5, 8);
-        CHECK(rg_body_set_aabb(w, wall, (rg_real)0.5f, 9));
+        CHECK(rg_body_set_aabb(w, wall, (rg_real)0.5, 9));
     }
     rg_body shelf = body(w, RG_BODY_STATIC, 0, 6, 4);
-    CHECK(rg_body_set_aabb(w, shelf, 3, (rg_real)0.1f));
+    CHECK(rg_body_set_aabb(w, shelf, 3, (rg_real)0.1));
     CHECK(rg_body_set_one_way(w, shelf, (rg_vec2){ 0, 1 }));
     rg_body plat = body(w, RG_BODY_KINEMATIC, 0, -6, 2);
-    CHECK(rg_body_set_aabb(w, plat, 2, (rg_real)0.2f));
-    CHECK(rg_body_set_velocity(w, plat, (rg_vec2){ (rg_real)1.5f, 0 }));
+    CHECK(rg_body_set_aabb(w, plat, 2, (rg_real)0.2));
+    CHECK(rg_body_set_velocity(w, plat, (rg_vec2){ (rg_real)1.5, 0 }));
     rg_body coin = body(w, RG_BODY_STATIC, 0, 0, 1);
-    CHECK(rg_body_set_circle(w, coin, (rg_real)0.6f));
+    CHECK(rg_body_set_circle(w, coin, (rg_real)0.6));
     CHECK(rg_body_set_sensor(w, coin, 1));
     rg_body prev = 0;
     for (int i = 0; i < 240; i++) {
         rg_body b = body(w, RG_BODY_DYNAMIC, 0.5 + 0.1 * (i % 7), -10 + (i % 20) * 1.05 + 0.01 * (i % 3),
                          6 + (i / 20) * 1.1);
         if (i % 3)
-            CHECK(rg_body_set_circle(w, b, (rg_real)0.45f));
+            CHECK(rg_body_set_circle(w, b, (rg_real)0.45));
         else
-            CHECK(rg_body_set_aabb(w, b, (rg_real)0.45f, (rg_real)0.4f));
-        if (i % 11 == 0) CHECK(rg_body_set_drag(w, b, (rg_real)0.2f, (rg_real)0.05f));
-        if (i % 13 == 0) CHECK(rg_body_set_restitution(w, b, (rg_real)0.6f));
+            CHECK(rg_body_set_aabb(w, b, (rg_real)0.45, (rg_real)0.4));
+        if (i % 11 == 0) CHECK(rg_body_set_drag(w, b, (rg_real)0.2, (rg_real)0.05));
+        if (i % 13 == 0) CHECK(rg_body_set_restitution(w, b, (rg_real)0.6));
         if (i % 17 == 0 && prev != 0) {
             uint64_t sp;
-            CHECK(rg_spring_create(w, b, prev, (rg_vec2){ 0, 0 }, (rg_real)1.1f, 25, (rg_real)0.3f, &sp));
+            CHECK(rg_spring_create(w, b, prev, (rg_vec2){ 0, 0 }, (rg_real)1.1, 25, (rg_real)0.3, &sp));
         }
         prev = b;
     }
     for (int i = 0; i < 6; i++) {
         rg_body bullet = body(w, RG_BODY_DYNAMIC, 0.05, -9 + 3 * i, 15);
-        CHECK(rg_body_set_circle(w, bullet, (rg_real)0.05f));
+        CHECK(rg_body_set_circle(w, bullet, (rg_real)0.05));
         CHECK(rg_body_set_velocity(w, bullet, (rg_vec2){ (rg_real)(i % 2 ? 80 : -60), -200 }));
     }
     return w;
@@ -77,7 +77,7 @@ static void run(rg_world *w, int from, int to)
     for (int k = from; k < to; k++) {
         if (k == 150) CHECK(rg_world_set_integrator(w, RG_INTEGRATOR_RK4));
         if (k == 200) CHECK(rg_world_set_integrator(w, RG_INTEGRATOR_SEMI_IMPLICIT_EULER));
-        CHECK(rg_world_step(w, (rg_real)(1.0f / 60)));
+        CHECK(rg_world_step(w, (rg_real)1.0 / 60));
     }
 }
 

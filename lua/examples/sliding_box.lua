@@ -1,8 +1,10 @@
 -- sliding_box.lua: crates shoved across floors of different grip, seen from above (no
--- gravity in the picture: surface friction F = mu * N against the motion).  Each stops
--- at v0^2 / (2 mu g), less half a step of travel, and never creeps backwards.
+-- gravity in the picture: surface friction F = mu * N against the motion, the floor being
+-- the whole plane under each crate).  Each stops at v0^2 / (2 mu g), less half a step of
+-- travel, and never creeps backwards.
 --   build/rigid lua/examples/sliding_box.lua --svg build/sliding_box.svg
 duration = 3
+caption = "seen from above: friction mu N from the floor under each crate; a ring marks v0^2/(2 mu g)"
 
 local V0, G, DT = 8, 9.81, 1 / 60
 local crates = {}
@@ -15,11 +17,8 @@ function setup(world)
                           surface_friction = { mu, 20 * G },
                           aabb = { 0.4, 0.4 } }
     crates[i] = { body = c, mu = mu, min_vx = V0 }
-    -- Where the continuous law says it stops: v0^2 / (2 mu g).
+    -- Where the continuous law says it stops: v0^2 / (2 mu g), a marker without a shape.
     world:body{ type = "static", x = V0 * V0 / (2 * mu * G), y = lane, name = "v0^2/(2 mu g)" }
-    -- The floor strip each crate slides on.
-    world:body{ type = "static", x = 6, y = lane - 0.6, name = "floor",
-                aabb = { 6.5, 0.1 }, category = 2, mask = 0 }
   end
 end
 

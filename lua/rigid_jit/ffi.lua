@@ -48,6 +48,7 @@ enum {
   RG_MAX_SPRINGS = 16777215
 };
 const char *rg_status_string(rg_status s);
+const char *rg_world_last_error(const rg_world *world);
 int32_t rg_version(void);
 int32_t rg_real_size(void);
 typedef void *(*rg_alloc_fn)(void *user, void *ptr, size_t old_size, size_t new_size);
@@ -247,14 +248,15 @@ local function pack(x, y)
   return P[0].d
 end
 
-local S = ffi.new("rg_vec2[2]")
+-- One rg_vec2 per vector parameter of a call (S is sized below, for the call with most).
+local S
 local function vec(i, x, y)
   S[i].x, S[i].y = x, y
   return S[i]
 end
 
 -- V[name] for every function of the header with an rg_vec2 parameter by value.
-local V = {}
+local V, most = {}, 0
 for ret, name, params in RIGID_H:gmatch("\n([%w_ ]-[%w_]%s*%**)%s*(rg_[%w_]+)%(([^)]*)%);") do
   if params:find("rg_vec2 %w") then
     local decl, lua_args, c_args, k = {}, {}, {}, 0
@@ -281,7 +283,9 @@ for ret, name, params in RIGID_H:gmatch("\n([%w_ ]-[%w_]%s*%**)%s*(rg_[%w_]+)%((
     local src = ("local C, pack, vec = ...\nreturn function(%s) return C.%s(%s) end")
                 :format(table.concat(lua_args, ", "), fn, table.concat(c_args, ", "))
     V[name] = assert(loadstring(src, "=rigid_jit " .. name))(C, pack, vec)
+    most = math.max(most, k)
   end
 end
+S = ffi.new("rg_vec2[?]", most)
 
 return { C = C, V = V, real_size = REAL, abi = abi }

@@ -1,12 +1,13 @@
 -- run.lua: every Lua test of rigid, run by `make test` with stock lua5.4.
---   1. tests/lua/test_rigid.lua in the sandboxed host and in stock lua5.4 (build/rigid.so);
+--   1. tests/lua/test_rigid.lua and test_gameplay.lua in the sandboxed host and in stock
+--      lua5.4 (build/rigid.so);
 --   2. tests/lua/pattern_fuzz.lua: the host's metered matcher against stock Lua's;
 --   3. tests/lua/hostile/*.lua: each must fail in the host with a clear error (its
 --      "-- expect:" lines), file:line and a traceback, exit status 1 (not a crash), and
 --      leave the canary file it attacks untouched;
 --   4. tests/lua/ok/*.lua: scripts that must run in the host and exit 0;
 --   5. lua/examples/*.lua: each runs in the host and draws its picture;
---   6. with --library: tests/lua/test_rigid.lua again in LuaJIT through lua/rigid_jit.lua
+--   6. with --library: both API tests again in LuaJIT through lua/rigid_jit.lua
 --      (with its scalar declarations of the vector calls, and with the header's own), and
 --      the LOVE game lua/examples/love headless, whose screenshot must show the player
 --      where the physics put it.  What is not installed is skipped, with a line saying so.
@@ -93,10 +94,13 @@ local function suite(name, cmd, as_one)
   end
 end
 
+-- The API tests: the core API and the gameplay collision API, one script each.
+local API_TESTS = { "tests/lua/test_rigid.lua", "tests/lua/test_gameplay.lua" }
+
 print("-- API tests in the sandboxed host")
-suite("host " .. "tests/lua/test_rigid.lua", q(opts.host) .. " tests/lua/test_rigid.lua")
+for _, t in ipairs(API_TESTS) do suite("host " .. t, q(opts.host) .. " " .. t) end
 print("-- API tests in stock " .. opts.lua)
-suite("stock tests/lua/test_rigid.lua", stock .. " tests/lua/test_rigid.lua")
+for _, t in ipairs(API_TESTS) do suite("stock " .. t, stock .. " " .. t) end
 print("-- metered pattern matcher against stock Lua")
 suite("pattern fuzz (one test)", q(opts.fuzz) .. " tests/lua/pattern_fuzz.lua", true)
 
@@ -228,9 +232,10 @@ if opts.library then
   if not installed(opts.luajit) then
     print("skip  LuaJIT tests: no " .. opts.luajit .. " (tools/install-deps.sh installs luajit)")
   else
-    suite("luajit tests/lua/test_rigid.lua", jit_env .. " " .. q(opts.luajit) .. " tests/lua/test_rigid.lua")
-    suite("luajit tests/lua/test_rigid.lua, RIGID_JIT_ABI=exact",
-          jit_env .. " RIGID_JIT_ABI=exact " .. q(opts.luajit) .. " tests/lua/test_rigid.lua")
+    for _, t in ipairs(API_TESTS) do
+      suite("luajit " .. t, jit_env .. " " .. q(opts.luajit) .. " " .. t)
+      suite("luajit " .. t .. ", RIGID_JIT_ABI=exact", jit_env .. " RIGID_JIT_ABI=exact " .. q(opts.luajit) .. " " .. t)
+    end
   end
   print("-- the LOVE game lua/examples/love, headless")
   if not (installed(opts.love) and installed("xvfb-run")) then

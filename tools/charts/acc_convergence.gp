@@ -6,8 +6,8 @@ ff = dir."/sweep_float.csv"
 order(sc, ig, real) = system(sprintf("awk -F, '$1==\"%s\" && $2==\"%s\" {v=$5; if (v==\"nan\" || v==\"-nan\") v=\"n/a\"; else v=sprintf(\"%%.2f\", v); printf \"%%s\", v}' %s/orders_%s.csv", sc, ig, dir, real))
 set multiplot layout 2,3 title "Measured convergence: error against step dt. Solid: double build, dashed: float build (it meets rounding near 10^{-6}).\nKey: measured order p in double / float (least squares where 0.05 > error > 10 eps steps); theory 1, 1, 2, 4" font ",12"
 set logscale xy
-set format x "10^{%T}"
-set format y "10^{%T}"
+set format x logfmt
+set format y logfmt
 set yrange [1e-16:1]
 set xlabel "dt (s)"
 set grid

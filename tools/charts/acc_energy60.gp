@@ -6,13 +6,13 @@ set multiplot layout 1,2 title "Energy of a 1 Hz spring (1 kg, k = 4{/Symbol p}^
 set xlabel "t (s)"
 set ylabel "E / E_0"
 set logscale y
-set format y "10^{%T}"
+set format y logfmt
 set grid
 set key top left
 set title "all four (log scale): explicit Euler gains (1 + ({/Symbol w}dt)^2) per step"
 plot for [j=1:4] f using ((strcol(1) eq "oscillator" && strcol(2) eq word(igs, j)) ? $3 : NaN):4 with lines lw 2 lc rgb word(cols, j) title word(igl, j)
 unset logscale y
-set format y "%g"
+set format y linfmt
 set ylabel "E / E_0 - 1"
 set title "the three that hold it (linear scale)"
 set key bottom left

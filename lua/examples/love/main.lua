@@ -16,8 +16,11 @@ local rigid = require "rigid_jit"
 local SCALE = 32                           -- pixels per metre
 local COLORS = {                           -- by body name; the player's is nowhere else
   player = { 230, 40, 40 }, coin = { 250, 210, 30 }, flag = { 40, 170, 70 },
-  crate = { 150, 100, 50 }, platform = { 110, 80, 60 }, ground = { 90, 65, 50 },
+  crate = { 150, 100, 50 }, ledge = { 170, 120, 70 }, ground = { 90, 65, 50 },
+  shuttle = { 60, 110, 200 },
 }
+local EDGE = { 235, 205, 150 }             -- the top of a one-way ledge: jump through from below
+local DUST, DUST_TIME = { 235, 235, 225 }, 0.4   -- puffs where the scene's probe saw a landing
 local SKY = { 140, 190, 240 }
 
 local scene = setmetatable({}, { __index = _G })   -- the scene script's globals
@@ -113,6 +116,18 @@ function love.draw()
   local px, py = player:position()
   camera.ox = math.floor(W / 3 - px * SCALE + 0.5)
   camera.oy = H - 120
+  local now = steps * dt
+  for _, d in ipairs(scene.dust or {}) do   -- under the bodies, so the player stays in front
+    local age = now - d.t
+    if age >= 0 and age < DUST_TIME then
+      local r, g, b = color(DUST)
+      love.graphics.setColor(r, g, b, 1 - age / DUST_TIME)
+      for k = -1, 1 do
+        love.graphics.circle("fill", camera.ox + (d.x + k * (0.25 + age)) * SCALE,
+                             camera.oy - d.y * SCALE - 4, (0.12 + 0.3 * age) * SCALE)
+      end
+    end
+  end
   for _, b in ipairs(world:bodies()) do
     local x, y = b:position()
     local kind, a, c = b:shape()
@@ -122,6 +137,11 @@ function love.draw()
       love.graphics.circle("fill", sx, sy, a * SCALE)
     elseif kind == "aabb" then
       love.graphics.rectangle("fill", sx - a * SCALE, sy - c * SCALE, 2 * a * SCALE, 2 * c * SCALE)
+      local _, ny = b:one_way()
+      if ny > 0 then
+        love.graphics.setColor(color(EDGE))
+        love.graphics.rectangle("fill", sx - a * SCALE, sy - c * SCALE, 2 * a * SCALE, 3)
+      end
     end
   end
   love.graphics.setColor(1, 1, 1)
