@@ -28,7 +28,8 @@ static const char usage[] =
     "  --html FILE    record the run into FILE, a replay viewer (one self-contained page)\n"
     "  --memory MiB   memory cap of the script, physics included (default 64)\n"
     "  --budget N     instructions per call into the script: the main chunk, setup, each\n"
-    "                 update and each contact (default 100000000; 0: no limit)\n"
+    "                 frame (update and the contact calls after its step share one) and\n"
+    "                 finish (default 100000000; 0: no limit)\n"
     "A scene script defines setup(world), update(world, dt) (before each fixed step),\n"
     "contact(world, event) (for each contact event after a step) and/or finish(world);\n"
     "the host makes the world and steps it.  Other scripts run as they are.\n";
@@ -185,18 +186,6 @@ static int report(host *h, const char *what, int status)
     return 0;
 }
 
-/* Looks a global function up without metamethods; pushes it or nothing. */
-static int global_function(lua_State *L, const char *name)
-{
-    lua_pushglobaltable(L);
-    lua_pushstring(L, name);
-    lua_rawget(L, -2);
-    lua_remove(L, -2);
-    if (lua_type(L, -1) == LUA_TFUNCTION) return 1;
-    lua_pop(L, 1);
-    return 0;
-}
-
 static double global_number(lua_State *L, const char *name)
 {
     double v = -1;
@@ -208,18 +197,21 @@ static double global_number(lua_State *L, const char *name)
     return isfinite(v) ? v : -1;
 }
 
-/* The host's own step: update -> one fixed step through the accumulator -> contacts. */
+/* The host's own step: update -> one fixed step through the accumulator -> contacts.  The
+ * frame is one entry: update and every contact call after the step share one budget (a
+ * fresh budget per event would let each of thousands of events spend all of it). */
 static int scene_step(host *h, double dt)
 {
     lua_State *L = h->L;
     rg_world *w;
     int32_t taken = 0;
-    int has_contact;
-    if (global_function(L, "update")) {
+    int has_contact, fresh = 1;
+    if (lsandbox_getfunction(L, "update")) {
         lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
         lua_pushnumber(L, dt);
         int st = lsandbox_call(L, h->sb, 2, 0);
         if (st != LUA_OK) return report(h, "update", st);
+        fresh = 0;
     }
     lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
     w = lrigid_toworld(L, -1);
@@ -237,7 +229,7 @@ static int scene_step(host *h, double dt)
     h->steps_taken += taken;
     h->sim_time += taken * dt;
     record(h, L, -1, h->sim_time);
-    has_contact = global_function(L, "contact");
+    has_contact = lsandbox_getfunction(L, "contact");
     if (has_contact) lua_pop(L, 1);
     if (has_contact) {
         int events, i, n;
@@ -245,10 +237,11 @@ static int scene_step(host *h, double dt)
         events = lua_gettop(L);
         n = (int)lua_rawlen(L, events);
         for (i = 1; i <= n; i++) {
-            if (!global_function(L, "contact")) break;
+            if (!lsandbox_getfunction(L, "contact")) break;
             lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
             lua_rawgeti(L, events, i);
-            int st = lsandbox_call(L, h->sb, 2, 0);
+            int st = fresh ? lsandbox_call(L, h->sb, 2, 0) : lsandbox_continue(L, h->sb, 2, 0);
+            fresh = 0;
             if (st != LUA_OK) {
                 report(h, "contact", st);
                 lua_pop(L, 2);
@@ -292,7 +285,7 @@ static int run_scene(host *h)
         int32_t m;
         if (rg_world_get_fixed_step(w, &d, &m) == RG_OK) rg_world_set_fixed_step(w, d, m);
     }
-    if (global_function(L, "setup")) {
+    if (lsandbox_getfunction(L, "setup")) {
         lua_pushvalue(L, -2);
         st = lsandbox_call(L, h->sb, 1, 0);
         if (st != LUA_OK) {
@@ -330,7 +323,7 @@ static int run_scene(host *h)
         }
         if (!scene_step(h, d)) return 0;
     }
-    if (global_function(L, "finish")) {
+    if (lsandbox_getfunction(L, "finish")) {
         lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
         st = lsandbox_call(L, h->sb, 1, 0);
         if (st != LUA_OK) return report(h, "finish", st);
@@ -433,8 +426,8 @@ int main(int argc, char **argv)
         st = lsandbox_call(L, h.sb, h.nargs, 0);
         if (st != LUA_OK) {
             report(&h, h.script, st);
-        } else if (global_function(L, "setup") + global_function(L, "update") +
-                   global_function(L, "contact") + global_function(L, "finish") > 0) {
+        } else if (lsandbox_getfunction(L, "setup") + lsandbox_getfunction(L, "update") +
+                   lsandbox_getfunction(L, "contact") + lsandbox_getfunction(L, "finish") > 0) {
             lua_settop(L, 0);
             ok = run_scene(&h);
         } else {

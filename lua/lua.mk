@@ -9,8 +9,8 @@ LOVE_BIN ?= love
 
 LUA_MOD := $(B)/rigid.so
 LUA_HOST := $(B)/rigid
-LUA_HOST_SRC := lua/host.c lua/lsandbox.c lua/lpattern.c lua/lsvg.c lua/lsample.c lua/lhtml.c \
-                lua/lframes.c lua/lenc.c
+LUA_HOST_SRC := lua/host.c lua/lsandbox.c lua/llong.c lua/lcount.c lua/lpattern.c lua/lutf8.c \
+                lua/lsvg.c lua/lsample.c lua/lhtml.c lua/lframes.c lua/lenc.c
 # The replay viewer's page, compiled in as an array of lines (lua/viewer.mk).
 LUA_VIEWER := $(B)/lua/lviewer_html.o
 LUA_HOST_OBJ := $(patsubst lua/%.c,$(B)/lua/%.o,$(LUA_HOST_SRC)) $(LUA_VIEWER)

@@ -117,7 +117,7 @@ static void test_bodies_far_away_or_thrown_to_infinity_do_no_harm(void **state)
     assert_status(rg_body_apply_impulse(w, fast, v2(1e8, 0)), RG_ERR_INVALID_ARGUMENT); /* 1e14 m/s */
     assert_true(refused == 0 && rg_world_body_count(w) == 4);
     assert_true(VX(w, fast) == (double)(rg_real)RG_MAX_SPEED);
-    rg_body huge = box_body(w, RG_BODY_STATIC, 0, 0, -1e6, (rg_real)RG_MAX_SHAPE_SIZE, 1);
+    rg_body huge = box_body(w, RG_BODY_STATIC, 0, 0, -1e6, (double)(rg_real)RG_MAX_SHAPE_SIZE, 1);
     (void)huge;
     step_n(w, 200, DT);
     assert_near(PY(w, ok), 0.5, 0.006);

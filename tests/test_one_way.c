@@ -247,7 +247,8 @@ static void test_bad_input_is_rejected_and_changes_nothing(void **state)
     rg_body p = platform(w, 0, 0, 2, 0.1);
     rg_body b = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 1, 0.2);
     rg_body bare = make_body(w, 1, 5, 5);
-    const double bad[][2] = { { NAN, 1 }, { 0, INFINITY }, { 0.5, 0 }, { 0, 1.01 }, { 1e30, 1e30 } };
+    const double bad[][2] = { { (double)NAN, 1 }, { 0, (double)INFINITY }, { 0.5, 0 }, { 0, 1.01 },
+                              { 1e30, 1e30 } };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++)
         assert_status(rg_body_set_one_way(w, p, v2(bad[k][0], bad[k][1])), RG_ERR_INVALID_ARGUMENT);
     rg_vec2 n;
