@@ -287,7 +287,7 @@ static int restore_check_pool(const snap_in *in, size_t gen, size_t index, int32
         } else if (g == 0) {
             if (i != -1) return BAD; /* retired */
         } else {
-            int32_t next = -i - 2;
+            int64_t next = -(int64_t)i - 2; /* in 64 bits: a forged INT32_MIN must not overflow */
             if (next < -1 || next >= slots) return BAD;
             nfree++;
         }

@@ -298,110 +298,6 @@ static void test_every_allocation_failure_is_reported_and_recoverable(void **sta
     assert_true(completed_without_failure); /* every allocation point was visited */
 }
 
-/* An allocator that keeps freed blocks and hands one out again for the next request of the
- * same size, as glibc does for a world destroyed and created again at once. */
-#define CACHE_BLOCKS 64
-typedef struct cache_alloc {
-    void *block[CACHE_BLOCKS];
-    size_t size[CACHE_BLOCKS];
-    int n;
-} cache_alloc;
-
-static void *cache_allocf(void *user, void *ptr, size_t old_size, size_t new_size)
-{
-    cache_alloc *c = (cache_alloc *)user;
-    if (new_size == 0) {
-        if (ptr != NULL && c->n < CACHE_BLOCKS) {
-            c->block[c->n] = ptr;
-            c->size[c->n++] = old_size;
-        } else {
-            free(ptr);
-        }
-        return NULL;
-    }
-    if (ptr == NULL)
-        for (int k = c->n - 1; k >= 0; k--)
-            if (c->size[k] == new_size) {
-                void *p = c->block[k];
-                c->block[k] = c->block[--c->n];
-                c->size[k] = c->size[c->n];
-                return p;
-            }
-    return realloc(ptr, new_size);
-}
-
-/* A world created where the last one was destroyed (a level reload) must not take the old
- * world's handles (same slot, same generation) for its own: the tag is random per world
- * (src/world.c), not its address.  It fails for 1 pair in 2^20 by chance (the tag's bits). */
-static void test_handles_of_a_destroyed_world_are_rejected_by_the_next(void **state)
-{
-    (void)state;
-    cache_alloc cache;
-    memset(&cache, 0, sizeof cache);
-    rg_world *w1, *w2;
-    assert_ok(rg_world_create_with_allocator(cache_allocf, &cache, &w1));
-    rg_body old = make_body(w1, 1, 0, 0);
-    rg_world_destroy(w1);
-    assert_ok(rg_world_create_with_allocator(cache_allocf, &cache, &w2));
-    assert_true(w2 == w1);   /* the fixture: the same address again */
-    rg_body fresh = make_body(w2, 1, 5, 0);
-    assert_int_equal(rg_body_is_valid(w2, old), 0);
-    assert_true(fresh != old);
-    assert_status(rg_body_set_position(w2, old, v2(1, 1)), RG_ERR_STALE_HANDLE);
-    assert_true(pos_of(w2, fresh).x == 5);
-    rg_world_destroy(w2);
-    for (int k = 0; k < cache.n; k++) free(cache.block[k]);
-}
-
-/* Places the first block asked for (the world itself) at a fixed address, the rest with
- * malloc: two worlds exactly 16 MiB apart, as a custom allocator's arena may put them. */
-typedef struct arena_alloc {
-    char *at;
-    int used;
-} arena_alloc;
-
-static void *arena_allocf(void *user, void *ptr, size_t old_size, size_t new_size)
-{
-    arena_alloc *a = (arena_alloc *)user;
-    (void)old_size;
-    if ((char *)ptr == a->at) {
-        if (new_size == 0) return NULL;   /* the arena is freed by the test */
-        return NULL;                       /* the world block is never resized */
-    }
-    if (new_size == 0) {
-        free(ptr);
-        return NULL;
-    }
-    if (ptr == NULL && !a->used) {
-        a->used = 1;
-        return a->at;
-    }
-    return realloc(ptr, new_size);
-}
-
-/* Two live worlds 16 MiB apart (2^24 bytes), as a custom allocator's arena may put them,
- * reject each other's handles (a tag made of the address bits 4..23 was shared). */
-static void test_worlds_16_mib_apart_reject_each_others_handles(void **state)
-{
-    (void)state;
-    const size_t apart = (size_t)16 << 20, room = (size_t)1 << 20;
-    char *arena = malloc(apart + room);   /* aligned as malloc's are, which the world needs */
-    assert_non_null(arena);
-    arena_alloc a1 = { arena, 0 }, a2 = { arena + apart, 0 };
-    rg_world *w1, *w2;
-    assert_ok(rg_world_create_with_allocator(arena_allocf, &a1, &w1));
-    assert_ok(rg_world_create_with_allocator(arena_allocf, &a2, &w2));
-    assert_true((char *)w2 - (char *)w1 == (ptrdiff_t)apart);
-    rg_body b1 = make_body(w1, 1, 1, 0), b2 = make_body(w2, 1, 2, 0);
-    assert_int_equal(rg_body_is_valid(w2, b1), 0);
-    assert_int_equal(rg_body_is_valid(w1, b2), 0);
-    assert_status(rg_body_set_position(w2, b1, v2(9, 9)), RG_ERR_STALE_HANDLE);
-    assert_true(pos_of(w2, b2).x == 2);
-    rg_world_destroy(w1);
-    rg_world_destroy(w2);
-    free(arena);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -411,8 +307,6 @@ int main(void)
         cmocka_unit_test(test_a_million_cycles_never_resurrect_a_handle_and_leak_nothing),
         cmocka_unit_test(test_body_calls_reject_bad_input_and_change_nothing),
         cmocka_unit_test(test_every_allocation_failure_is_reported_and_recoverable),
-        cmocka_unit_test(test_handles_of_a_destroyed_world_are_rejected_by_the_next),
-        cmocka_unit_test(test_worlds_16_mib_apart_reject_each_others_handles),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
