@@ -30,6 +30,8 @@ static const char usage[] =
     "  --budget N     instructions per call into the script: the main chunk, setup, each\n"
     "                 frame (update and the contact calls after its step share one) and\n"
     "                 finish (default 100000000; 0: no limit)\n"
+    "  --threads N    step every world on a pool of N threads (1-64; the results are the\n"
+    "                 same bits as on one thread, the default)\n"
     "A scene script defines setup(world), update(world, dt) (before each fixed step),\n"
     "contact(world, event) (for each contact event after a step) and/or finish(world);\n"
     "the host makes the world and steps it.  Other scripts run as they are.\n";
@@ -42,6 +44,9 @@ typedef struct host {
     const char *html;
     long long memory_mib;
     long long budget;
+    long long threads;       /* 1: no pool */
+    rg_thread_pool *pool;
+    rg_task_system tasks;
     int nargs;
     char **args;
 
@@ -80,6 +85,13 @@ static int parse_args(host *h, int argc, char **argv)
         } else if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             fputs(usage, stdout);
             exit(0);
+        } else if (strcmp(a, "--threads") == 0) {
+            if (val == NULL || !parse_int(val, 1, RG_MAX_WORKERS, &h->threads)) {
+                fprintf(stderr, "rigid: --threads wants a whole number in [1, %d], not '%s'\n", RG_MAX_WORKERS,
+                        val != NULL ? val : "");
+                return 0;
+            }
+            i++;
         } else if (strcmp(a, "--steps") == 0 || strcmp(a, "--memory") == 0 ||
                    strcmp(a, "--budget") == 0 || strcmp(a, "--seconds") == 0 ||
                    strcmp(a, "--svg") == 0 || strcmp(a, "--html") == 0) {
@@ -389,6 +401,7 @@ int main(int argc, char **argv)
     h.seconds = -1;
     h.memory_mib = DEFAULT_MEMORY_MIB;
     h.budget = DEFAULT_BUDGET;
+    h.threads = 1;
     h.world_ref = LUA_NOREF;
     if (!parse_args(&h, argc, argv)) return 2;
 
@@ -416,6 +429,18 @@ int main(int argc, char **argv)
     h.hooks.charge = host_charge;
     h.hooks.after_step = host_after_step;
     h.hooks.ud = &h;
+    if (h.threads > 1) {
+        rg_status pst = rg_thread_pool_create((int32_t)h.threads, &h.pool);
+        if (pst == RG_OK) pst = rg_thread_pool_task_system(h.pool, &h.tasks);
+        if (pst != RG_OK) {
+            fprintf(stderr, "rigid: cannot start %lld threads (%s)\n", h.threads, rg_status_string(pst));
+            lsandbox_close(L, h.sb);
+            lsvg_free(h.rec);
+            lhtml_free(h.replay);
+            return 1;
+        }
+        h.hooks.tasks = &h.tasks;
+    }
     lrigid_sethooks(L, &h.hooks);
 
     st = lsandbox_loadfile(L, h.script);
@@ -442,6 +467,7 @@ int main(int argc, char **argv)
                 (double)lsandbox_peak_memory(h.sb) / (1 << 20));
     lrigid_sethooks(L, NULL);
     lsandbox_close(L, h.sb);
+    rg_thread_pool_destroy(h.pool); /* after the worlds, which lsandbox_close destroys */
     lsvg_free(h.rec);
     lhtml_free(h.replay);
     return ok ? 0 : 1;

@@ -46,6 +46,9 @@ typedef struct lrigid_hooks {
      * stack index world_index.  May raise a Lua error, which reaches the script. */
     void (*after_step)(lua_State *L, void *ud, int world_index, int steps);
     void *ud;
+    /* The task system every world made from now on steps with (rg_world_set_task_system);
+     * NULL: one thread.  Not copied: it must outlive the worlds. */
+    const rg_task_system *tasks;
 } lrigid_hooks;
 
 /* Installs hooks for every world of this state (NULL removes them).  The struct is not

@@ -112,6 +112,7 @@ int lworld_new(lua_State *L)
     void *alloc_ud;
     lua_Alloc alloc;
     const char *failed = NULL;
+    const lrigid_hooks *hooks;
 
     if (!lua_isnoneornil(L, 1)) {
         luaL_checktype(L, 1, LUA_TTABLE);
@@ -141,6 +142,11 @@ int lworld_new(lua_State *L)
     alloc = lua_getallocf(L, &alloc_ud);
     st = rg_world_create_with_allocator(alloc, alloc_ud, &w);
     if (st != RG_OK) return lcheck_status(L, NULL, st, what);
+    hooks = lworld_gethooks(L);
+    if (hooks != NULL && hooks->tasks != NULL) {
+        st = rg_world_set_task_system(w, hooks->tasks);
+        failed = "the host's task system";
+    }
     if (st == RG_OK && has_gravity) {
         st = rg_world_set_gravity(w, (rg_vec2){ gravity[0], gravity[1] });
         failed = "gravity";

@@ -6,7 +6,8 @@
 --      "-- expect:" lines), file:line and a traceback, exit status 1 (not a crash), and
 --      leave the canary file it attacks untouched;
 --   4. tests/lua/ok/*.lua: scripts that must run in the host and exit 0;
---   5. lua/examples/*.lua: each runs in the host and draws its picture;
+--   5. lua/examples/*.lua: each runs in the host and draws its picture (and a pile at 1 and
+--      3 threads gives one hash);
 --   6. with --library: the API tests again in LuaJIT through lua/rigid_jit.lua
 --      (with its scalar declarations of the vector calls, and with the header's own), and
 --      the LOVE game lua/examples/love headless, whose screenshot must show the player
@@ -154,6 +155,19 @@ print("-- scripts that must run cleanly in the host")
 for _, path in ipairs(list("tests/lua/ok/*.lua")) do
   local out, how, code = run(limit .. q(opts.host) .. " " .. q(path) .. " --steps 30")
   result(how == "exit" and code == 0, "runs " .. path, out:sub(1, 1500))
+end
+
+print("-- the host's --threads: the same bits as one thread")
+do
+  local path = "tests/lua/threads/pile.lua"
+  local one, how1, code1 = run(q(opts.host) .. " " .. q(path) .. " --threads 1")
+  local three, how3, code3 = run(q(opts.host) .. " " .. q(path) .. " --threads 3")
+  local h1, h3 = one:match("hash (%x+)"), three:match("hash (%x+)")
+  result(how1 == "exit" and code1 == 0 and how3 == "exit" and code3 == 0 and h1 ~= nil and h1 == h3,
+         path .. " at 1 and 3 threads: hash " .. tostring(h1) .. " and " .. tostring(h3),
+         "--- 1 thread:\n" .. one:sub(1, 800) .. "\n--- 3 threads:\n" .. three:sub(1, 800))
+  local bad = run(q(opts.host) .. " " .. q(path) .. " --threads 65")
+  result(bad:find("--threads wants a whole number in [1, 64]", 1, true) ~= nil, "--threads 65 is refused", bad)
 end
 
 print("-- examples in the host, each drawing its picture")
