@@ -84,11 +84,10 @@ void collide_step_begin(rg_world *w, collide_step *x, rg_real dt)
 {
     collide_world *cw = &w->coll;
     cw->resolve.pv_valid = 0;
-    resolve_next_gen(&cw->resolve, cw->scap);
     x->n = w->b.n_active;
     x->na = cw->bp.n_active;
     x->nc = 0;
-    x->ns = 0;
+    x->ns = x->n;
     x->nimp = 0;
     x->woke = 0;
     x->unite = cw->sleeping && cw->island.near_sleep;

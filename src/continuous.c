@@ -63,7 +63,7 @@ int continuous_time_impacts(rg_world *w, collide_step *x)
     int any = 0;
     for (int32_t k = 0; k < x->nimp; k++) {
         solver_constraint *r = &rows->stage[rows->imp[k]];
-        int32_t ia = r->a > 0 ? rs->sbody[r->a] : -1, ib = r->b > 0 ? rs->sbody[r->b] : -1;
+        int32_t ia = r->a - 1, ib = r->b - 1; /* -1: the ground */
         rg_real ta = 0, tb = 0;
         if (r->ima > 0 && !continuous_timed_body(w, ia, x->n, &ta)) continue;
         if (r->imb > 0 && !continuous_timed_body(w, ib, x->n, &tb)) continue;

@@ -88,8 +88,8 @@ void island_sleep(rg_world *w, rg_real dt, int united)
         if (b->type[i] != RG_BODY_DYNAMIC) continue;
         rg_real v2 = b->vx[i] * b->vx[i] + b->vy[i] * b->vy[i];
         /* a body still being pushed out of a penetration is not at rest either */
-        if (pv_valid && rs->sstamp[i] == rs->gen) {
-            int32_t q = rs->sidx[i];
+        if (pv_valid && rs->sstamp[i] == rs->gen) { /* rows met it: solver body i + 1 */
+            int32_t q = i + 1;
             v2 = rg_max(v2, pv[2 * q] * pv[2 * q] + pv[2 * q + 1] * pv[2 * q + 1]);
         }
         rg_real t = v2 < thr2 ? b->sleep_t[i] + dt : 0;

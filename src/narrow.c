@@ -232,7 +232,9 @@ static int narrow_skip(rg_world *w, contact *c, int32_t ia, int32_t ib, const cb
 
 typedef struct narrow_task {
     rg_world *w;
-    const collide_step *x;
+    collide_step *x;
+    int32_t n;                        /* staging: the contacts decided in parallel */
+    int32_t in_order[RG_MAX_WORKERS]; /* the worker met a contact decided in order */
 } narrow_task;
 
 /* The measurement of contact id (the broadphase keeps only pairs whose fat boxes overlap):
@@ -306,28 +308,41 @@ static void narrow_measure_range(int32_t begin, int32_t end, int32_t worker, voi
     for (int32_t k = begin; k < end; k++) narrow_measure(t->w, &cs->c[cs->awake[k]], t->x);
 }
 
-/* Updates contact id from its measurement: touching state and events, grounded flags,
- * islands, waking, and the solver row. */
-static void narrow_one(rg_world *w, int32_t id, collide_step *x)
+/* What narrow_decide found for a contact, for narrow_commit (contact.decided). */
+#define ND_STAGE   1u  /* solved: stage its row */
+#define ND_BEGIN   2u  /* began touching */
+#define ND_END     4u  /* stopped touching */
+#define ND_NOW     8u  /* touching after the step */
+#define ND_WAS    16u  /* touching before it */
+#define ND_GROUND_A 32u /* its surface grounds a (touching, a's gravity against the normal) */
+#define ND_GROUND_B 64u
+
+/* Whether the pair's decision needs the stepping thread: a one-way body or passing through
+ * (their state changes in order), or a pre-solve hook (a callback, in order). */
+static inline int narrow_in_order(const rg_world *w, const contact *c)
 {
-    collide_world *cw = &w->coll;
-    contact_store *cs = &cw->contacts;
-    body_store *b = &w->b;
-    contact *c = &cs->c[id];
-    int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
-    cbody rest_a, rest_b;
-    const cbody *A = narrow_view(w, ia, x->n, &rest_a), *B = narrow_view(w, ib, x->n, &rest_b);
+    return (c->flags & (CT_ONEWAY | CT_PASS)) || w->pre_solve != NULL;
+}
+
+/* Decides contact c between dense bodies ia, ib (views A, B) from its measurement: touching,
+ * solved, its flags, vn0 and toi, and the begin's depth and speed; writes only the contact's
+ * own fields, so the contacts that need no order (narrow_in_order) decide in parallel.
+ * in_order: the skip (narrow_skip) may be asked.  Returns ND_* bits. */
+static uint32_t narrow_decide(rg_world *w, contact *c, int32_t ia, int32_t ib, const cbody *A, const cbody *B,
+                              int in_order)
+{
+    const collide_world *cw = &w->coll;
     rg_vec2 r = rg_v2(B->dx - A->dx, B->dy - A->dy); /* b's motion relative to a over the step */
     if (cw->continuous && !(c->flags & CT_TOUCHING) && narrow_far_apart(A, B, A->kind, B->kind, cw->slop)) {
         /* what the full test would conclude: not solved, not touching, apart */
         c->flags &= ~(CT_SOLVE | CT_CLOSING | CT_PASS);
         c->pn = c->pt = 0;
-        return;
+        return 0;
     }
     int active = (c->flags & CT_ACTIVE) != 0;
     rg_real s0 = c->s0;
     c->flags &= ~CT_ACTIVE;
-    uint32_t was = c->flags & CT_TOUCHING, now = 0;
+    uint32_t was = c->flags & CT_TOUCHING, now = 0, bits = 0;
     c->flags &= ~(CT_SOLVE | CT_CLOSING);
     if (!active) c->flags &= ~CT_PASS; /* no impact within the step: apart */
     if (active) {
@@ -346,26 +361,22 @@ static void narrow_one(rg_world *w, int32_t id, collide_step *x)
         int solve = !(c->flags & CT_SENSOR) && s0 - reach < SPECULATIVE * cw->slop && rg_finite(s0) &&
                     rg_finite(vn0);
         /* one-way shapes, pass-through and the pre-solve hook may skip the pair this step */
-        if (((c->flags & (CT_ONEWAY | CT_PASS)) || w->pre_solve != NULL) &&
-            narrow_skip(w, c, ia, ib, A, B, s0, d, was, now != 0 || solve)) {
+        if (in_order && narrow_in_order(w, c) && narrow_skip(w, c, ia, ib, A, B, s0, d, was, now != 0 || solve)) {
             now = 0;
             solve = 0;
             c->flags &= ~CT_CLOSING;
         }
-        if (solve) {
-            rg_real ima = A->im, imb = B->im;
-            if (ima + imb > 0) {
-                c->flags |= CT_SOLVE;
-                /* An impact: the free motion closes the gap of a pair that was apart, at
-                 * the fraction toi of the step (the solve decides whether to time it).  A
-                 * pair in contact (touching after the last step, or overlapping) has toi 0:
-                 * it may carry weight or pass on an impulse at any moment of the step.  A
-                 * pair apart that the free motion does not close has toi -1. */
-                rg_real toi = was || s0 <= 0 ? 0 : -1;
-                if (d < 0) toi = s0 > 0 && !was ? s0 / (s0 - d) : 0;
-                c->toi = toi;
-                resolve_stage(w, x, id, ia, ib, ima, imb);
-            }
+        if (solve && A->im + B->im > 0) {
+            c->flags |= CT_SOLVE;
+            /* An impact: the free motion closes the gap of a pair that was apart, at the
+             * fraction toi of the step (the solve decides whether to time it).  A pair in
+             * contact (touching after the last step, or overlapping) has toi 0: it may carry
+             * weight or pass on an impulse at any moment of the step.  A pair apart that the
+             * free motion does not close has toi -1. */
+            rg_real toi = was || s0 <= 0 ? 0 : -1;
+            if (d < 0) toi = s0 > 0 && !was ? s0 / (s0 - d) : 0;
+            c->toi = toi;
+            bits |= ND_STAGE;
         }
     }
     if (!(c->flags & CT_SOLVE)) c->pn = c->pt = 0;
@@ -374,51 +385,184 @@ static void narrow_one(rg_world *w, int32_t id, collide_step *x)
         if (now) {
             c->depth = rg_max(-c->s0, 0);
             c->speed = rg_max(-c->vn0, 0);
-            cs->n_touching++;
-            events_emit(w, c, RG_CONTACT_BEGIN);
-        } else {
-            cs->n_touching--;
-            events_emit(w, c, RG_CONTACT_END);
         }
+        bits |= now ? ND_BEGIN : ND_END;
+    }
+    if (now && !(c->flags & CT_SENSOR)) {
+        if (A->gs != 0 && narrow_is_ground(w->gravity.x, w->gravity.y, A->gs, -c->nx, -c->ny)) bits |= ND_GROUND_A;
+        if (B->gs != 0 && narrow_is_ground(w->gravity.x, w->gravity.y, B->gs, c->nx, c->ny)) bits |= ND_GROUND_B;
+    }
+    return bits | (now ? ND_NOW : 0) | (was ? ND_WAS : 0);
+}
+
+static void narrow_decide_range(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    narrow_task *t = context;
+    rg_world *w = t->w;
+    contact_store *cs = &w->coll.contacts;
+    for (int32_t k = begin; k < end; k++) {
+        contact *c = &cs->c[cs->awake[k]];
+        if (narrow_in_order(w, c)) {
+            t->in_order[worker] = 1;
+            continue;
+        }
+        int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
+        cbody rest_a, rest_b;
+        const cbody *A = narrow_view(w, ia, t->x->n, &rest_a), *B = narrow_view(w, ib, t->x->n, &rest_b);
+        c->decided = narrow_decide(w, c, ia, ib, A, B, 0);
+    }
+}
+
+/* What a contact's decision does to the rest of the world, in contact order on the stepping
+ * thread: its solver row, events, grounded flags, islands, waking. */
+static void narrow_commit(rg_world *w, int32_t id, collide_step *x, uint32_t bits, int stage)
+{
+    collide_world *cw = &w->coll;
+    contact_store *cs = &cw->contacts;
+    body_store *b = &w->b;
+    contact *c = &cs->c[id];
+    int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
+    if ((bits & ND_STAGE) && stage) {
+        /* the views' inverse masses: an awake body's (dense below x->n), else 0 */
+        const cbody *cb = cw->narrow.cb;
+        resolve_stage(w, x, id, ia, ib, ia < x->n ? cb[ia].im : 0, ib < x->n ? cb[ib].im : 0);
+    }
+    if (bits & ND_BEGIN) {
+        cs->n_touching++;
+        events_emit(w, c, RG_CONTACT_BEGIN);
+    } else if (bits & ND_END) {
+        cs->n_touching--;
+        events_emit(w, c, RG_CONTACT_END);
     }
     if (c->flags & CT_SENSOR) return;
-    if (now) {
-        if (A->gs != 0 && narrow_is_ground(w->gravity.x, w->gravity.y, A->gs, -c->nx, -c->ny))
-            b->cflags[ia] |= CF_GROUNDED;
-        if (B->gs != 0 && narrow_is_ground(w->gravity.x, w->gravity.y, B->gs, c->nx, c->ny))
-            b->cflags[ib] |= CF_GROUNDED;
-        if (x->unite) {
-            int32_t pa = cw->bp.e[c->sa].apos, pb = cw->bp.e[c->sb].apos;
-            if (pa >= 0 && pb >= 0 && pa < x->na && pb < x->na && b->type[ia] == RG_BODY_DYNAMIC &&
-                b->type[ib] == RG_BODY_DYNAMIC)
-                island_unite(cw->island.uf, pa, pb);
-        }
+    if (bits & ND_GROUND_A) b->cflags[ia] |= CF_GROUNDED;
+    if (bits & ND_GROUND_B) b->cflags[ib] |= CF_GROUNDED;
+    if ((bits & ND_NOW) && x->unite) {
+        int32_t pa = cw->bp.e[c->sa].apos, pb = cw->bp.e[c->sb].apos;
+        if (pa >= 0 && pb >= 0 && pa < x->na && pb < x->na && b->type[ia] == RG_BODY_DYNAMIC &&
+            b->type[ib] == RG_BODY_DYNAMIC)
+            island_unite(cw->island.uf, pa, pb);
     }
     /* a sleeping body (dense index past the awake ones) touched by a pusher wakes */
-    if ((now | was) && (ia >= b->n_active || ib >= b->n_active)) {
+    if ((bits & (ND_NOW | ND_WAS)) && (ia >= b->n_active || ib >= b->n_active)) {
         int pa_ = body_partition(w, ia), pb_ = body_partition(w, ib);
-        if (pa_ == BODY_PART_ASLEEP && pb_ == BODY_PART_ACTIVE && narrow_pusher(b, ib, now != 0)) {
+        int now = (bits & ND_NOW) != 0;
+        if (pa_ == BODY_PART_ASLEEP && pb_ == BODY_PART_ACTIVE && narrow_pusher(b, ib, now)) {
             island_wake(w, c->sa);
             x->woke = 1;
-        } else if (pb_ == BODY_PART_ASLEEP && pa_ == BODY_PART_ACTIVE && narrow_pusher(b, ia, now != 0)) {
+        } else if (pb_ == BODY_PART_ASLEEP && pa_ == BODY_PART_ACTIVE && narrow_pusher(b, ia, now)) {
             island_wake(w, c->sb);
             x->woke = 1;
         }
     }
 }
 
+/* A contact decided on the stepping thread: those in order, and those waking appended. */
+static uint32_t narrow_decide_here(rg_world *w, int32_t id, const collide_step *x)
+{
+    contact *c = &w->coll.contacts.c[id];
+    int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
+    cbody rest_a, rest_b;
+    const cbody *A = narrow_view(w, ia, x->n, &rest_a), *B = narrow_view(w, ib, x->n, &rest_b);
+    return narrow_decide(w, c, ia, ib, A, B, 1);
+}
+
 /* Contacts per measuring range: the manifolds cost some 30-100 ns each. */
 #define NARROW_RANGE 64
+
+/* Staging in parallel: the awake contacts in fixed blocks, whose rows (and impacts) are
+ * counted, summed in block order, then written at those offsets: the rows of the serial
+ * walk, in its order.  rows.color and rows.tord (scratch of the solve, unused until then)
+ * hold each block's first row and first impact. */
+#define NARROW_BLOCK 256
+
+static void narrow_count_range(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    const narrow_task *t = context;
+    const contact_store *cs = &t->w->coll.contacts;
+    solver_rows *rows = &t->w->coll.rows;
+    (void)worker;
+    for (int32_t blk = begin; blk < end; blk++) {
+        int32_t k1 = (blk + 1) * NARROW_BLOCK < t->n ? (blk + 1) * NARROW_BLOCK : t->n;
+        int32_t nrow = 0, nimp = 0;
+        for (int32_t k = blk * NARROW_BLOCK; k < k1; k++) {
+            const contact *c = &cs->c[cs->awake[k]];
+            if (!(c->decided & ND_STAGE)) continue;
+            nrow++;
+            nimp += c->toi > 0;
+        }
+        rows->color[blk] = nrow;
+        rows->tord[blk] = nimp;
+    }
+}
+
+static void narrow_stage_range(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    const narrow_task *t = context;
+    rg_world *w = t->w;
+    const contact_store *cs = &w->coll.contacts;
+    solver_rows *rows = &w->coll.rows;
+    const cbody *cb = w->coll.narrow.cb;
+    const collide_step *x = t->x;
+    (void)worker;
+    for (int32_t blk = begin; blk < end; blk++) {
+        int32_t k1 = (blk + 1) * NARROW_BLOCK < t->n ? (blk + 1) * NARROW_BLOCK : t->n;
+        int32_t row = rows->color[blk], imp = rows->tord[blk];
+        for (int32_t k = blk * NARROW_BLOCK; k < k1; k++) {
+            int32_t id = cs->awake[k];
+            const contact *c = &cs->c[id];
+            if (!(c->decided & ND_STAGE)) continue;
+            int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
+            resolve_row(w, x, row, id, ia, ib, ia < x->n ? cb[ia].im : 0, ib < x->n ? cb[ib].im : 0);
+            if (c->toi > 0) rows->imp[imp++] = row;
+            row++;
+        }
+    }
+}
+
+/* Stages the rows of the first n awake contacts, all decided in parallel. */
+static void narrow_stage(rg_world *w, narrow_task *t, int32_t n)
+{
+    solver_rows *rows = &w->coll.rows;
+    collide_step *x = t->x;
+    int32_t blocks = (n + NARROW_BLOCK - 1) / NARROW_BLOCK;
+    t->n = n;
+    task_for(w, narrow_count_range, blocks, 1, t);
+    int32_t row = 0, imp = 0;
+    for (int32_t blk = 0; blk < blocks; blk++) {
+        int32_t r = rows->color[blk], m = rows->tord[blk];
+        rows->color[blk] = row;
+        rows->tord[blk] = imp;
+        row += r;
+        imp += m;
+    }
+    task_for(w, narrow_stage_range, blocks, 1, t);
+    x->nc = row;
+    x->nimp = imp;
+}
 
 void narrow_run(rg_world *w, collide_step *x)
 {
     contact_store *cs = &w->coll.contacts;
-    narrow_task t = { w, x };
-    int32_t measured = cs->n_awake;
+    narrow_task t;
+    t.w = w;
+    t.x = x;
+    int32_t measured = cs->n_awake, workers = task_workers(w), in_order = 0;
+    for (int32_t k = 0; k < workers; k++) t.in_order[k] = 0;
     task_for(w, narrow_measure_range, measured, NARROW_RANGE, &t);
-    /* waking appends the contacts of the bodies it wakes: they are measured as they come */
+    task_for(w, narrow_decide_range, measured, NARROW_RANGE, &t);
+    for (int32_t k = 0; k < workers; k++) in_order |= t.in_order[k];
+    /* without a contact decided in order, the rows are staged in parallel (the same rows in
+     * the same order as the walk below would stage) */
+    if (!in_order) narrow_stage(w, &t, measured);
+    /* waking appends the contacts of the bodies it wakes: they are measured, decided and
+     * staged as they come */
     for (int32_t k = 0; k < cs->n_awake; k++) {
-        if (k >= measured) narrow_measure(w, &cs->c[cs->awake[k]], x);
-        narrow_one(w, cs->awake[k], x);
+        int32_t id = cs->awake[k];
+        contact *c = &cs->c[id];
+        if (k >= measured) narrow_measure(w, c, x);
+        int here = k >= measured || narrow_in_order(w, c);
+        uint32_t bits = here ? narrow_decide_here(w, id, x) : c->decided;
+        narrow_commit(w, id, x, bits, in_order || k >= measured);
     }
 }

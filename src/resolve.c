@@ -13,9 +13,7 @@ void resolve_layout(mem_layout *l, resolve_state *s, int32_t n)
     s->sv = mem_take(l, (size_t)n, 2 * sizeof(rg_real));
     s->spv = mem_take(l, (size_t)n, 2 * sizeof(rg_real));
     s->stoi = mem_take(l, (size_t)n, sizeof(rg_real));
-    s->sidx = mem_take(l, (size_t)n, sizeof(int32_t));
     s->sstamp = mem_take(l, (size_t)n, sizeof(uint32_t));
-    s->sbody = mem_take(l, (size_t)n, sizeof(int32_t));
     s->cmask = mem_take(l, (size_t)n, sizeof(uint32_t));
 }
 
@@ -35,11 +33,10 @@ static void resolve_restage(rg_world *w, collide_step *x)
     contact_store *cs = &cw->contacts;
     const body_store *b = &w->b;
     int32_t n = b->n_active;
-    resolve_next_gen(&cw->resolve, cw->scap);
-    x->ns = 0;
     x->nimp = 0;
     x->nc = 0;
     x->n = n;
+    x->ns = n;
     for (int32_t k = 0; k < cs->n_awake; k++) {
         int32_t id = cs->awake[k];
         contact *c = &cs->c[id];
@@ -111,36 +108,114 @@ static int resolve_order(rg_world *w, int32_t nc, rg_real *ux, rg_real *uy)
     return shock;
 }
 
-/* The wide rows colour by colour, each colour's rows split over the task system (its rows
- * share no movable body); the colours in order. */
-enum { RESOLVE_WARM, RESOLVE_VELOCITY, RESOLVE_POSITION };
+/* The solve's passes over rows and over solver bodies, split over the task system: each
+ * item writes only its own row or body (the wide rows: colour by colour, a colour's rows
+ * sharing no movable body); colours and passes in order. */
+enum {
+    RESOLVE_WARM, RESOLVE_VELOCITY, RESOLVE_POSITION, /* wide rows of a colour */
+    RESOLVE_LOAD, RESOLVE_MOVE, RESOLVE_PUSH,         /* solver bodies 1..ns */
+    RESOLVE_UNPACK, RESOLVE_UNPACK_POSITION, RESOLVE_PREPARE, RESOLVE_PACK_POSITION,
+    RESOLVE_KEEP,                                     /* rows of c */
+    RESOLVE_CLEAR_POSITION                            /* all wide rows */
+};
 
 typedef struct resolve_task {
+    rg_world *w;
+    const collide_step *x;
     solver_batch *sb;
-    rg_real *v;
+    solver_constraint *con;
+    rg_real *v, *pv;
     int32_t r0;
-    int what;
+    int what, timed;
+    int32_t pushing[RG_MAX_WORKERS];
 } resolve_task;
 
-static void resolve_rows(int32_t begin, int32_t end, int32_t worker, void *context)
+/* Solver bodies q in [q0, q1) (1-based), one of the body passes. */
+static void resolve_bodies(const resolve_task *t, int32_t q0, int32_t q1)
 {
-    const resolve_task *t = context;
-    (void)worker;
-    if (t->what == RESOLVE_WARM) solver_wide_warm_start(t->sb, t->r0 + begin, t->r0 + end, t->v);
-    else if (t->what == RESOLVE_VELOCITY) solver_wide_iterate(t->sb, t->r0 + begin, t->r0 + end, t->v);
-    else solver_wide_iterate_position(t->sb, t->r0 + begin, t->r0 + end, t->v);
+    body_store *b = &t->w->b;
+    const resolve_state *rs = &t->w->coll.resolve;
+    rg_real *v = t->v, dt = t->x->p.dt;
+    for (int32_t q = q0; q < q1; q++) {
+        int32_t i = q - 1;
+        if (rs->sstamp[i] != rs->gen) continue; /* no row meets it */
+        if (t->what == RESOLVE_LOAD) {
+            /* an immovable body's zero velocity as +0: the rows store it back unchanged, in
+             * whatever order they run (solver.h) */
+            rg_real z = b->inv_mass[i] > 0 ? -RG_R(0.0) : 0;
+            v[2 * q] = b->vx[i] + z;
+            v[2 * q + 1] = b->vy[i] + z;
+        } else if (t->what == RESOLVE_PUSH) {
+            b->x[i] += t->pv[2 * q] * dt;
+            b->y[i] += t->pv[2 * q + 1] * dt;
+        } else {
+            /* positions move with the solved velocities.  A timed body's velocity changes
+             * at its impact, t into the step; v then holds the velocity of its whole step's
+             * motion, for the position pass to see where the step leaves it. */
+            rg_real dvx = v[2 * q] - b->vx[i], dvy = v[2 * q + 1] - b->vy[i];
+            rg_real ti = t->timed ? rs->stoi[q] : 0;
+            if (ti > 0) {
+                rg_real after = 1 - ti, fx = b->vx[i], fy = b->vy[i];
+                b->x[i] += dvx * after * dt;
+                b->y[i] += dvy * after * dt;
+                b->vx[i] = v[2 * q];
+                b->vy[i] = v[2 * q + 1];
+                v[2 * q] = fx + dvx * after;
+                v[2 * q + 1] = fy + dvy * after;
+            } else {
+                b->x[i] += dvx * dt;
+                b->y[i] += dvy * dt;
+                b->vx[i] = v[2 * q];
+                b->vy[i] = v[2 * q + 1];
+            }
+        }
+    }
 }
 
-/* Wide rows per range: 64 lanes. */
-#define RESOLVE_RANGE 8
-
-static void resolve_wide(rg_world *w, solver_batch *sb, rg_real *v, int what)
+static void resolve_range(int32_t begin, int32_t end, int32_t worker, void *context)
 {
-    resolve_task t = { sb, v, 0, what };
-    for (int col = 0; col < 32; col++) {
-        t.r0 = sb->cstart[col];
-        task_for(w, resolve_rows, sb->cstart[col + 1] - t.r0, RESOLVE_RANGE, &t);
+    resolve_task *t = context;
+    int32_t b0 = t->r0 + begin, b1 = t->r0 + end;
+    switch (t->what) {
+    case RESOLVE_WARM: solver_wide_warm_start(t->sb, b0, b1, t->v); break;
+    case RESOLVE_VELOCITY: solver_wide_iterate(t->sb, b0, b1, t->v); break;
+    case RESOLVE_POSITION: solver_wide_iterate_position(t->sb, b0, b1, t->pv); break;
+    case RESOLVE_CLEAR_POSITION: solver_clear_position(t->sb, b0, b1); break;
+    case RESOLVE_UNPACK: solver_unpack(t->sb, t->con, b0, b1, 0); break;
+    case RESOLVE_UNPACK_POSITION: solver_unpack(t->sb, t->con, b0, b1, 1); break;
+    case RESOLVE_PACK_POSITION: solver_pack_position(t->sb, t->con, b0, b1); break;
+    case RESOLVE_PREPARE:
+        t->pushing[worker] += solver_prepare_position(t->con + b0, b1 - b0, t->v, &t->x->p);
+        break;
+    case RESOLVE_KEEP:
+        for (int32_t k = b0; k < b1; k++) {
+            contact *c = &t->w->coll.contacts.c[t->con[k].cid];
+            c->pn = t->con[k].pn;
+            c->pt = t->con[k].pt;
+        }
+        break;
+    default: resolve_bodies(t, b0, b1); break;
     }
+}
+
+/* Items per range: wide rows (64 lanes), or rows and bodies. */
+#define RESOLVE_WIDE_RANGE 8
+#define RESOLVE_RANGE 512
+
+/* One pass: `count` items from r0 (wide rows, rows of c, or solver bodies). */
+static void resolve_pass(resolve_task *t, int what, int32_t r0, int32_t count)
+{
+    t->what = what;
+    t->r0 = r0;
+    int wide = what <= RESOLVE_POSITION || what == RESOLVE_CLEAR_POSITION;
+    task_for(t->w, resolve_range, count, wide ? RESOLVE_WIDE_RANGE : RESOLVE_RANGE, t);
+}
+
+/* A pass over the wide rows, colour by colour. */
+static void resolve_wide(resolve_task *t, int what)
+{
+    for (int col = 0; col < 32; col++)
+        resolve_pass(t, what, t->sb->cstart[col], t->sb->cstart[col + 1] - t->sb->cstart[col]);
 }
 
 void resolve_run(rg_world *w, collide_step *x)
@@ -148,82 +223,67 @@ void resolve_run(rg_world *w, collide_step *x)
     collide_world *cw = &w->coll;
     resolve_state *rs = &cw->resolve;
     solver_rows *rows = &cw->rows;
-    body_store *b = &w->b;
     if (x->woke) resolve_restage(w, x);
     int32_t nc = x->nc;
     if (nc == 0) return;
-    rg_real dt = x->p.dt;
     solver_constraint *con = rows->stage;
     rg_real gx, gy;
     int shock = resolve_order(w, nc, &gx, &gy);
     const int32_t *ord = rows->ord;
-    int timed = continuous_time_impacts(w, x);
-    /* the solver's bodies: 0 is the ground, 1..ns the awake bodies the rows meet */
+    /* the solver's bodies: 0 is the ground, 1..ns the awake bodies; stamped, those the
+     * rows meet */
     int32_t ns = x->ns;
-    const int32_t *sbody = rs->sbody;
-    rg_real *v = rs->sv;
-    v[0] = v[1] = 0;
-    for (int32_t q = 1; q <= ns; q++) {
-        /* an immovable body's zero velocity as +0: the rows store it back unchanged, in
-         * whatever order they run (solver.h) */
-        rg_real z = b->inv_mass[sbody[q]] > 0 ? -RG_R(0.0) : 0;
-        v[2 * q] = b->vx[sbody[q]] + z;
-        v[2 * q + 1] = b->vy[sbody[q]] + z;
+    resolve_next_gen(rs, cw->scap);
+    for (int32_t k = 0; k < nc; k++) {
+        if (con[k].a > 0) rs->sstamp[con[k].a - 1] = rs->gen;
+        if (con[k].b > 0) rs->sstamp[con[k].b - 1] = rs->gen;
     }
+    rg_real *v = rs->sv;
     solver_batch *sb = &rows->batch;
+    resolve_task t;
+    t.w = w;
+    t.x = x;
+    t.sb = sb;
+    t.con = con;
+    t.v = v;
+    t.pv = rs->spv;
+    t.timed = continuous_time_impacts(w, x);
+    v[0] = v[1] = 0;
+    resolve_pass(&t, RESOLVE_LOAD, 1, ns);
     solver_pack(con, ord, nc, ns + 1, rs->cmask, rows->color, sb);
-    resolve_wide(w, sb, v, RESOLVE_WARM);
+    resolve_wide(&t, RESOLVE_WARM);
     solver_warm_start(con, sb->over, sb->nover, v);
     for (int32_t it = 0; it < cw->iterations; it++) {
-        resolve_wide(w, sb, v, RESOLVE_VELOCITY);
+        resolve_wide(&t, RESOLVE_VELOCITY);
         solver_iterate(con, sb->over, sb->nover, v);
     }
-    solver_unpack(sb, con, nc, 0);
+    resolve_pass(&t, RESOLVE_UNPACK, 0, nc);
     if (shock) solver_shock(con, ord, nc, v, gx, gy);
     solver_fixed_rows(con, nc, v, 0);
     /* positions move with the solved velocities, then by the pseudo-velocities of the
-     * position pass, which leave the velocities alone.  A timed body's velocity changes at
-     * its impact, t into the step; v then holds the velocity of its whole step's motion, for
-     * the position pass to see where the step leaves it. */
-    for (int32_t q = 1; q <= ns; q++) {
-        int32_t i = sbody[q];
-        rg_real dvx = v[2 * q] - b->vx[i], dvy = v[2 * q + 1] - b->vy[i];
-        rg_real t = timed ? rs->stoi[q] : 0;
-        if (t > 0) {
-            rg_real after = 1 - t, fx = b->vx[i], fy = b->vy[i];
-            b->x[i] += dvx * after * dt;
-            b->y[i] += dvy * after * dt;
-            b->vx[i] = v[2 * q];
-            b->vy[i] = v[2 * q + 1];
-            v[2 * q] = fx + dvx * after;
-            v[2 * q + 1] = fy + dvy * after;
-        } else {
-            b->x[i] += dvx * dt;
-            b->y[i] += dvy * dt;
-            b->vx[i] = v[2 * q];
-            b->vy[i] = v[2 * q + 1];
-        }
+     * position pass, which leave the velocities alone */
+    resolve_pass(&t, RESOLVE_MOVE, 1, ns);
+    int32_t pushing = 0;
+    if (cw->position > 0) {
+        int32_t workers = task_workers(w);
+        for (int32_t k = 0; k < workers; k++) t.pushing[k] = 0;
+        resolve_pass(&t, RESOLVE_PREPARE, 0, nc);
+        for (int32_t k = 0; k < workers; k++) pushing += t.pushing[k];
     }
-    if (cw->position > 0 && solver_prepare_position(con, nc, v, &x->p) > 0) {
+    if (pushing > 0) {
         rg_real *pv = rs->spv;
         memset(pv, 0, (size_t)(2 * ns + 2) * sizeof *pv);
-        solver_pack_position(sb, con, nc);
+        resolve_pass(&t, RESOLVE_CLEAR_POSITION, 0, sb->nrows);
+        resolve_pass(&t, RESOLVE_PACK_POSITION, 0, nc);
         for (int32_t it = 0; it < cw->position; it++) {
-            resolve_wide(w, sb, pv, RESOLVE_POSITION);
+            resolve_wide(&t, RESOLVE_POSITION);
             solver_iterate_position(con, sb->over, sb->nover, pv);
         }
-        solver_unpack(sb, con, nc, 1);
+        resolve_pass(&t, RESOLVE_UNPACK_POSITION, 0, nc);
         if (shock) solver_shock_position(con, ord, nc, pv, gx, gy);
         solver_fixed_rows(con, nc, pv, 1);
         rs->pv_valid = 1;
-        for (int32_t q = 1; q <= ns; q++) {
-            b->x[sbody[q]] += pv[2 * q] * dt;
-            b->y[sbody[q]] += pv[2 * q + 1] * dt;
-        }
+        resolve_pass(&t, RESOLVE_PUSH, 1, ns);
     }
-    for (int32_t k = 0; k < nc; k++) {
-        contact *c = &cw->contacts.c[con[k].cid];
-        c->pn = con[k].pn;
-        c->pt = con[k].pt;
-    }
+    resolve_pass(&t, RESOLVE_KEEP, 0, nc);
 }

@@ -11,37 +11,27 @@
 
 /* The solver scratch arrays for n bodies. */
 void resolve_layout(mem_layout *l, resolve_state *s, int32_t n);
-/* A new generation of solver indices (the stamps of the old one no longer match). */
+/* A new generation of stamps (the old one's no longer match). */
 void resolve_next_gen(resolve_state *s, int32_t n);
-/* Stages the row of contact id (its normal, point, s0, vn0, toi and flags set for this step)
- * between dense bodies ia and ib of inverse masses ima, imb (ima + imb > 0); inline, for the
- * narrowphase stages most rows. */
-/* Solver index of dense body i (for resolve_stage): the ground (0) unless it is awake; awake bodies get
- * consecutive indices in the order rows meet them, so the solver's arrays cover the bodies
- * in contact and nothing else. */
-static inline int32_t resolve_index(resolve_state *rs, int32_t i, int32_t n, collide_step *x)
-{
-    if (i >= n) return 0;
-    if (rs->sstamp[i] != rs->gen) {
-        rs->sstamp[i] = rs->gen;
-        rs->sidx[i] = ++x->ns;
-        rs->sbody[x->ns] = i;
-    }
-    return rs->sidx[i];
-}
+/* Solver index of dense body i: the ground (0) unless it is awake (dense below n, the awake
+ * count when the stage began), then i + 1.  It depends on the body alone, so rows are staged
+ * in any order, in parallel (narrow.c); the solve's passes skip the bodies no row meets
+ * (resolve_run stamps them). */
+static inline int32_t resolve_index(int32_t i, int32_t n) { return i < n ? i + 1 : 0; }
 
-static inline void resolve_stage(rg_world *w, collide_step *x, int32_t id, int32_t ia, int32_t ib,
-                                 rg_real ima, rg_real imb)
+/* Writes row k of contact id (its normal, point, s0, vn0, toi and flags set for this step)
+ * between dense bodies ia and ib of inverse masses ima, imb (ima + imb > 0). */
+static inline void resolve_row(rg_world *w, const collide_step *x, int32_t k, int32_t id, int32_t ia,
+                               int32_t ib, rg_real ima, rg_real imb)
 {
     collide_world *cw = &w->coll;
     solver_rows *rows = &cw->rows;
     const contact *c = &cw->contacts.c[id];
-    int32_t k = x->nc++;
     solver_constraint *q = &rows->stage[k];
     rows->hgt[k] = c->py; /* replaced by the height along gravity */
     rows->hgx[k] = c->px;
-    q->a = resolve_index(&cw->resolve, ia, x->n, x);
-    q->b = resolve_index(&cw->resolve, ib, x->n, x);
+    q->a = resolve_index(ia, x->n);
+    q->b = resolve_index(ib, x->n);
     q->ima = ima;
     q->imb = imb;
     q->nx = c->nx;
@@ -51,10 +41,18 @@ static inline void resolve_stage(rg_world *w, collide_step *x, int32_t id, int32
     q->s0 = c->s0;
     q->vmin = solver_vmin(c->s0, c->vn0, c->e, (c->flags & CT_CLOSING) != 0, &x->p);
     q->toi = c->toi;
-    if (q->toi > 0) rows->imp[x->nimp++] = k;
     q->pn = c->pn;
     q->pt = c->pt;
     q->cid = id;
+}
+
+/* Stages the next row: contact id's, as resolve_row, and its impact when toi > 0. */
+static inline void resolve_stage(rg_world *w, collide_step *x, int32_t id, int32_t ia, int32_t ib,
+                                 rg_real ima, rg_real imb)
+{
+    int32_t k = x->nc++;
+    resolve_row(w, x, k, id, ia, ib, ima, imb);
+    if (w->coll.contacts.c[id].toi > 0) w->coll.rows.imp[x->nimp++] = k;
 }
 
 /* Solves the staged rows (restaged first when bodies woke) and moves the bodies. */

@@ -249,9 +249,9 @@ void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, in
     }
 }
 
-void solver_unpack(const solver_batch *s, solver_constraint *c, int32_t n, int position)
+void solver_unpack(const solver_batch *s, solver_constraint *c, int32_t k0, int32_t k1, int position)
 {
-    for (int32_t k = 0; k < n; k++) {
+    for (int32_t k = k0; k < k1; k++) {
         int32_t slot = s->map[k];
         if (slot < 0) continue;
         const solver_wide *q = &s->rows[slot / SOLVER_LANES];
@@ -265,11 +265,15 @@ void solver_unpack(const solver_batch *s, solver_constraint *c, int32_t n, int p
     }
 }
 
-void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t n)
+void solver_clear_position(solver_batch *s, int32_t r0, int32_t r1)
 {
-    for (int32_t r = 0; r < s->nrows; r++)
+    for (int32_t r = r0; r < r1; r++)
         for (int l = 0; l < SOLVER_LANES; l++) s->rows[r].pmin[l] = s->rows[r].pp[l] = 0;
-    for (int32_t k = 0; k < n; k++) {
+}
+
+void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t k0, int32_t k1)
+{
+    for (int32_t k = k0; k < k1; k++) {
         int32_t slot = s->map[k];
         if (slot >= 0) s->rows[slot / SOLVER_LANES].pmin[slot % SOLVER_LANES] = c[k].pmin;
     }

@@ -169,10 +169,13 @@ void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, in
  * +0 where it is zero: resolve.c). */
 void solver_wide_warm_start(const solver_batch *s, int32_t r0, int32_t r1, rg_real *v);
 void solver_wide_iterate(solver_batch *s, int32_t r0, int32_t r1, rg_real *v);
-/* Copies the accumulated impulses pn, pt (or the pseudo impulses pp) back into c. */
-void solver_unpack(const solver_batch *s, solver_constraint *c, int32_t n, int position);
-/* Copies c's position rows (pmin, pp = 0) into the lanes. */
-void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t n);
+/* Copies the accumulated impulses pn, pt (or the pseudo impulses pp) of rows [k0, k1) of c
+ * back into c. */
+void solver_unpack(const solver_batch *s, solver_constraint *c, int32_t k0, int32_t k1, int position);
+/* The position rows: wide rows [r0, r1) cleared (pmin, pp = 0, padding included), then c's
+ * rows [k0, k1) copied into their lanes (pmin; pp = 0).  Each row writes its own lanes. */
+void solver_clear_position(solver_batch *s, int32_t r0, int32_t r1);
+void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t k0, int32_t k1);
 void solver_wide_iterate_position(solver_batch *s, int32_t r0, int32_t r1, rg_real *pv);
 
 /* ---- the rows of a step and their scratch, sized by the contact capacity (one row per

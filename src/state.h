@@ -141,6 +141,7 @@ typedef struct contact {
     rg_real depth, speed;     /* at the begin, for the events */
     rg_real pn, pt;           /* accumulated impulses, N*s (warm start) */
     rg_real toi;              /* its solver row's toi (solver.h) */
+    uint32_t decided;         /* scratch within the narrowphase: what it decided (narrow.c) */
 } contact;
 
 typedef struct contact_store {
@@ -195,11 +196,10 @@ typedef struct island_state {
     int32_t near_sleep;       /* a body will reach sleep_time within two steps */
 } island_state;
 
+/* The solver's bodies: q = 0 is the ground, q = i + 1 awake body i (resolve_index). */
 typedef struct resolve_state {
-    int32_t *sidx;            /* i: solver index, valid when sstamp[i] == gen */
-    uint32_t *sstamp;         /* i */
-    uint32_t gen;             /* solver index generation (one per step, or more) */
-    int32_t *sbody;           /* q: dense index of solver body q (q >= 1; 0 is the ground) */
+    uint32_t *sstamp;         /* i: == gen when a row of this step meets awake body i */
+    uint32_t gen;             /* stamp generation (one per solve) */
     rg_real *sv;              /* q: solver velocities, pairs */
     rg_real *spv;             /* q: pseudo-velocities of the position pass, pairs */
     rg_real *stoi;            /* q: fraction of the step at which its velocity changes */
@@ -237,7 +237,7 @@ typedef struct collide_step {
     int32_t n;          /* active bodies when the stage started (those with a body view) */
     int32_t na;         /* awake shaped bodies then (the island list's range) */
     int32_t nc;         /* staged rows */
-    int32_t ns;         /* solver bodies, 0 being the ground */
+    int32_t ns;         /* solver bodies after the ground: the awake bodies, 1..n */
     int32_t nimp;       /* staged impact rows (rows.imp) */
     int woke;           /* the pair search or the narrowphase woke bodies: rows restaged */
     int unite;          /* join islands in the narrowphase (sleeping is near) */

@@ -8,6 +8,7 @@
  * task cannot end, nor the next one be written, before that range is done.  An idle thread
  * spins a while on the state (the stages of a step follow each other within microseconds),
  * then sleeps on a condition variable until the next task. */
+#undef _POSIX_C_SOURCE /* whatever the build set: this file needs threads */
 #define _POSIX_C_SOURCE 200809L
 #include <pthread.h>
 #include <sched.h>

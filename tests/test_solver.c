@@ -657,7 +657,7 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
         solver_wide_iterate(&sb, 0, sb.nrows, va);
         solver_iterate(rows, sb.over, sb.nover, va);
     }
-    solver_unpack(&sb, rows, N, 0);
+    solver_unpack(&sb, rows, 0, N, 0);
     /* the reference: colour by colour, one row at a time, then the overflow */
     int32_t seq[N], n = 0;
     for (int col = 0; col < 32; col++)
@@ -690,7 +690,7 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
             for (int32_t r = sb.cstart[col + 1] - 1; r >= sb.cstart[col]; r--) solver_wide_iterate(&sb, r, r + 1, vc);
         solver_iterate(again, sb.over, sb.nover, vc);
     }
-    solver_unpack(&sb, again, N, 0);
+    solver_unpack(&sb, again, 0, N, 0);
     assert_memory_equal(va, vc, sizeof va);
     for (int k = 0; k < N; k++) {
         assert_memory_equal(&rows[k].pn, &again[k].pn, sizeof(rg_real));
