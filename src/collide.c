@@ -6,7 +6,7 @@
 #include "collide.h"
 #include "contact.h"
 #include "island.h"
-#include "narrow.h"
+#include "views.h"
 #include "resolve.h"
 #include "state.h"
 #include "vec2.h"
@@ -32,7 +32,7 @@ void collide_init(rg_world *w)
 static void collide_layout(mem_layout *l, void *ctx)
 {
     collide_world *cw = ctx;
-    narrow_layout(l, &cw->narrow, cw->scap);
+    views_layout(l, &cw->views, cw->scap);
     island_layout(l, &cw->island, cw->scap);
     resolve_layout(l, &cw->resolve, cw->scap);
 }
@@ -59,7 +59,7 @@ rg_status collide_prepare(rg_world *w)
     grown.scratch = mem_block(&w->mem, collide_layout, &grown, &grown.scratch_size);
     if (grown.scratch == NULL) return RG_ERR_OUT_OF_MEMORY;
     mem_free(&w->mem, cw->scratch, cw->scratch_size);
-    cw->narrow = grown.narrow;
+    cw->views = grown.views;
     cw->island.umin = grown.island.umin;
     cw->island.uf = grown.island.uf;
     cw->island.ihead = grown.island.ihead;

@@ -1,5 +1,6 @@
 /* collide.h: the collide stage (its state in state.h), shared by its modules: pairs.c (fat boxes and
- * the pair search), narrow.c (manifolds, touching, grounded), resolve.c (the solve driver),
+ * the pair search), views.c (the step's view of each body), narrow.c (manifolds, touching,
+ * grounded), resolve.c (the solve driver),
  * continuous.c (timed impacts and the post-solve sweep), island.c (islands and sleeping),
  * contact.c and events.c (storage); collide.c holds its settings, scratch and lifetime.
  *
@@ -8,8 +9,8 @@
  * bodies without shapes cost nothing.  A world with no shape skips the stage.
  *
  * The stage, step by step (step.c calls them in this order):
- *   narrow_record_start  before integration: where the awake shaped bodies start
- *   narrow_views         the step's view of each (displacement, velocity, size); fat boxes
+ *   views_record_start   before integration: where the awake shaped bodies start
+ *   views_build          the step's view of each (displacement, velocity, size); fat boxes
  *   pairs_find           new pairs for the bodies that left their fat boxes
  *   narrow_run           manifolds, touching and events, grounded flags, solver rows
  *   resolve_run          the solve, timed impacts (continuous_time_impacts)
@@ -32,7 +33,7 @@ void collide_release(struct rg_world *w);
 rg_status collide_prepare(struct rg_world *w);
 /* Whether the step must run the collide stage (shapes, or ended contacts to report). */
 int collide_needed(const struct rg_world *w);
-/* The step's solver parameters and counters, before narrow_views. */
+/* The step's solver parameters and counters, before views_build. */
 void collide_step_begin(struct rg_world *w, collide_step *x, rg_real dt);
 
 #endif

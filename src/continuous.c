@@ -98,7 +98,7 @@ static void continuous_sweep_range(int32_t k0, int32_t k1, int32_t worker, void 
     rg_world *w = ((const sweep_task *)context)->w;
     collide_world *cw = &w->coll;
     const contact_store *cs = &cw->contacts;
-    const narrow_state *ns = &cw->narrow;
+    const views_state *ns = &cw->views;
     body_store *b = &w->b;
     (void)worker;
     for (int32_t k = k0; k < k1; k++) {

@@ -4,126 +4,14 @@
 #include "events.h"
 #include "island.h"
 #include "narrow.h"
-#include "pairs.h"
 #include "resolve.h"
 #include "state.h"
 #include "task.h"
 #include "vec2.h"
+#include "views.h"
 
 #define SPECULATIVE      RG_R(4)    /* solve pairs predicted within SPECULATIVE * slop */
 #define COS45            RG_R(0.70710678)
-
-void narrow_layout(mem_layout *l, narrow_state *s, int32_t n)
-{
-    s->cb = mem_take(l, (size_t)n, sizeof(cbody));
-    s->sx0 = mem_take(l, (size_t)n, sizeof(rg_real));
-    s->sy0 = mem_take(l, (size_t)n, sizeof(rg_real));
-    s->svx0 = mem_take(l, (size_t)n, sizeof(rg_real));
-    s->svy0 = mem_take(l, (size_t)n, sizeof(rg_real));
-    s->adense = mem_take(l, (size_t)n, sizeof(int32_t));
-    s->refresh = mem_take(l, (size_t)n, sizeof(uint8_t));
-}
-
-void narrow_record_start(rg_world *w)
-{
-    collide_world *cw = &w->coll;
-    narrow_state *ns = &cw->narrow;
-    if (cw->shape_count == 0) return;
-    const broadphase *bp = &cw->bp;
-    const body_store *b = &w->b;
-    for (int32_t k = 0; k < bp->n_active; k++) {
-        int32_t i = body_dense(w, bp->active[k]);
-        ns->adense[k] = i;
-        ns->sx0[k] = b->x[i];
-        ns->sy0[k] = b->y[i];
-        ns->svx0[k] = b->vx[i];
-        ns->svy0[k] = b->vy[i];
-    }
-}
-
-typedef struct views_task {
-    rg_world *w;
-    collide_step *x;
-    rg_real dt;
-} views_task;
-
-/* The fat box upkeep of awake body k (dense i) from its box after integration. */
-static inline void narrow_fat_box(const rg_world *w, int32_t k, int32_t i, rg_real dt, rg_real *box,
-                                  rg_real *motion)
-{
-    const narrow_state *ns = &w->coll.narrow;
-    const body_store *b = &w->b;
-    rg_real x1 = b->x[i], y1 = b->y[i], hx = b->hx[i], hy = b->hy[i];
-    rg_real mx = x1 - ns->sx0[k], my = y1 - ns->sy0[k];
-    rg_real lx = x1 - hx, ly = y1 - hy, ux = x1 + hx, uy = y1 + hy;
-    if (w->coll.continuous) {
-        lx = rg_min(lx, lx - mx);
-        ly = rg_min(ly, ly - my);
-        ux = rg_max(ux, ux - mx);
-        uy = rg_max(uy, uy - my);
-    }
-    box[0] = lx;
-    box[1] = ly;
-    box[2] = ux;
-    box[3] = uy;
-    motion[0] = mx;
-    motion[1] = my;
-    motion[2] = (b->vx[i] - ns->svx0[k]) * dt;
-    motion[3] = (b->vy[i] - ns->svy0[k]) * dt;
-}
-
-/* Awake bodies [begin, end): views, displacements and whether the fat box must be refreshed
- * (ns->refresh[k]), each body's own. */
-static void narrow_views_range(int32_t begin, int32_t end, int32_t worker, void *context)
-{
-    const views_task *t = context;
-    rg_world *w = t->w;
-    collide_world *cw = &w->coll;
-    narrow_state *ns = &cw->narrow;
-    body_store *b = &w->b;
-    cbody *cb = ns->cb;
-    (void)worker;
-    for (int32_t k = begin; k < end; k++) {
-        int32_t i = ns->adense[k];
-        rg_real box[4], mo[4];
-        narrow_fat_box(w, k, i, t->dt, box, mo);
-        b->dx[i] = mo[0];
-        b->dy[i] = mo[1];
-        b->cflags[i] &= ~CF_GROUNDED; /* set again by the touching contacts */
-        cb[i].sx = ns->sx0[k];
-        cb[i].sy = ns->sy0[k];
-        cb[i].dx = mo[0];
-        cb[i].dy = mo[1];
-        cb[i].vx = ns->svx0[k];
-        cb[i].vy = ns->svy0[k];
-        cb[i].hx = b->hx[i];
-        cb[i].hy = b->hy[i];
-        cb[i].gs = b->type[i] == RG_BODY_DYNAMIC ? b->gscale[i] : 0;
-        cb[i].im = b->inv_mass[i];
-        cb[i].kind = b->shape[i];
-        cb[i].pad = 0;
-        ns->refresh[k] = (uint8_t)!pairs_inside(&cw->bp.e[b->slot[i]], box);
-        if (t->x->unite) cw->island.uf[k] = k;
-    }
-}
-
-/* Bodies per views range. */
-#define VIEWS_RANGE 256
-
-void narrow_views(rg_world *w, collide_step *x, rg_real dt)
-{
-    views_task t = { w, x, dt };
-    narrow_state *ns = &w->coll.narrow;
-    task_for(w, narrow_views_range, x->na, VIEWS_RANGE, &t);
-    /* the broadphase changes in order, on this thread */
-    for (int32_t k = 0; k < x->na; k++) {
-        if (!ns->refresh[k]) continue;
-        int32_t i = ns->adense[k];
-        rg_real box[4], mo[4];
-        narrow_fat_box(w, k, i, dt, box, mo);
-        pairs_refresh_now(w, i, box[0], box[1], box[2], box[3], mo[0], mo[1], mo[2], mo[3]);
-    }
-}
 
 static int narrow_pusher(const body_store *b, int32_t j, int touching)
 {
@@ -139,22 +27,6 @@ static inline int narrow_is_ground(rg_real gx, rg_real gy, rg_real gs, rg_real n
     rg_real up = -(nx * ex + ny * ey);
     rg_real g2 = ex * ex + ey * ey;
     return g2 > 0 && up > 0 && up * up >= COS45 * COS45 * g2;
-}
-
-/* The step's view of body i: start position, displacement, velocity, half extents.  Awake
- * bodies come from the per-step cache, the others rest: no displacement, no velocity. */
-static inline const cbody *narrow_view(const rg_world *w, int32_t i, int32_t n, cbody *o)
-{
-    if (i < n) return &w->coll.narrow.cb[i];
-    const body_store *b = &w->b;
-    o->sx = b->x[i];
-    o->sy = b->y[i];
-    o->dx = o->dy = o->vx = o->vy = 0;
-    o->hx = b->hx[i];
-    o->hy = b->hy[i];
-    o->gs = o->im = 0;
-    o->kind = b->shape[i];
-    return o;
 }
 
 /* Whether a pair that is not touching is too far apart for the narrowphase below to solve
@@ -248,7 +120,7 @@ static void narrow_measure(const rg_world *w, contact *c, const collide_step *x)
     const collide_world *cw = &w->coll;
     int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
     cbody rest_a, rest_b;
-    const cbody *A = narrow_view(w, ia, x->n, &rest_a), *B = narrow_view(w, ib, x->n, &rest_b);
+    const cbody *A = views_of(w, ia, x->n, &rest_a), *B = views_of(w, ib, x->n, &rest_b);
     int32_t ka = A->kind, kb = B->kind;
     rg_vec2 ha = rg_v2(A->hx, A->hy), hb = rg_v2(B->hx, B->hy);
     rg_vec2 r = rg_v2(B->dx - A->dx, B->dy - A->dy); /* b's motion relative to a over the step */
@@ -408,7 +280,7 @@ static void narrow_decide_range(int32_t begin, int32_t end, int32_t worker, void
         }
         int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
         cbody rest_a, rest_b;
-        const cbody *A = narrow_view(w, ia, t->x->n, &rest_a), *B = narrow_view(w, ib, t->x->n, &rest_b);
+        const cbody *A = views_of(w, ia, t->x->n, &rest_a), *B = views_of(w, ib, t->x->n, &rest_b);
         c->decided = narrow_decide(w, c, ia, ib, A, B, 0);
     }
 }
@@ -424,7 +296,7 @@ static void narrow_commit(rg_world *w, int32_t id, collide_step *x, uint32_t bit
     int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
     if ((bits & ND_STAGE) && stage) {
         /* the views' inverse masses: an awake body's (dense below x->n), else 0 */
-        const cbody *cb = cw->narrow.cb;
+        const cbody *cb = cw->views.cb;
         resolve_stage(w, x, id, ia, ib, ia < x->n ? cb[ia].im : 0, ib < x->n ? cb[ib].im : 0);
     }
     if (bits & ND_BEGIN) {
@@ -463,7 +335,7 @@ static uint32_t narrow_decide_here(rg_world *w, int32_t id, const collide_step *
     contact *c = &w->coll.contacts.c[id];
     int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
     cbody rest_a, rest_b;
-    const cbody *A = narrow_view(w, ia, x->n, &rest_a), *B = narrow_view(w, ib, x->n, &rest_b);
+    const cbody *A = views_of(w, ia, x->n, &rest_a), *B = views_of(w, ib, x->n, &rest_b);
     return narrow_decide(w, c, ia, ib, A, B, 1);
 }
 
@@ -502,7 +374,7 @@ static void narrow_stage_range(int32_t begin, int32_t end, int32_t worker, void 
     rg_world *w = t->w;
     const contact_store *cs = &w->coll.contacts;
     solver_rows *rows = &w->coll.rows;
-    const cbody *cb = w->coll.narrow.cb;
+    const cbody *cb = w->coll.views.cb;
     const collide_step *x = t->x;
     (void)worker;
     for (int32_t blk = begin; blk < end; blk++) {

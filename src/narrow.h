@@ -19,14 +19,9 @@
 
 struct rg_world;
 
-/* The narrowphase scratch arrays for n bodies. */
-void narrow_layout(mem_layout *l, narrow_state *s, int32_t n);
-/* Before integration: remembers where the awake shaped bodies start. */
-void narrow_record_start(struct rg_world *w);
-/* After integration: the displacements, the step's view of each awake shaped body, and its
- * fat box refreshed when its swept box left it. */
-void narrow_views(struct rg_world *w, collide_step *x, rg_real dt);
-/* Updates every awake contact from the step's motion and stages the rows to solve. */
+/* Updates every awake contact from the step's motion (the views, views.h) and stages the
+ * rows to solve: manifolds measured and decisions taken in parallel, what must happen in
+ * order (the pre-solve hook, one-way decisions, events, islands, waking) on this thread. */
 void narrow_run(struct rg_world *w, collide_step *x);
 
 #endif

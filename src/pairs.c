@@ -152,7 +152,7 @@ typedef struct refit_task {
 static inline void pairs_final_box(const rg_world *w, const collide_step *x, int32_t k, int32_t i, rg_real dt,
                                    rg_real *box, rg_real *mo)
 {
-    const narrow_state *ns = &w->coll.narrow;
+    const views_state *ns = &w->coll.views;
     const body_store *b = &w->b;
     rg_real x1 = b->x[i], y1 = b->y[i], hx = b->hx[i], hy = b->hy[i];
     box[0] = x1 - hx;
@@ -172,7 +172,7 @@ static void pairs_refit_range(int32_t begin, int32_t end, int32_t worker, void *
     const refit_task *t = context;
     const rg_world *w = t->w;
     const broadphase *bp = &w->coll.bp;
-    uint8_t *refresh = w->coll.narrow.refresh;
+    uint8_t *refresh = w->coll.views.refresh;
     (void)worker;
     for (int32_t k = begin; k < end; k++) {
         int32_t s = bp->active[k];
@@ -188,7 +188,7 @@ static void pairs_refit_range(int32_t begin, int32_t end, int32_t worker, void *
 void pairs_refit(rg_world *w, const collide_step *x, rg_real dt)
 {
     broadphase *bp = &w->coll.bp;
-    const uint8_t *refresh = w->coll.narrow.refresh;
+    const uint8_t *refresh = w->coll.views.refresh;
     refit_task t = { w, x, dt };
     task_for(w, pairs_refit_range, bp->n_active, REFIT_RANGE, &t);
     /* the broadphase changes in order, on this thread */

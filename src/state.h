@@ -180,13 +180,13 @@ typedef struct cbody {
 
 /* Per-body scratch, body capacity + 1, indexed by place in the broadphase's active list (k),
  * by dense body index (i) or by solver body (q). */
-typedef struct narrow_state {
+typedef struct views_state {
     cbody *cb;                /* i: the step's view of the awake shaped bodies */
     rg_real *sx0, *sy0;       /* k: positions before integration */
     rg_real *svx0, *svy0;     /* k: velocities before integration */
     int32_t *adense;          /* k: dense index during the step */
-    uint8_t *refresh;         /* k: the fat box must be refreshed (narrow_views) */
-} narrow_state;
+    uint8_t *refresh;         /* k: the fat box must be refreshed (views_build) */
+} views_state;
 
 typedef struct island_state {
     rg_real *umin;            /* k: island minimum rest time */
@@ -213,7 +213,7 @@ typedef struct collide_world {
     event_store events;
     solver_rows rows;         /* sized with the contacts */
 
-    narrow_state narrow;      /* the per-body scratch, one block of scap bodies */
+    views_state views;        /* the per-body scratch, one block of scap bodies */
     island_state island;
     resolve_state resolve;
     void *scratch;

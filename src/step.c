@@ -17,6 +17,7 @@
 #include "state.h"
 #include "step.h"
 #include "vec2.h"
+#include "views.h"
 
 /* The collide stage, in order: views and fat boxes, pairs, narrowphase, solve, the
  * continuous sweep, fat boxes refit, sleep.  Only with shapes. */
@@ -25,7 +26,7 @@ static void step_collide(rg_world *w, rg_real dt)
     collide_step x;
     collide_step_begin(w, &x, dt);
     STEP_PROF(-1);
-    narrow_views(w, &x, dt);
+    views_build(w, &x, dt);
     STEP_PROF(0);
     STEP_PROF_MOVED(w->coll.bp.n_moved);
     x.woke = pairs_find(w);
@@ -50,7 +51,7 @@ static void step_run(rg_world *w, rg_real dt)
     body_store *b = &w->b;
     int collide = collide_needed(w);
     int shapes = w->coll.shape_count > 0;
-    if (shapes) narrow_record_start(w);  /* where the step begins, for the collide stage */
+    if (shapes) views_record_start(w);  /* where the step begins, for the collide stage */
     force_begin(w);
     int out = integrator_step(w, dt);
     speed_limits_apply(w); /* only ever slows a body: it keeps a state in range */
