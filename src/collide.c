@@ -33,6 +33,7 @@ static void collide_layout(mem_layout *l, void *ctx)
 {
     collide_world *cw = ctx;
     views_layout(l, &cw->views, cw->scap);
+    cw->pairs.count = mem_take(l, (size_t)cw->scap + 1, sizeof(int32_t));
     island_layout(l, &cw->island, cw->scap);
     resolve_layout(l, &cw->resolve, cw->scap);
 }
@@ -42,6 +43,9 @@ void collide_release(rg_world *w)
     collide_world *cw = &w->coll;
     broadphase_release(&cw->bp, &w->mem);
     contact_release(w);
+    mem_free(&w->mem, cw->pairs.cand, (size_t)cw->pairs.cand_cap * sizeof *cw->pairs.cand);
+    cw->pairs.cand = NULL;
+    cw->pairs.cand_cap = 0;
     mem_free(&w->mem, cw->scratch, cw->scratch_size);
     cw->scratch = NULL;
     cw->scratch_size = 0;
@@ -60,6 +64,7 @@ rg_status collide_prepare(rg_world *w)
     if (grown.scratch == NULL) return RG_ERR_OUT_OF_MEMORY;
     mem_free(&w->mem, cw->scratch, cw->scratch_size);
     cw->views = grown.views;
+    cw->pairs.count = grown.pairs.count;
     cw->island.umin = grown.island.umin;
     cw->island.uf = grown.island.uf;
     cw->island.ihead = grown.island.ihead;

@@ -4,6 +4,7 @@
 #include "contact.h"
 #include "island.h"
 #include "state.h"
+#include "task.h"
 #include "vec2.h"
 
 void island_layout(mem_layout *l, island_state *s, int32_t n)
@@ -65,6 +66,47 @@ void island_wake_touching(rg_world *w, int32_t slot)
     }
 }
 
+typedef struct sleep_task {
+    rg_world *w;
+    rg_real dt;
+    int pv_valid;
+    int32_t any[RG_MAX_WORKERS], near[RG_MAX_WORKERS];
+} sleep_task;
+
+/* The rest timers of awake shaped bodies [begin, end) (their places in the broadphase's
+ * active list), each body's own; whether one reached the sleep time, or will within two
+ * steps, per worker. */
+static void island_timers(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    sleep_task *t = context;
+    rg_world *w = t->w;
+    const collide_world *cw = &w->coll;
+    const resolve_state *rs = &cw->resolve;
+    body_store *b = &w->b;
+    const rg_real *pv = rs->spv;
+    rg_real thr2 = cw->sleep_speed * cw->sleep_speed, dt = t->dt;
+    int any = 0, near = 0;
+    for (int32_t k = begin; k < end; k++) {
+        int32_t i = body_dense(w, cw->bp.active[k]);
+        if (b->type[i] != RG_BODY_DYNAMIC) continue;
+        rg_real v2 = b->vx[i] * b->vx[i] + b->vy[i] * b->vy[i];
+        /* a body still being pushed out of a penetration is not at rest either */
+        if (t->pv_valid && rs->sstamp[i] == rs->gen) { /* rows met it: solver body i + 1 */
+            int32_t q = i + 1;
+            v2 = rg_max(v2, pv[2 * q] * pv[2 * q] + pv[2 * q + 1] * pv[2 * q + 1]);
+        }
+        rg_real r = v2 < thr2 ? b->sleep_t[i] + dt : 0;
+        b->sleep_t[i] = r;
+        any |= r >= cw->sleep_time;
+        near |= r + 2 * dt >= cw->sleep_time;
+    }
+    t->any[worker] |= any;
+    t->near[worker] |= near;
+}
+
+/* Bodies per timer range. */
+#define ISLAND_RANGE 512
+
 /* The union-find runs over the awake shaped bodies (their places in the broadphase's active
  * list), so bodies without shapes, static and sleeping ones cost nothing here. */
 void island_sleep(rg_world *w, rg_real dt, int united)
@@ -77,25 +119,19 @@ void island_sleep(rg_world *w, rg_real dt, int united)
     broadphase *bp = &cw->bp;
     int32_t na = bp->n_active;
     int32_t *uf = is->uf;
-    rg_real thr2 = cw->sleep_speed * cw->sleep_speed;
     int any = 0, near = 0;
-    const rg_real *pv = rs->spv;
-    int pv_valid = rs->pv_valid;
+    sleep_task t;
+    t.w = w;
+    t.dt = dt;
+    t.pv_valid = rs->pv_valid;
     rs->pv_valid = 0;
     if (!cw->sleeping) return;
-    for (int32_t k = 0; k < na; k++) {
-        int32_t i = body_dense(w, bp->active[k]);
-        if (b->type[i] != RG_BODY_DYNAMIC) continue;
-        rg_real v2 = b->vx[i] * b->vx[i] + b->vy[i] * b->vy[i];
-        /* a body still being pushed out of a penetration is not at rest either */
-        if (pv_valid && rs->sstamp[i] == rs->gen) { /* rows met it: solver body i + 1 */
-            int32_t q = i + 1;
-            v2 = rg_max(v2, pv[2 * q] * pv[2 * q] + pv[2 * q + 1] * pv[2 * q + 1]);
-        }
-        rg_real t = v2 < thr2 ? b->sleep_t[i] + dt : 0;
-        b->sleep_t[i] = t;
-        any |= t >= cw->sleep_time;
-        near |= t + 2 * dt >= cw->sleep_time;
+    int32_t workers = task_workers(w);
+    for (int32_t k = 0; k < workers; k++) t.any[k] = t.near[k] = 0;
+    task_for(w, island_timers, na, ISLAND_RANGE, &t);
+    for (int32_t k = 0; k < workers; k++) {
+        any |= t.any[k];
+        near |= t.near[k];
     }
     /* the narrowphase joins islands only when some body is about to fall asleep */
     is->near_sleep = near;

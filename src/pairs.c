@@ -64,32 +64,118 @@ typedef struct pairs_query {
     int woke;
 } pairs_query;
 
-static void pairs_visit(void *p, int32_t t)
+/* Whether the query of moved body s (dense is) meets t as a new pair candidate: not itself,
+ * not a moved body before it (t's own query finds the pair), and admitted by the filter. */
+static inline int pairs_candidate(const rg_world *w, int32_t s, int32_t is, int32_t t)
 {
-    pairs_query *q = p;
+    if (t == s) return 0;
+    const bp_entry *et = &w->coll.bp.e[t];
+    if (et->moved && t < s) return 0;
+    return pairs_admitted(w, is, body_dense(w, t));
+}
+
+/* A candidate t of the query: a contact unless s has one with t already. */
+static void pairs_meet(pairs_query *q, int32_t t)
+{
     rg_world *w = q->w;
     collide_world *cw = &w->coll;
-    int32_t s = q->s;
-    if (t == s) return;
     bp_entry *et = &cw->bp.e[t];
-    if (et->moved && t < s) return;     /* t's own query finds the pair */
-    if (et->mark == q->mark) return;    /* s has a contact with t */
-    int32_t it = body_dense(w, t);
-    if (!pairs_admitted(w, q->is, it)) return;
+    if (et->mark == q->mark) return; /* s has a contact with t */
     /* Out of memory, the search asks once: trying the same allocations again for every
      * remaining pair would cost a failed grow per pair (44,850 for 300 overlapping bodies). */
-    if ((cw->contacts.free_head < 0 && *q->grow_failed) || contact_create(w, s, t) < 0) {
+    if ((cw->contacts.free_head < 0 && *q->grow_failed) || contact_create(w, q->s, t) < 0) {
         *q->grow_failed = 1;
         q->failed = 1;
         return;
     }
     et->mark = q->mark;
     /* a teleported body landing on a sleeping one wakes it */
+    int32_t it = body_dense(w, t);
     if (q->teleported && body_partition(w, it) == BODY_PART_ASLEEP) {
         island_wake(w, t);
-        q->is = body_dense(w, s);
+        q->is = body_dense(w, q->s);
         q->woke = 1;
     }
+}
+
+static void pairs_visit(void *p, int32_t t)
+{
+    pairs_query *q = p;
+    if (pairs_candidate(q->w, q->s, q->is, t)) pairs_meet(q, t);
+}
+
+/* The queries of the move buffer in parallel: each moved body's candidates, in the order
+ * its query visits them, counted (fill 0: count[k]) or written at offset count[k] of cand.
+ * The broadphase does not change during the search, so these are the candidates the serial
+ * walk would meet. */
+typedef struct find_task {
+    const rg_world *w;
+    int32_t *count, *cand;
+    int fill;
+} find_task;
+
+typedef struct find_visit {
+    const rg_world *w;
+    int32_t s, is, n;
+    int32_t *out;
+} find_visit;
+
+static void pairs_collect(void *p, int32_t t)
+{
+    find_visit *f = p;
+    if (!pairs_candidate(f->w, f->s, f->is, t)) return;
+    if (f->out != NULL) f->out[f->n] = t;
+    f->n++;
+}
+
+static void pairs_find_range(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    const find_task *t = context;
+    const broadphase *bp = &t->w->coll.bp;
+    (void)worker;
+    for (int32_t k = begin; k < end; k++) {
+        int32_t s = bp->moved[k];
+        const bp_entry *e = &bp->e[s];
+        find_visit f = { t->w, s, body_dense(t->w, s), 0, t->fill ? t->cand + t->count[k] : NULL };
+        broadphase_query(bp, e->lx, e->ly, e->ux, e->uy, pairs_collect, &f);
+        if (!t->fill) t->count[k] = f.n;
+    }
+}
+
+/* Moved bodies per query range. */
+#define PAIRS_RANGE 64
+
+/* Collects every moved body's candidates in parallel into cw->pairs (count[k] .. count[k+1]
+ * of cand); 0 when the search runs serially (no task system, few moved bodies, or no memory
+ * for the candidates: the same pairs either way). */
+static int pairs_collect_all(rg_world *w)
+{
+    collide_world *cw = &w->coll;
+    pairs_state *ps = &cw->pairs;
+    int32_t n = cw->bp.n_moved;
+    if (task_workers(w) < 2 || n < 2 * PAIRS_RANGE) return 0;
+    find_task t = { w, ps->count, ps->cand, 0 };
+    task_for(w, pairs_find_range, n, PAIRS_RANGE, &t);
+    int64_t total = 0;
+    for (int32_t k = 0; k < n; k++) {
+        int32_t c = ps->count[k];
+        ps->count[k] = (int32_t)total;
+        total += c;
+    }
+    ps->count[n] = (int32_t)total;
+    if (total > ps->cand_cap) {
+        if (total > INT32_MAX / 2) return 0;
+        int32_t cap = (int32_t)(total + total / 2 + 64);
+        int32_t *cand = mem_alloc(&w->mem, (size_t)cap * sizeof *cand);
+        if (cand == NULL) return 0;
+        mem_free(&w->mem, ps->cand, (size_t)ps->cand_cap * sizeof *ps->cand);
+        ps->cand = cand;
+        ps->cand_cap = cap;
+    }
+    t.cand = ps->cand;
+    t.fill = 1;
+    task_for(w, pairs_find_range, n, PAIRS_RANGE, &t);
+    return 1;
 }
 
 int pairs_find(rg_world *w)
@@ -99,6 +185,7 @@ int pairs_find(rg_world *w)
     broadphase *bp = &cw->bp;
     int32_t n = bp->n_moved, kept = 0;
     int woke = 0, grow_failed = 0;
+    int collected = pairs_collect_all(w);
     for (int32_t k = 0; k < n; k++) {
         int32_t s = bp->moved[k];
         const bp_entry *e = &bp->e[s];
@@ -122,7 +209,12 @@ int pairs_find(rg_world *w)
         q.failed = 0;
         q.grow_failed = &grow_failed;
         q.woke = 0;
-        broadphase_query(bp, e->lx, e->ly, e->ux, e->uy, pairs_visit, &q);
+        if (collected) {
+            const pairs_state *ps = &cw->pairs;
+            for (int32_t j = ps->count[k]; j < ps->count[k + 1]; j++) pairs_meet(&q, ps->cand[j]);
+        } else {
+            broadphase_query(bp, e->lx, e->ly, e->ux, e->uy, pairs_visit, &q);
+        }
         woke |= q.woke;
         if (q.failed)
             bp->e[s].moved = 2; /* out of memory: search again next step */

@@ -188,6 +188,14 @@ typedef struct views_state {
     uint8_t *refresh;         /* k: the fat box must be refreshed (views_build) */
 } views_state;
 
+/* The parallel pair search's candidates (pairs.c): count per moved body (scap + 1, in the
+ * scratch block), cand grown as needed and kept. */
+typedef struct pairs_state {
+    int32_t *count;
+    int32_t *cand;
+    int32_t cand_cap;
+} pairs_state;
+
 typedef struct island_state {
     rg_real *umin;            /* k: island minimum rest time */
     int32_t *uf;              /* k: union-find parents */
@@ -214,6 +222,7 @@ typedef struct collide_world {
     solver_rows rows;         /* sized with the contacts */
 
     views_state views;        /* the per-body scratch, one block of scap bodies */
+    pairs_state pairs;
     island_state island;
     resolve_state resolve;
     void *scratch;
