@@ -89,18 +89,19 @@ check-ffi: $(LIB_SO)
 	@echo "== tests/test_ffi.py"
 	$(FFI_ENV) $(PYTHON) tests/test_ffi.py $(LIB_SO)
 
-# The README's C example, extracted and compiled, so it stays true.
-$(B)/readme_example.c: README.md
+# The README's C examples (the block after each `<!-- example:c NAME -->` line), extracted,
+# compiled and run, so they stay true.
+README_C := main rollback threads
+$(B)/readme/%.c: README.md
 	@mkdir -p $(@D)
-	awk '/^<!-- example:c -->/{on=1;next} on&&/^```c/{inb=1;next} inb&&/^```/{exit} inb{print}' $< > $@
-	@test -s $@ || { echo "README.md has no C example"; exit 1; }
+	awk -v name='$*' '$$0 == "<!-- example:c " name " -->" {on=1; next} on && /^```c/ {inb=1; next} inb && /^```/ {exit} inb {print}' $< > $@
+	@test -s $@ || { echo "README.md has no C example '$*'"; exit 1; }
 
-$(B)/readme_example: $(B)/readme_example.c $(LIB_A)
+$(B)/readme/%: $(B)/readme/%.c $(LIB_A)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $< $(LIB_A) $(LDLIBS)
 
-check-readme: $(B)/readme_example
-	@echo "== README C example"
-	$(B)/readme_example
+check-readme: $(patsubst %,$(B)/readme/%,$(README_C))
+	@for e in $(README_C); do echo "== README C example: $$e"; $(B)/readme/$$e || exit 1; done
 
 # The shared library exports the API and nothing else.
 check-exports: $(LIB_SO)
