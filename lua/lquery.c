@@ -83,24 +83,58 @@ static int lquery_raycast(lua_State *L)
     return lquery_returnhit(L, r, &hit);
 }
 
-static int lquery_aabb(lua_State *L)
+/* The arguments of a body list (a box or a point query, or none) and the list itself:
+ * list(w, a, NULL, 0) counts, list(w, a, out, n) copies. */
+typedef struct lquery_args {
+    rg_vec2 lo, hi;
+    uint32_t mask;
+} lquery_args;
+typedef int32_t lquery_list_fn(const rg_world *w, const lquery_args *a, rg_body *out, int32_t cap);
+
+static int32_t lquery_list_aabb(const rg_world *w, const lquery_args *a, rg_body *out, int32_t cap)
 {
-    rg_world *w = lworld_checkopen(L, 1);
-    rg_vec2 lo = lcheck_vec2(L, 2), hi = lcheck_vec2(L, 4);
-    uint32_t mask = lcheck_optmask(L, 6);
-    int32_t n = rg_world_query_aabb(w, lo, hi, mask, NULL, 0), i;
+    return rg_world_query_aabb(w, a->lo, a->hi, a->mask, out, cap);
+}
+
+static int32_t lquery_list_point(const rg_world *w, const lquery_args *a, rg_body *out, int32_t cap)
+{
+    return rg_world_query_point(w, a->lo, a->mask, out, cap);
+}
+
+static int32_t lquery_list_stopped(const rg_world *w, const lquery_args *a, rg_body *out, int32_t cap)
+{
+    (void)a;
+    return rg_world_get_stopped(w, out, cap);
+}
+
+/* Returns the list as an array of body values; charges `charge` units (the bodies visited),
+ * or the count when charge < 0. */
+static int lquery_bodies(lua_State *L, rg_world *w, lquery_list_fn *list, const lquery_args *a,
+                         const char *what, double charge)
+{
+    int32_t n = list(w, a, NULL, 0), i;
     rg_body *out;
     lua_settop(L, 1);
-    if (n < 0) return lcheck_status(L, w, n, "query_aabb");
+    if (n < 0) return lcheck_status(L, w, n, what);
     out = (rg_body *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *out, 0);
-    if (n > 0) n = rg_world_query_aabb(w, lo, hi, mask, out, n);
-    lworld_charge(L, rg_world_body_count(w));
+    if (n > 0) n = list(w, a, out, n);
+    lworld_charge(L, charge < 0 ? (double)n : charge);
     lua_createtable(L, n, 0);
     for (i = 0; i < n; i++) {
         lbody_push(L, 1, out[i]);
         lua_rawseti(L, -2, i + 1);
     }
     return 1;
+}
+
+static int lquery_aabb(lua_State *L)
+{
+    rg_world *w = lworld_checkopen(L, 1);
+    lquery_args a;
+    a.lo = lcheck_vec2(L, 2);
+    a.hi = lcheck_vec2(L, 4);
+    a.mask = lcheck_optmask(L, 6);
+    return lquery_bodies(L, w, lquery_list_aabb, &a, "query_aabb", (double)rg_world_body_count(w));
 }
 
 void lquery_pushhit(lua_State *L, int world_idx, const rg_ray_hit *hit)
@@ -139,40 +173,18 @@ static int lquery_raycast_all(lua_State *L)
 static int lquery_point(lua_State *L)
 {
     rg_world *w = lworld_checkopen(L, 1);
-    rg_vec2 p = lcheck_vec2(L, 2);
-    uint32_t mask = lcheck_optmask(L, 4);
-    int32_t n = rg_world_query_point(w, p, mask, NULL, 0), i;
-    rg_body *out;
-    lua_settop(L, 1);
-    if (n < 0) return lcheck_status(L, w, n, "query_point");
-    out = (rg_body *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *out, 0);
-    if (n > 0) n = rg_world_query_point(w, p, mask, out, n);
-    lworld_charge(L, n);
-    lua_createtable(L, n, 0);
-    for (i = 0; i < n; i++) {
-        lbody_push(L, 1, out[i]);
-        lua_rawseti(L, -2, i + 1);
-    }
-    return 1;
+    lquery_args a;
+    a.lo = a.hi = lcheck_vec2(L, 2);
+    a.mask = lcheck_optmask(L, 4);
+    return lquery_bodies(L, w, lquery_list_point, &a, "query_point", -1);
 }
 
 /* world:stopped(): the bodies the last stepping call stopped at the edge of the range. */
 static int lquery_stopped(lua_State *L)
 {
     rg_world *w = lworld_checkopen(L, 1);
-    int32_t n = rg_world_get_stopped(w, NULL, 0), i;
-    rg_body *out;
-    lua_settop(L, 1);
-    if (n < 0) return lcheck_status(L, w, n, "stopped");
-    out = (rg_body *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *out, 0);
-    if (n > 0) n = rg_world_get_stopped(w, out, n);
-    lworld_charge(L, n);
-    lua_createtable(L, n, 0);
-    for (i = 0; i < n; i++) {
-        lbody_push(L, 1, out[i]);
-        lua_rawseti(L, -2, i + 1);
-    }
-    return 1;
+    lquery_args a = { { 0, 0 }, { 0, 0 }, 0 };
+    return lquery_bodies(L, w, lquery_list_stopped, &a, "stopped", -1);
 }
 
 /* world:cast_circle(r, x, y, dx, dy [, mask]) and world:cast_box(hw, hh, x, y, dx, dy

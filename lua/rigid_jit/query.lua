@@ -108,35 +108,33 @@ return function(core)
     return out
   end
 
+  -- A body list as an array of body values: list(p, a, b, c, d, mask, out, cap) counts with
+  -- (nil, 0), then copies.
+  local function body_list(w, p, what, list, a, b, c, d, mask)
+    local n = list(p, a, b, c, d, mask, nil, 0)
+    if n < 0 then status_error(p, n, what) end
+    found, found_cap = grow(found, found_cap, n, "rg_body[?]")
+    if n > 0 then n = list(p, a, b, c, d, mask, found, n) end
+    return found_list(w, n)
+  end
+
+  local function list_point(p, x, y, _, _, mask, out, cap) return V.rg_world_query_point(p, x, y, mask, out, cap) end
+  local function list_stopped(p, _, _, _, _, _, out, cap) return C.rg_world_get_stopped(p, out, cap) end
+
   function World.query_aabb(w, ...)
     local p = open_world(w)
     local x0, y0, x1, y1 = real4(2, ...)
-    local mask = optmask(6, select(5, ...))
-    local n = V.rg_world_query_aabb(p, x0, y0, x1, y1, mask, nil, 0)
-    if n < 0 then status_error(p, n, "query_aabb") end
-    found, found_cap = grow(found, found_cap, n, "rg_body[?]")
-    if n > 0 then n = V.rg_world_query_aabb(p, x0, y0, x1, y1, mask, found, n) end
-    return found_list(w, n)
+    return body_list(w, p, "query_aabb", V.rg_world_query_aabb, x0, y0, x1, y1, optmask(6, select(5, ...)))
   end
 
   function World.query_point(w, ...)
     local p = open_world(w)
     local x, y = real2(2, ...)
-    local mask = optmask(4, select(3, ...))
-    local n = V.rg_world_query_point(p, x, y, mask, nil, 0)
-    if n < 0 then status_error(p, n, "query_point") end
-    found, found_cap = grow(found, found_cap, n, "rg_body[?]")
-    if n > 0 then n = V.rg_world_query_point(p, x, y, mask, found, n) end
-    return found_list(w, n)
+    return body_list(w, p, "query_point", list_point, x, y, nil, nil, optmask(4, select(3, ...)))
   end
 
   function World.stopped(w)
-    local p = open_world(w)
-    local n = C.rg_world_get_stopped(p, nil, 0)
-    if n < 0 then status_error(p, n, "stopped") end
-    found, found_cap = grow(found, found_cap, n, "rg_body[?]")
-    if n > 0 then n = C.rg_world_get_stopped(p, found, n) end
-    return found_list(w, n)
+    return body_list(w, open_world(w), "stopped", list_stopped)
   end
 
   return { pushhit = pushhit, grow = grow }
