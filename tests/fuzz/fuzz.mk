@@ -60,12 +60,17 @@ $(B)/fuzz/fuzz_lua: tests/fuzz/fuzz_lua.c $(FUZZ_LUA_OBJ) $(LIB_A)
 # test skips its cleanup: leaks are not reported.
 PENDING_SRC := $(wildcard tests/fuzz/pending/test_*.c)
 pending:
+ifeq ($(PENDING_SRC),)
+	@echo "make pending: nothing pending (no tests/fuzz/pending/test_*.c)"
+else
 	@tools/install-deps.sh --fuzz
 	@$(MAKE) --no-print-directory pending-build B=$(PENDING_B) CC=$(FUZZ_CC) REAL=$(REAL) OPT=-O1 \
 	  EXTRA_CFLAGS="$(FUZZ_SAN)" EXTRA_LDFLAGS="$(FUZZ_SAN)"
 	@fail=0; for t in $(patsubst tests/fuzz/pending/%.c,$(PENDING_B)/pending/%,$(PENDING_SRC)); do \
 	  echo "== $$t"; ASAN_OPTIONS=detect_leaks=0 $$t || fail=1; done; \
-	if [ $$fail -ne 0 ]; then echo "make pending: some findings are still open"; exit 1; fi
+	if [ $$fail -ne 0 ]; then echo "make pending: some findings are still open"; exit 1; fi; \
+	echo "make pending: every pending test passes: move them into tests/ with their fixes"
+endif
 
 pending-build: $(patsubst tests/fuzz/pending/%.c,$(B)/pending/%,$(PENDING_SRC))
 
