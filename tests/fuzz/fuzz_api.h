@@ -1,5 +1,5 @@
-/* fuzz_api.h: what the API harness's two files share: the known-finding switches, the
- * input decoder, the allocator that fails, the model of live handles and the checks. */
+/* fuzz_api.h: what the API harness's files share: the input decoder, the allocator that
+ * fails, the model of live handles, the checks, and the task systems. */
 #ifndef FUZZ_API_H
 #define FUZZ_API_H
 
@@ -9,16 +9,6 @@
 #include <stdlib.h>
 
 #include "rigid.h"
-
-#ifndef FUZZ_STRICT
-/* A step may still overflow a body's state to inf and then NaN from inputs in range (a stiff
- * damped spring: the step is not total).  The world that got a non-finite body out of a step
- * is left unchecked for finiteness from then on.  Pending (tests/fuzz/pending):
- * test_a_stiff_damped_spring_never_puts_a_nan_into_the_world; a state past the ranges counts
- * as that too (test_a_restored_clone_hashes_like_its_original).  (The tag and range switches
- * went with their fixes: tests/test_reliability.c.) */
-#define FUZZ_KNOWN_STEP_NOT_TOTAL 1
-#endif
 
 #define NW       3     /* world slots */
 #define MAXB     40    /* live bodies per world */
@@ -61,7 +51,6 @@ typedef struct fworld {
     int nspring;
     rg_body issued[MAXISSUE];  /* every handle it issued, for events of destroyed bodies */
     int nissued;
-    int tainted;               /* FUZZ_KNOWN_STEP_NOT_TOTAL: a step left a non-finite body */
     int tag_known;
     uint32_t tag;
     int presolve;              /* pre-solve hook set: its answers, bit by bit */
@@ -102,8 +91,9 @@ rg_body pick_body(input *in, const fworld *fw);
 uint64_t pick_spring(input *in, const fworld *fw);
 void snap_all(snap *s);
 int finite2(rg_vec2 v);
-int derived_checked(const fworld *fw);
-void check_all(int was_step);
+/* What the last operation was, for the checks after it. */
+enum { RAN_OTHER, RAN_STEP, RAN_ADVANCE };
+void check_all(int ran);
 void check_events(const fworld *fw);
 void on_circle(rg_body body, rg_vec2 c, rg_real r, uint32_t rgba, void *user);
 void on_box(rg_body body, rg_vec2 lo, rg_vec2 hi, uint32_t rgba, void *user);

@@ -328,12 +328,6 @@ void snap_all(snap *s)
 
 int finite2(rg_vec2 v) { return isfinite(v.x) && isfinite(v.y); }
 
-/* Whether values derived from the state (not the state itself) must read finite. */
-int derived_checked(const fworld *fw)
-{
-    return !fw->tainted;
-}
-
 /* 1 when every live body of fw reads finite. */
 static int world_finite(fworld *fw)
 {
@@ -344,19 +338,58 @@ static int world_finite(fworld *fw)
             rg_body_get_interpolated_position(fw->w, b, &ip) != RG_OK ||
             rg_body_get_acceleration(fw->w, b, &a) != RG_OK)
             FAIL("a getter failed on live body %llx", (unsigned long long)b);
-        if (!finite2(p) || !finite2(v)) return 0;
-#ifdef FUZZ_KNOWN_STEP_NOT_TOTAL
-        /* Past the ranges a step may not take it (test_a_restored_clone_hashes_*). */
-        if (fabs((double)p.x) > RG_MAX_COORD || fabs((double)p.y) > RG_MAX_COORD ||
-            fabs((double)v.x) > RG_MAX_SPEED || fabs((double)v.y) > RG_MAX_SPEED)
-            return 0;
-#endif
-        if (derived_checked(fw) && (!finite2(ip) || !finite2(a))) return 0;
+        if (!finite2(p) || !finite2(v) || !finite2(ip) || !finite2(a)) return 0;
     }
     return 1;
 }
 
-static void check_world(fworld *fw, int was_step)
+/* The range guard's promise (rigid.h, rg_world_get_stopped): after a step every body's
+ * velocity is within +-RG_MAX_SPEED and its position within +-RG_MAX_COORD, give or take
+ * what a collision after the guard may push it: a shape's size, of which the largest in the
+ * world is the bound (twice its largest half extent). */
+static void check_ranges(const fworld *fw)
+{
+    double push = 0;
+    for (int k = 0; k < fw->nlive; k++) {
+        rg_vec2 he;
+        if (rg_body_get_shape(fw->w, fw->live[k], NULL, &he) != RG_OK) FAIL("get_shape of a live body failed");
+        if (2 * (double)he.x > push) push = 2 * (double)he.x;
+        if (2 * (double)he.y > push) push = 2 * (double)he.y;
+    }
+    for (int k = 0; k < fw->nlive; k++) {
+        rg_vec2 p, v;
+        rg_body b = fw->live[k];
+        (void)rg_body_get_position(fw->w, b, &p);
+        (void)rg_body_get_velocity(fw->w, b, &v);
+        if (!(fabs((double)p.x) <= RG_MAX_COORD + push && fabs((double)p.y) <= RG_MAX_COORD + push))
+            FAIL("body %llx at (%g, %g) after a step: beyond RG_MAX_COORD + %g", (unsigned long long)b,
+                 (double)p.x, (double)p.y, push);
+        if (!(fabs((double)v.x) <= RG_MAX_SPEED && fabs((double)v.y) <= RG_MAX_SPEED))
+            FAIL("body %llx at (%g, %g) m/s after a step: beyond RG_MAX_SPEED", (unsigned long long)b,
+                 (double)v.x, (double)v.y);
+    }
+}
+
+/* rg_world_get_stopped: live handles in ascending order, the count the same whatever the
+ * capacity; right after rg_world_step, each at rest (an advance's later steps may have moved
+ * a body an earlier one stopped). */
+static void check_stopped(const fworld *fw, int ran)
+{
+    rg_body out[MAXB];
+    int32_t n = rg_world_get_stopped(fw->w, out, MAXB);
+    if (n < 0 || n > fw->nlive) FAIL("%d stopped bodies of %d", n, fw->nlive);
+    if (rg_world_get_stopped(fw->w, NULL, 0) != n || (n > 0 && rg_world_get_stopped(fw->w, out, 1) != n))
+        FAIL("the stopped count depends on the capacity");
+    for (int k = 0; k < n; k++) {
+        if (!in_list(fw->live, fw->nlive, out[k])) FAIL("stopped body %llx is not live", (unsigned long long)out[k]);
+        if (k > 0 && !(out[k - 1] < out[k])) FAIL("stopped bodies not ascending");
+        rg_vec2 v;
+        if (ran == RAN_STEP && (rg_body_get_velocity(fw->w, out[k], &v) != RG_OK || v.x != 0 || v.y != 0))
+            FAIL("stopped body %llx moves at (%g, %g) m/s", (unsigned long long)out[k], (double)v.x, (double)v.y);
+    }
+}
+
+static void check_world(fworld *fw, int ran)
 {
     const rg_world *w = fw->w;
     if (rg_world_body_count(w) != fw->nlive)
@@ -383,23 +416,15 @@ static void check_world(fworld *fw, int was_step)
                 FAIL("world %d's handle %llx valid in world %d", W[o].serial, (unsigned long long)h, fw->serial);
         }
     }
-    if (!fw->tainted && !world_finite(fw)) {
-#ifdef FUZZ_KNOWN_STEP_NOT_TOTAL
-        if (was_step) {
-            fw->tainted = 1;
-            return;
-        }
-#else
-        (void)was_step;
-#endif
-        FAIL("a live body of world %d is not finite", fw->serial);
-    }
+    if (!world_finite(fw)) FAIL("a live body of world %d is not finite", fw->serial);
+    check_stopped(fw, ran);
+    if (ran != RAN_OTHER) check_ranges(fw);
 }
 
-void check_all(int was_step)
+void check_all(int ran)
 {
     for (int k = 0; k < NW; k++)
-        if (W[k].w != NULL) check_world(&W[k], was_step);
+        if (W[k].w != NULL) check_world(&W[k], ran);
 }
 
 void check_events(const fworld *fw)
@@ -416,7 +441,7 @@ void check_events(const fworld *fw)
         if (e->sensor != 0 && e->sensor != 1) FAIL("event sensor %d", e->sensor);
         if (!in_list(fw->issued, fw->nissued, e->a) || !in_list(fw->issued, fw->nissued, e->b))
             if (fw->nissued < MAXISSUE) FAIL("event %d names a body this world never had", k);
-        if (derived_checked(fw) && (!finite2(e->normal) || !finite2(e->point) || !isfinite(e->depth) || !isfinite(e->speed)))
+        if ((!finite2(e->normal) || !finite2(e->point) || !isfinite(e->depth) || !isfinite(e->speed)))
             FAIL("event %d not finite", k);
     }
 }
@@ -432,7 +457,7 @@ static void draw_body(rg_body body)
 
 static void draw_vec(rg_vec2 v)
 {
-    if (derived_checked(draw_world) && !finite2(v)) FAIL("draw: a non-finite point (%g, %g)", (double)v.x, (double)v.y);
+    if (!finite2(v)) FAIL("draw: a non-finite point (%g, %g)", (double)v.x, (double)v.y);
 }
 
 void on_circle(rg_body body, rg_vec2 c, rg_real r, uint32_t rgba, void *user)
@@ -451,7 +476,7 @@ void on_box(rg_body body, rg_vec2 lo, rg_vec2 hi, uint32_t rgba, void *user)
     draw_body(body);
     draw_vec(lo);
     draw_vec(hi);
-    if (derived_checked(draw_world) && !(lo.x <= hi.x && lo.y <= hi.y)) FAIL("draw: box lower > upper");
+    if (!(lo.x <= hi.x && lo.y <= hi.y)) FAIL("draw: box lower > upper");
 }
 
 void on_segment(rg_vec2 a, rg_vec2 b, uint32_t rgba, void *user)
