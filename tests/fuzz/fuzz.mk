@@ -44,10 +44,10 @@ fuzz:
 # tests/fuzz/fuzz_<name>.c, a rule below, its name in FUZZ and its seeds in corpus/<name>/.
 fuzz-build: $(patsubst %,$(B)/fuzz/fuzz_%,$(FUZZ))
 
-$(B)/fuzz/fuzz_api: tests/fuzz/fuzz_api.c tests/fuzz/fuzz_api_model.c tests/fuzz/fuzz_api.h $(LIB_A)
+FUZZ_API_SRC := tests/fuzz/fuzz_api.c tests/fuzz/fuzz_api_model.c tests/fuzz/fuzz_api_tasks.c
+$(B)/fuzz/fuzz_api: $(FUZZ_API_SRC) tests/fuzz/fuzz_api.h tests/shuffler.h $(LIB_A)
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -fsanitize=fuzzer $(LDFLAGS) -o $@ tests/fuzz/fuzz_api.c tests/fuzz/fuzz_api_model.c \
-	  $(LIB_A) $(LDLIBS)
+	$(CC) $(CFLAGS) -Itests -fsanitize=fuzzer $(LDFLAGS) -o $@ $(FUZZ_API_SRC) $(LIB_A) $(LDLIBS)
 
 FUZZ_LUA_OBJ := $(B)/lua/lsandbox.o $(B)/lua/llong.o $(B)/lua/lcount.o $(B)/lua/lpattern.o $(B)/lua/lutf8.o $(LUA_BIND_OBJ)
 $(B)/fuzz/fuzz_lua: tests/fuzz/fuzz_lua.c $(FUZZ_LUA_OBJ) $(LIB_A)

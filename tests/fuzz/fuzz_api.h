@@ -33,7 +33,7 @@ typedef struct input {
 
 /* Fails every call from its fail_at-th on (-1: never); checks every size it is told. */
 typedef struct fz_alloc {
-    long calls, fail_at;
+    long calls, fail_at, refused;
     size_t live_bytes;
     long live_blocks;
 } fz_alloc;
@@ -99,5 +99,15 @@ void on_circle(rg_body body, rg_vec2 c, rg_real r, uint32_t rgba, void *user);
 void on_box(rg_body body, rg_vec2 lo, rg_vec2 hi, uint32_t rgba, void *user);
 void on_segment(rg_vec2 a, rg_vec2 b, uint32_t rgba, void *user);
 void on_point(rg_vec2 p, uint32_t rgba, void *user);
+int32_t on_pre_solve(rg_body a, rg_body b, rg_vec2 normal, rg_real separation, void *user);
+
+/* fuzz_api_tasks.c: task systems, thread pools, and the step checked against a twin. */
+int32_t tasks_set(input *in, fworld *fw);
+int32_t tasks_pool(input *in);
+int32_t tasks_step(fworld *fw, int advance, rg_real t, int32_t *out_steps);
+int32_t tasks_crowd(input *in);
+void tasks_check_thread(void);
+void tasks_forget(const fworld *fw);
+void tasks_teardown(void);
 
 #endif
