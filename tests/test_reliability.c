@@ -8,6 +8,8 @@
  * function). */
 #include "testutil.h"
 
+#include "snapshot.h"
+
 #ifdef RG_DOUBLE
 #define REAL_MIN DBL_MIN
 #else
@@ -269,6 +271,116 @@ static void test_a_restored_clone_hashes_like_its_original(void **state)
     rg_world_destroy(w);
 }
 
+/* A forged snapshot: every value that enters through a setter, set there to a value of its own
+ * (exact in float and double, and found once in the stream), then, one at a time, changed in
+ * the snapshot's bytes to just outside its accepted range and resealed (the checksum made
+ * right).  Each forgery must be refused and change nothing. */
+typedef struct forged_value {
+    const char *what;
+    double value, forged;   /* as set; as forged */
+    int is_double;          /* stored as a double whatever rg_real is (the fixed step) */
+} forged_value;
+
+static size_t find_bytes(const uint8_t *p, size_t n, const uint8_t *v, size_t len, size_t *count)
+{
+    size_t at = 0;
+    *count = 0;
+    for (size_t k = SNAP_HEADER; k + len <= n; k++)
+        if (memcmp(p + k, v, len) == 0) {
+            at = k;
+            ++*count;
+        }
+    return at;
+}
+
+static size_t encode(uint8_t *out, double v, int is_double)
+{
+    if (is_double) {
+        uint64_t u;
+        memcpy(&u, &v, 8);
+        snap_put64(out, u);
+        return 8;
+    }
+    snap_put_real(out, (rg_real)v);
+    return sizeof(rg_real);
+}
+
+/* Found by tests/fuzz/fuzz_snapshot.c (a pile whose snapshot had one body's mass changed to
+ * 5.8e-39 kg and the checksum resealed: accepted, and three steps later the body was NaN).
+ * Root cause: src/restore.c, restore_check_scalars, restore_check_bodies and
+ * restore_check_springs checked the reals of a snapshot for being finite (a mass for 1 / mass
+ * being finite) but not for the ranges the setters accept, which are what keep a step's
+ * arithmetic finite (src/bounds.c): a state no call could make was restored and stepped.
+ * Fixed there: each value is checked against the range of the setter it enters by. */
+static void test_a_snapshot_with_a_value_out_of_range_is_refused(void **state)
+{
+    (void)state;
+    static const forged_value values[] = {
+        { "mass", 1.25, 5.8e-39, 0 },           { "mass", 1.25, 2e9, 0 },
+        { "gravity scale", 0.625, 2e3, 0 },     { "linear drag", 0.375, 2e9, 0 },
+        { "quadratic drag", 0.1875, 2e9, 0 },   { "surface friction", 0.75, 2e15, 0 },
+        { "min speed", 0.0625, 2e6, 0 },        { "max speed", 96.5, 2e6, 0 },
+        { "contact friction", 0.4375, 2e3, 0 }, { "applied force", 12.5, 2e12, 0 },
+        { "spring rest length", 1.75, 2e9, 0 }, { "spring stiffness", 33.5, 2e9, 0 },
+        { "spring damping", 0.5625, 2e9, 0 },   { "spring anchor", 4.4375, 2e9, 0 },
+        { "gravity", -9.875, -2e6, 0 },         { "wind", 2.3125, 2e12, 0 },
+        { "sleep speed", 0.078125, 2e6, 0 },    { "slop", 0.0068359375, 2e7, 0 },
+        { "max push", 2.34375, 2e6, 0 },        { "restitution threshold", 0.8671875, 2e6, 0 },
+        { "fixed step", 1.0 / 64, 20, 1 },      { "circle radius", 0.3984375, 1e-7, 0 },
+    };
+    rg_world *w;
+    uint64_t sp;
+    assert_ok(rg_world_create(&w));
+    assert_ok(rg_world_set_gravity(w, v2(0, (rg_real)-9.875)));
+    assert_ok(rg_world_set_wind(w, v2((rg_real)2.3125, 0)));
+    assert_ok(rg_world_set_sleep_thresholds(w, (rg_real)0.078125, 1));
+    assert_ok(rg_world_set_contact_tuning(w, (rg_real)0.0068359375, 0.25f, (rg_real)2.34375, (rg_real)0.8671875));
+    assert_ok(rg_world_set_fixed_step(w, (rg_real)(1.0 / 64), 4));
+    rg_body b = make_body(w, 1.25, 0, 3), c = make_body(w, 2, 1, 3);
+    assert_ok(rg_body_set_gravity_scale(w, b, (rg_real)0.625));
+    assert_ok(rg_body_set_drag(w, b, (rg_real)0.375, (rg_real)0.1875));
+    assert_ok(rg_body_set_surface_friction(w, b, 0.5f, 1.5f));   /* 0.75 N */
+    assert_ok(rg_body_set_speed_limits(w, b, (rg_real)0.0625, (rg_real)96.5));
+    assert_ok(rg_body_set_circle(w, b, (rg_real)0.3984375));
+    assert_ok(rg_body_set_friction(w, b, (rg_real)0.4375));
+    assert_ok(rg_body_apply_force(w, b, v2((rg_real)12.5, 0)));
+    assert_ok(rg_spring_create(w, b, c, v2(0, 0), (rg_real)1.75, (rg_real)33.5, (rg_real)0.5625, &sp));
+    assert_ok(rg_spring_create(w, c, 0, v2((rg_real)4.4375, 0), 0, 1, 0, &sp));
+    size_t n = 0;
+    assert_ok(rg_world_save(w, NULL, 0, &n));
+    uint8_t *snap = malloc(n), *bad = malloc(n), *after = malloc(n);
+    assert_true(snap != NULL && bad != NULL && after != NULL);
+    assert_ok(rg_world_save(w, snap, n, &n));
+    uint64_t h0;
+    assert_ok(rg_world_hash(w, &h0));
+    for (size_t k = 0; k < sizeof values / sizeof values[0]; k++) {
+        const forged_value *f = &values[k];
+        uint8_t was[8], now[8];
+        size_t len = encode(was, f->value, f->is_double), count;
+        encode(now, f->forged, f->is_double);
+        memcpy(bad, snap, n);
+        size_t at = find_bytes(bad, n, was, len, &count);
+        /* a circle stores its radius twice (both half extents) */
+        if (count != (strcmp(f->what, "circle radius") == 0 ? 2u : 1u)) fail_msg("%s found %zu times", f->what, count);
+        for (size_t i = 0; i < count; i++) {
+            memcpy(bad + at, now, len);
+            at = find_bytes(bad, n, was, len, &count);
+        }
+        snap_put64(bad + 24, snap_hash(bad + SNAP_HEADER, n - SNAP_HEADER));
+        rg_status st = rg_world_restore(w, bad, n);
+        if (st != RG_ERR_INVALID_ARGUMENT) fail_msg("a snapshot with the %s %g was accepted (%d)", f->what, f->forged, st);
+        uint64_t h;
+        size_t m = 0;
+        assert_ok(rg_world_hash(w, &h));
+        assert_ok(rg_world_save(w, after, n, &m));
+        assert_true(h == h0 && m == n && memcmp(after, snap, n) == 0);
+    }
+    free(snap);
+    free(bad);
+    free(after);
+    rg_world_destroy(w);
+}
+
 /* ---------------------------------------------------------------- dissipation */
 
 /* Root cause: src/integrator.c, free_velocity / dissipation_explicit decide explicit or
@@ -488,6 +600,7 @@ int main(void)
         cmocka_unit_test(test_a_stiff_damped_spring_never_puts_a_nan_into_the_world),
         cmocka_unit_test(test_a_saved_world_always_restores),
         cmocka_unit_test(test_a_restored_clone_hashes_like_its_original),
+        cmocka_unit_test(test_a_snapshot_with_a_value_out_of_range_is_refused),
         cmocka_unit_test(test_rk4_with_strong_drag_never_grows_a_velocity),
         cmocka_unit_test(test_handles_of_a_destroyed_world_are_rejected_by_the_next),
         cmocka_unit_test(test_worlds_16_mib_apart_reject_each_others_handles),
