@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "fuzz_alloc.h"
 #include "rigid.h"
 
 #define NW       3     /* world slots */
@@ -30,13 +31,6 @@ typedef struct input {
     const uint8_t *p;
     size_t n;
 } input;
-
-/* Fails every call from its fail_at-th on (-1: never); checks every size it is told. */
-typedef struct fz_alloc {
-    long calls, fail_at, refused;
-    size_t live_bytes;
-    long live_blocks;
-} fz_alloc;
 
 typedef struct fworld {
     rg_world *w;
@@ -80,7 +74,6 @@ uint64_t u64(input *in);
 rg_real real_arg(input *in);
 rg_vec2 vec_arg(input *in);
 int32_t int_arg(input *in);
-void *fz_allocf(void *user, void *ptr, size_t old_size, size_t new_size);
 int in_list(const rg_body *l, int n, uint64_t h);
 void world_issued(fworld *fw, rg_body h);
 void remember_dead(rg_body h, const fworld *fw);
