@@ -186,6 +186,11 @@ static int restore_layout(snap_in *in)
 
 static int fin(rg_real v) { return rg_finite(v); }
 static int nonneg(rg_real v) { return rg_finite(v) && v >= 0; }
+/* In the range the setter it enters by accepts (rigid.h), compared as the setters compare,
+ * after rounding the bounds to rg_real: a state no call could make is refused, since the
+ * step's arithmetic stays finite only within the ranges (bounds.c). */
+static int within(rg_real v, double lo, double hi) { return fin(v) && v >= (rg_real)lo && v <= (rg_real)hi; }
+static int within_vec(rg_vec2 v, double max) { return within(v.x, -max, max) && within(v.y, -max, max); }
 
 /* The header; 1, or 0 with the reason set. */
 static int restore_check_header(const rg_world *w, snap_in *in, const void *data, size_t size)
@@ -232,16 +237,21 @@ static int restore_max_bits(int32_t slots)
 static int restore_check_scalars(snap_in *in)
 {
     const snap_scalars *s = &in->s;
-    if (!rg_vec2_finite(s->gravity) || !rg_vec2_finite(s->wind)) return BAD;
+    if (!within_vec(s->gravity, RG_MAX_ACCELERATION) || !within_vec(s->wind, RG_MAX_FORCE)) return BAD;
     if (s->integrator < RG_INTEGRATOR_EXPLICIT_EULER || s->integrator > RG_INTEGRATOR_RK4) return BAD;
     if (s->max_steps < 1 || (s->prev_valid != 0 && s->prev_valid != 1)) return BAD;
-    if (!(isfinite(s->fixed_dt) && s->fixed_dt > 0) || !(isfinite(s->accumulator) && s->accumulator >= 0))
+    if (!(s->fixed_dt > 0 && s->fixed_dt <= (double)(rg_real)RG_MAX_DT && (rg_real)s->fixed_dt > 0) ||
+        !(isfinite(s->accumulator) && s->accumulator >= 0))
         return BAD;
     if (s->iterations < 1 || s->iterations > 64 || s->position < 0 || s->position > 64) return BAD;
     if ((s->sleeping | s->continuous | s->near_sleep) & ~1) return BAD;
-    if (!nonneg(s->sleep_speed) || !(fin(s->sleep_time) && s->sleep_time > 0) || !nonneg(s->slop)) return BAD;
+    if (!within(s->sleep_speed, 0, RG_MAX_SPEED) || !(fin(s->sleep_time) && s->sleep_time > 0) ||
+        !within(s->slop, 0, RG_MAX_SHAPE_SIZE))
+        return BAD;
     if (!(fin(s->bias_rate) && s->bias_rate > 0 && s->bias_rate <= 1)) return BAD;
-    if (!(fin(s->max_push) && s->max_push > 0) || !nonneg(s->restitution_threshold)) return BAD;
+    if (!(within(s->max_push, 0, RG_MAX_SPEED) && s->max_push > 0) ||
+        !within(s->restitution_threshold, 0, RG_MAX_SPEED))
+        return BAD;
     /* pools: the spring tag is the body tag with its top bit flipped (world.c) */
     if (s->btag > POOL_TAG_MASK || s->stag != (s->btag ^ (1u << (POOL_TAG_BITS - 1)))) return BAD;
     if (s->bmax_gen < 1 || s->bmax_gen > POOL_MAX_GEN || s->smax_gen < 1 || s->smax_gen > POOL_MAX_GEN) return BAD;
@@ -332,28 +342,33 @@ static int restore_check_bodies(const snap_in *in)
         int part = i < s->n_active ? BODY_PART_ACTIVE : i < s->n_moving ? BODY_PART_ASLEEP : BODY_PART_STATIC;
         if (type < RG_BODY_STATIC || type > RG_BODY_DYNAMIC) return BAD;
         if ((part == BODY_PART_STATIC) != (type == RG_BODY_STATIC)) return BAD;
-        rg_real reals[] = { BF_R(in, x, i), BF_R(in, y, i), BF_R(in, vx, i), BF_R(in, vy, i), BF_R(in, fx, i),
-                            BF_R(in, fy, i), BF_R(in, ax, i), BF_R(in, ay, i), BF_R(in, px, i), BF_R(in, py, i),
-                            BF_R(in, gscale, i) };
+        /* the state the steps make (positions and velocities a collision may have carried a
+         * little past the ranges) only finite; what the setters put, in their ranges */
+        rg_real reals[] = { BF_R(in, x, i), BF_R(in, y, i), BF_R(in, vx, i), BF_R(in, vy, i), BF_R(in, ax, i),
+                            BF_R(in, ay, i), BF_R(in, px, i), BF_R(in, py, i) };
         for (size_t k = 0; k < sizeof reals / sizeof reals[0]; k++)
             if (!fin(reals[k])) return BAD;
+        if (!within(BF_R(in, fx, i), -RG_MAX_FORCE, RG_MAX_FORCE) || !within(BF_R(in, fy, i), -RG_MAX_FORCE, RG_MAX_FORCE) ||
+            !within(BF_R(in, gscale, i), -RG_MAX_GRAVITY_SCALE, RG_MAX_GRAVITY_SCALE))
+            return BAD;
         rg_real mass = BF_R(in, mass, i);
         if (type == RG_BODY_DYNAMIC) {
-            if (!(fin(mass) && mass > 0 && rg_finite(1 / mass))) return BAD;
+            if (!within(mass, RG_MIN_MASS, RG_MAX_MASS)) return BAD;
         } else if (mass != 0 || BF_R(in, gscale, i) != 0) {
             return BAD;
         }
         rg_real lin = BF_R(in, drag_lin, i), quad = BF_R(in, drag_quad, i), fric = BF_R(in, fric, i);
         rg_real lo = BF_R(in, min_speed, i), hi = BF_R(in, max_speed, i);
-        if (!nonneg(lin) || !nonneg(quad) || !nonneg(fric) || !nonneg(lo) || !nonneg(hi) || (hi > 0 && hi < lo))
+        if (!within(lin, 0, RG_MAX_DRAG) || !within(quad, 0, RG_MAX_DRAG) || !within(lo, 0, RG_MAX_SPEED) ||
+            !within(hi, 0, RG_MAX_SPEED) || (hi > 0 && hi < lo))
             return BAD;
+        if (!(nonneg(fric) && fric <= (rg_real)RG_MAX_FRICTION * (rg_real)RG_MAX_FORCE)) return BAD; /* mu * N */
         int32_t shape = BF_I(in, shape, i);
         rg_real hx = BF_R(in, hx, i), hy = BF_R(in, hy, i);
         if (shape == RG_SHAPE_NONE) {
             if (hx != 0 || hy != 0 || BF_I(in, chead, i) != 0 || part == BODY_PART_ASLEEP) return BAD;
         } else if (shape == RG_SHAPE_CIRCLE || shape == RG_SHAPE_AABB) {
-            if (!(fin(hx) && hx > 0 && hx <= (rg_real)RG_MAX_SHAPE_SIZE && fin(hy) && hy > 0 &&
-                  hy <= (rg_real)RG_MAX_SHAPE_SIZE))
+            if (!within(hx, RG_MIN_SHAPE_SIZE, RG_MAX_SHAPE_SIZE) || !within(hy, RG_MIN_SHAPE_SIZE, RG_MAX_SHAPE_SIZE))
                 return BAD;
             if (shape == RG_SHAPE_CIRCLE && hx != hy) return BAD;
             shaped++;
@@ -361,7 +376,7 @@ static int restore_check_bodies(const snap_in *in)
             return BAD;
         }
         rg_real rest = BF_R(in, rest, i), mu = BF_R(in, mu, i);
-        if (!(fin(rest) && rest >= 0 && rest <= 1) || !nonneg(mu) || !nonneg(BF_R(in, sleep_t, i))) return BAD;
+        if (!within(rest, 0, 1) || !within(mu, 0, RG_MAX_FRICTION) || !nonneg(BF_R(in, sleep_t, i))) return BAD;
         if (BF_U(in, cflags, i) & ~(CF_SENSOR | CF_GROUNDED | CF_TELEPORTED)) return BAD;
         if (!restore_unit_or_zero(BF_R(in, owx, i), BF_R(in, owy, i))) return BAD;
         int32_t chead = BF_I(in, chead, i);
@@ -404,7 +419,9 @@ static int restore_check_springs(const snap_in *in)
         cur_i32(&c); /* self: checked with the pool */
         if (restore_dense(in, a) < 0 || (b != -1 && (b == a || restore_dense(in, b) < 0))) return BAD;
         rg_real ax = cur_real(&c), ay = cur_real(&c), rest = cur_real(&c), k2 = cur_real(&c), damp = cur_real(&c);
-        if (!fin(ax) || !fin(ay) || !nonneg(rest) || !nonneg(k2) || !nonneg(damp)) return BAD;
+        if (!within(ax, -RG_MAX_COORD, RG_MAX_COORD) || !within(ay, -RG_MAX_COORD, RG_MAX_COORD) ||
+            !within(rest, 0, RG_MAX_COORD) || !within(k2, 0, RG_MAX_STIFFNESS) || !within(damp, 0, RG_MAX_DAMPING))
+            return BAD;
     }
     return 1;
 }

@@ -4,72 +4,14 @@
  * platform, a sensor, a one-way ledge, bullets, sleeping), hashed every 20 steps and
  * compared across
  *   - no task system (one thread),
- *   - the shuffler: a task system of 1 to 4 workers that splits each task into ranges of
- *     random lengths (at least min_range), runs them in a random order with random worker
- *     indices, and defers them to finish (it exercises what threads would do to the split
- *     and the order, deterministically),
+ *   - the shuffler (shuffler.h): a task system of 1 to 4 workers that splits each task into
+ *     ranges of random lengths (at least min_range), runs them in a random order with random
+ *     worker indices, and defers them to finish (it exercises what threads would do to the
+ *     split and the order, deterministically),
  *   - rg_thread_pool with 1 to 4 threads (real threads; this machine may have fewer cores).
  * And the pool's and the task system's bad input. */
 #include "testutil.h"
-
-/* ---------------------------------------------------------------- the shuffler */
-
-typedef struct shuffler {
-    uint64_t seed;
-    int32_t workers;
-    /* the deferred task */
-    rg_task_fn *fn;
-    int32_t count, min_range;
-    void *context;
-    long tasks, ranges;
-} shuffler;
-
-static uint32_t shuffler_next(shuffler *s)
-{
-    s->seed = s->seed * 6364136223846793005ull + 1442695040888963407ull;
-    return (uint32_t)(s->seed >> 33);
-}
-
-static void *shuffler_enqueue(rg_task_fn *fn, int32_t count, int32_t min_range, void *context, void *user)
-{
-    shuffler *s = user;
-    assert_true(count > 0 && min_range >= 1 && s->fn == NULL);
-    s->fn = fn;
-    s->count = count;
-    s->min_range = min_range;
-    s->context = context;
-    s->tasks++;
-    return s;
-}
-
-static void shuffler_finish(void *task, void *user)
-{
-    shuffler *s = user;
-    assert_true(task == s && s->fn != NULL);
-    enum { MAXR = 4096 };
-    static int32_t begin[MAXR], end[MAXR];
-    int32_t n = 0;
-    for (int32_t at = 0; at < s->count;) {
-        int32_t len = s->min_range + (int32_t)(shuffler_next(s) % (uint32_t)(2 * s->min_range + 1));
-        if (n == MAXR - 1 || len > s->count - at) len = s->count - at;
-        begin[n] = at;
-        end[n++] = at + len;
-        at += len;
-    }
-    for (int32_t k = n - 1; k > 0; k--) { /* Fisher-Yates */
-        int32_t j = (int32_t)(shuffler_next(s) % (uint32_t)(k + 1));
-        int32_t tb = begin[k], te = end[k];
-        begin[k] = begin[j];
-        end[k] = end[j];
-        begin[j] = tb;
-        end[j] = te;
-    }
-    rg_task_fn *fn = s->fn;
-    s->fn = NULL;
-    for (int32_t k = 0; k < n; k++)
-        fn(begin[k], end[k], (int32_t)(shuffler_next(s) % (uint32_t)s->workers), s->context);
-    s->ranges += n;
-}
+#include "shuffler.h"
 
 /* ---------------------------------------------------------------- the scene */
 
@@ -198,11 +140,14 @@ static void check_integrator(int32_t integrator, int workers_max)
     int bad = 0;
     char name[64];
     for (int k = workers_max > 0 ? 1 : 2; k <= (workers_max > 0 ? workers_max : 3); k++) {
-        shuffler sh = { 0x9E3779B97F4A7C15ull * (uint64_t)k, k, NULL, 0, 0, NULL, 0, 0 };
-        rg_task_system ts = { k, shuffler_enqueue, shuffler_finish, &sh };
+        shuffler sh;
+        rg_task_system ts;
+        shuffler_init(&sh, 0x9E3779B97F4A7C15ull * (uint64_t)k, k, 0);
+        shuffler_tasks(&sh, &ts);
         if (workers_max > 0 || k == 3) {
             snprintf(name, sizeof name, "shuffler, %d workers", k);
             bad += compare(name, run_big(integrator, &ts), one);
+            assert_int_equal(sh.misuse, 0);
             /* the scene is large enough that stages do split */
             if (k > 1) assert_true(sh.ranges > sh.tasks);
         }

@@ -1,5 +1,5 @@
-/* fuzz_api.h: what the API harness's two files share: the known-finding switches, the
- * input decoder, the allocator that fails, the model of live handles and the checks. */
+/* fuzz_api.h: what the API harness's files share: the input decoder, the allocator that
+ * fails, the model of live handles, the checks, and the task systems. */
 #ifndef FUZZ_API_H
 #define FUZZ_API_H
 
@@ -8,17 +8,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "fuzz_alloc.h"
 #include "rigid.h"
-
-#ifndef FUZZ_STRICT
-/* A step may still overflow a body's state to inf and then NaN from inputs in range (a stiff
- * damped spring: the step is not total).  The world that got a non-finite body out of a step
- * is left unchecked for finiteness from then on.  Pending (tests/fuzz/pending):
- * test_a_stiff_damped_spring_never_puts_a_nan_into_the_world; a state past the ranges counts
- * as that too (test_a_restored_clone_hashes_like_its_original).  (The tag and range switches
- * went with their fixes: tests/test_reliability.c.) */
-#define FUZZ_KNOWN_STEP_NOT_TOTAL 1
-#endif
 
 #define NW       3     /* world slots */
 #define MAXB     40    /* live bodies per world */
@@ -41,13 +32,6 @@ typedef struct input {
     size_t n;
 } input;
 
-/* Fails every call from its fail_at-th on (-1: never); checks every size it is told. */
-typedef struct fz_alloc {
-    long calls, fail_at;
-    size_t live_bytes;
-    long live_blocks;
-} fz_alloc;
-
 typedef struct fworld {
     rg_world *w;
     fz_alloc *al;              /* NULL: the default allocator */
@@ -61,7 +45,6 @@ typedef struct fworld {
     int nspring;
     rg_body issued[MAXISSUE];  /* every handle it issued, for events of destroyed bodies */
     int nissued;
-    int tainted;               /* FUZZ_KNOWN_STEP_NOT_TOTAL: a step left a non-finite body */
     int tag_known;
     uint32_t tag;
     int presolve;              /* pre-solve hook set: its answers, bit by bit */
@@ -91,7 +74,6 @@ uint64_t u64(input *in);
 rg_real real_arg(input *in);
 rg_vec2 vec_arg(input *in);
 int32_t int_arg(input *in);
-void *fz_allocf(void *user, void *ptr, size_t old_size, size_t new_size);
 int in_list(const rg_body *l, int n, uint64_t h);
 void world_issued(fworld *fw, rg_body h);
 void remember_dead(rg_body h, const fworld *fw);
@@ -102,12 +84,23 @@ rg_body pick_body(input *in, const fworld *fw);
 uint64_t pick_spring(input *in, const fworld *fw);
 void snap_all(snap *s);
 int finite2(rg_vec2 v);
-int derived_checked(const fworld *fw);
-void check_all(int was_step);
+/* What the last operation was, for the checks after it. */
+enum { RAN_OTHER, RAN_STEP, RAN_ADVANCE };
+void check_all(int ran);
 void check_events(const fworld *fw);
 void on_circle(rg_body body, rg_vec2 c, rg_real r, uint32_t rgba, void *user);
 void on_box(rg_body body, rg_vec2 lo, rg_vec2 hi, uint32_t rgba, void *user);
 void on_segment(rg_vec2 a, rg_vec2 b, uint32_t rgba, void *user);
 void on_point(rg_vec2 p, uint32_t rgba, void *user);
+int32_t on_pre_solve(rg_body a, rg_body b, rg_vec2 normal, rg_real separation, void *user);
+
+/* fuzz_api_tasks.c: task systems, thread pools, and the step checked against a twin. */
+int32_t tasks_set(input *in, fworld *fw);
+int32_t tasks_pool(input *in);
+int32_t tasks_step(fworld *fw, int advance, rg_real t, int32_t *out_steps);
+int32_t tasks_crowd(input *in);
+void tasks_check_thread(void);
+void tasks_forget(const fworld *fw);
+void tasks_teardown(void);
 
 #endif

@@ -5,12 +5,7 @@
  * budget.  Any crash or sanitizer report is a finding, and so is an input that takes more
  * than FUZZ_LUA_CPU seconds of CPU: the budget must stop every runaway script long before
  * (BUDGET units are well under a millisecond of VM work).
- *
- * Known library finding (tests/fuzz/pending/test_reliability.c,
- * test_a_step_out_of_memory_gives_up_growing_at_once): a step that runs out of memory
- * retries growing its contact storage once per remaining pair, which under ASan takes tens
- * of seconds.  FUZZ_KNOWN_OOM_RETRY tolerates the CPU time of an input that reached 90% of
- * its memory cap; build with -DFUZZ_STRICT once the fix is in. */
+ */
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
@@ -25,9 +20,6 @@
 #define MEMORY       (16u << 20)
 #define FRAMES       3
 #define FUZZ_LUA_CPU 0.5
-#ifndef FUZZ_STRICT
-#define FUZZ_KNOWN_OOM_RETRY 1
-#endif
 
 static void charge(lua_State *L, void *ud, double units)
 {
@@ -95,13 +87,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         frames(L, sb);
     lua_settop(L, 0);
     lrigid_sethooks(L, NULL);
-    int tolerated = 0;
-#ifdef FUZZ_KNOWN_OOM_RETRY
-    tolerated = lsandbox_peak_memory(sb) >= MEMORY / 10 * 9;
-#endif
     lsandbox_close(L, sb);
     double cpu = (double)(clock() - t0) / CLOCKS_PER_SEC;
-    if (cpu > FUZZ_LUA_CPU && !tolerated) {
+    if (cpu > FUZZ_LUA_CPU) {
         fprintf(stderr, "fuzz_lua: an input ran %.2f s of CPU under a budget of %d units\n", cpu, BUDGET);
         abort();
     }
