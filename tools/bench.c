@@ -26,8 +26,6 @@
 
 #include "bench_run.h"
 
-#define SAMPLE_EVERY 10  /* steps between (untimed) speed samples for the rest time */
-
 /* ---------------------------------------------------------------- timing and statistics */
 
 static double now_ms(void)
@@ -116,6 +114,7 @@ static bench_run run_once(const bench_entrant *who, const bench_scene *s0, const
     push_ctx pc = { e, ctx };
     bench_pusher pusher = { &pc, push_force, push_impulse };
     double last_moving = 0, spent = 0; /* time of the last sample with a shaped body moving */
+    double deepest = -1;               /* deepest overlap over the samples */
     int64_t calls_half = 0;
     r.steady_allocs = -1;
     int32_t i = 0;
@@ -133,9 +132,11 @@ static bench_run run_once(const bench_entrant *who, const bench_scene *s0, const
             r.contacts.pre_solve_calls += c.pre_solve_calls;
         }
         i++;
-        if (d->settles && i % SAMPLE_EVERY == 0) {
+        if (d->settles && i % BENCH_SAMPLE_EVERY == 0) {
             e->read(ctx, st->x, st->y, st->vx, st->vy);
             if (bench_max_speed(&s, st->vx, st->vy, 1) >= BENCH_REST_SPEED) last_moving = i * BENCH_DT;
+            double now = bench_deepest_overlap(&s, st->x, st->y);
+            if (!(now <= deepest)) deepest = now;
         }
         if (spent > o->budget_s * 1e3) break;
     }
@@ -155,7 +156,11 @@ static bench_run run_once(const bench_entrant *who, const bench_scene *s0, const
     r.bytes = own > 0 ? own : (heap1 > heap0 ? heap1 - heap0 : 0);
     bench_quality_measure(&s, st->x, st->y, st->vx, st->vy, &r.q);
     r.q.rest = (double)NAN;
-    if (d->settles) r.q.rest = last_moving >= r.steps * BENCH_DT - 1e-9 ? -1 : last_moving;
+    if (d->settles) {
+        double end = r.q.overlap > r.q.wall ? r.q.overlap : r.q.wall;
+        r.q.peak = deepest > end ? deepest : end;
+        r.q.rest = last_moving >= r.steps * BENCH_DT - 1e-9 ? -1 : last_moving;
+    }
     e->destroy(ctx);
     r.mean = spent / r.steps;
     int32_t until = r.steps;

@@ -164,6 +164,8 @@ typedef struct bench_quality {
     double wall;         /* deepest overlap of a moving body with a static shape, m */
     double mean_overlap; /* mean depth over the overlapping pairs (moving-moving and
                             moving-static), m; 0 when none overlaps */
+    double peak;         /* deepest overlap (bodies or statics) over the run, sampled every
+                            few steps with the rest time; NaN when not sampled */
     double vmax;         /* largest speed at the end, m/s */
     double rest;         /* s until the fastest shaped body stays below BENCH_REST_SPEED; <0 never */
     int32_t lost;        /* bodies that left the container */
@@ -174,6 +176,8 @@ typedef struct bench_quality {
 /* Overlaps (shaped scenes), vmax and lost from the dynamic bodies' state in list order. */
 void bench_quality_measure(const bench_scene *s, const float *x, const float *y, const float *vx,
                            const float *vy, bench_quality *q);
+/* The deepest overlap now, between two moving bodies or a moving body and a static shape. */
+double bench_deepest_overlap(const bench_scene *s, const float *x, const float *y);
 /* Largest speed of the dynamic bodies (of those with a shape when shaped_only). */
 double bench_max_speed(const bench_scene *s, const float *vx, const float *vy, int shaped_only);
 

@@ -173,9 +173,16 @@ void bench_quality_measure(const bench_scene *s, const float *x, const float *y,
                            const float *vy, bench_quality *q)
 {
     q->vmax = bench_max_speed(s, vx, vy, 0);
-    q->overlap = q->wall = q->mean_overlap = (double)NAN;
+    q->overlap = q->wall = q->mean_overlap = q->peak = (double)NAN;
     int shaped = 0;
     for (int32_t i = 0; i < s->nbodies && !shaped; i++) shaped = s->bodies[i].shape != BENCH_SHAPE_NONE;
     if (shaped) measure_overlaps(s, x, y, q);
     q->lost = count_lost(s, x, y);
+}
+
+double bench_deepest_overlap(const bench_scene *s, const float *x, const float *y)
+{
+    bench_quality q;
+    measure_overlaps(s, x, y, &q);
+    return q.overlap > q.wall ? q.overlap : q.wall;
 }

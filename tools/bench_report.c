@@ -28,11 +28,11 @@ static int capped(const bench_result *r) { return r->ok && r->steps < r->steps_a
 
 void bench_report_header(void)
 {
-    printf("%-19s %7s %-5s %-13s %8s %8s %8s %6s %8s %7s %7s %7s %7s %7s %6s %4s %7s\n", "scene", "N",
+    printf("%-19s %7s %-5s %-13s %8s %8s %8s %6s %8s %7s %7s %7s %7s %7s %7s %6s %4s %7s\n", "scene", "N",
            "sleep", "engine", "median", "mean", "p95", "spread", "ns/body", "B/body", "overlap", "mean",
-           "wall", "vmax", "rest", "lost", "x rigid");
-    printf("%-19s %7s %-5s %-13s %8s %8s %8s %6s %8s %7s %7s %7s %7s %7s %6s %4s %7s\n", "", "", "", "",
-           "ms/step", "ms/step", "ms/step", "%", "-step", "", "m", "m", "m", "m/s", "s", "", "");
+           "wall", "peak", "vmax", "rest", "lost", "x rigid");
+    printf("%-19s %7s %-5s %-13s %8s %8s %8s %6s %8s %7s %7s %7s %7s %7s %7s %6s %4s %7s\n", "", "", "", "",
+           "ms/step", "ms/step", "ms/step", "%", "-step", "", "m", "m", "m", "m", "m/s", "s", "", "");
 }
 
 void bench_report_row(const bench_result *r)
@@ -43,7 +43,8 @@ void bench_report_row(const bench_result *r)
                r->who->engine == &bench_rigid_engine ? "n/a: scene needs what this build lacks" : "n/a");
         return;
     }
-    char ov[16], mo[16], wl[16], rest[16], ratio[24] = "-";
+    char ov[16], mo[16], wl[16], pk[16], rest[16], ratio[24] = "-";
+    fmt_q(pk, sizeof pk, r->q.peak, "%.4f");
     fmt_q(ov, sizeof ov, r->q.overlap, "%.4f");
     fmt_q(mo, sizeof mo, r->q.mean_overlap, "%.4f");
     fmt_q(wl, sizeof wl, r->q.wall, "%.4f");
@@ -51,9 +52,9 @@ void bench_report_row(const bench_result *r)
     if (r->ref != NULL && r->ref != r->who && r->ref_median == r->ref_median)
         snprintf(ratio, sizeof ratio, "%.2fx", r->median / r->ref_median);
     double spread = r->median > 0 ? 100.0 * (r->max_median - r->min_median) / r->median : 0;
-    printf("%-19s %7d %-5s %-13s %8.3f %8.3f %8.3f %6.1f %8.2f %7.0f %7s %7s %7s %7.3f %6s %4d %7s",
+    printf("%-19s %7d %-5s %-13s %8.3f %8.3f %8.3f %6.1f %8.2f %7.0f %7s %7s %7s %7s %7.3f %6s %4d %7s",
            r->scene, (int)r->n, sl, r->who->label, r->median, r->mean, r->p95, spread, r->ns_body,
-           r->bytes_body, ov, mo, wl, r->q.vmax, rest, (int)r->q.lost, ratio);
+           r->bytes_body, ov, mo, wl, pk, r->q.vmax, rest, (int)r->q.lost, ratio);
     if (capped(r)) printf("  capped: %d of %d steps", (int)r->steps, (int)r->steps_asked);
     printf("\n");
 }
@@ -62,19 +63,19 @@ void bench_report_csv_header(FILE *f)
 {
     fprintf(f, "scene,n,engine,workers,sleep,bodies,dynamic,runs,steps,median_ms,mean_ms,p95_ms,"
                "min_median_ms,max_median_ms,ns_per_body_step,bytes_per_body,peak_bytes_per_body,"
-               "max_overlap_m,mean_overlap_m,max_wall_overlap_m,max_speed_end,rest_s,lost,"
+               "max_overlap_m,mean_overlap_m,max_wall_overlap_m,peak_overlap_m,max_speed_end,rest_s,lost,"
                "steady_state_alloc_calls,settling_mean_ms,rigid_median_ms,rigid_mean_ms\n");
 }
 
 void bench_report_csv_row(FILE *f, const bench_result *r)
 {
     if (!r->ok) return;
-    fprintf(f, "%s,%d,%s,%d,%d,%d,%d,%d,%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%.1f,%.1f,%.6g,%.6g,%.6g,%.6g,"
+    fprintf(f, "%s,%d,%s,%d,%d,%d,%d,%d,%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%.1f,%.1f,%.6g,%.6g,%.6g,%.6g,%.6g,"
                "%.4g,%d,%lld,%.6f,%.6f,%.6f\n",
             r->scene, (int)r->n, r->who->label, (int)r->who->workers, (int)r->sleep, (int)r->nbodies,
             (int)r->ndynamic, (int)r->runs, (int)r->steps, r->median, r->mean, r->p95, r->min_median,
             r->max_median, r->ns_body, r->bytes_body, r->peak_body, r->q.overlap, r->q.mean_overlap,
-            r->q.wall, r->q.vmax, r->q.rest, (int)r->q.lost, (long long)r->steady_allocs, r->settling,
+            r->q.wall, r->q.peak, r->q.vmax, r->q.rest, (int)r->q.lost, (long long)r->steady_allocs, r->settling,
             r->ref_median, r->ref_mean);
 }
 

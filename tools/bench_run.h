@@ -10,6 +10,7 @@
 
 #define BENCH_DT (1.0 / 60.0)
 #define BENCH_MAX_ENTRANTS 12
+#define BENCH_SAMPLE_EVERY 10  /* steps between (untimed) samples for the rest time and peak */
 
 /* An engine at a worker count, as the tables name it ("rigid", "rigid-2w", "b2v3-avx2"). */
 typedef struct bench_entrant {

@@ -2,8 +2,9 @@
  * several solver settings along curves (rigid: velocity iterations 1-16 at 3 position
  * iterations, and position iterations 0-8 at 8 velocity; Box2D v3: substeps 1-8; Box2D 2.4:
  * velocity iterations at 3 position, position at 8 velocity; Chipmunk: iterations), each
- * setting twice: sleeping off for the time per step (median) and the pile's overlaps at the
- * end, sleeping on for the time a game pays (mean) and the time to rest.  Every row gets
+ * setting twice: sleeping off for the time per step (median) and the pile's overlaps (the
+ * deepest and the mean at the end, the deepest over the run), sleeping on for the time a
+ * game pays (mean) and the time to rest.  Every row gets
  * the Pareto flags of its scene: on the front when no other setting of any engine is at
  * least as cheap and at least as good, and better in one. */
 #include <math.h>
@@ -39,8 +40,8 @@ typedef struct sweep_row {
     const bench_entrant *who;
     const char *curve;
     int32_t a, b, is_default;
-    double median, max_overlap, mean_overlap, sleep_mean, rest, rest_plot;
-    int front[3];
+    double median, max_overlap, peak, mean_overlap, sleep_mean, rest, rest_plot;
+    int front[4];
     int copy;   /* the same run as an earlier row, on another curve */
 } sweep_row;
 
@@ -50,17 +51,26 @@ static int dominates(double ca, double qa, double cb, double qb)
     return ca <= cb && qa <= qb && (ca < cb || qa < qb);
 }
 
+/* The measures a front is drawn for: 0 deepest at the end, 1 deepest over the run, 2 mean
+ * at the end (against the median, sleeping off), 3 the time to rest (against the mean,
+ * sleeping on). */
+#define NMEASURES 4
+static void measure_of(const sweep_row *r, int m, double *cost, double *q)
+{
+    *cost = m < 3 ? r->median : r->sleep_mean;
+    *q = m == 0 ? r->max_overlap : m == 1 ? r->peak : m == 2 ? r->mean_overlap : r->rest_plot;
+}
+
 static void fronts(sweep_row *rows, int32_t n)
 {
     for (int32_t i = 0; i < n; i++)
-        for (int m = 0; m < 3; m++) {
-            double ci = m < 2 ? rows[i].median : rows[i].sleep_mean;
-            double qi = m == 0 ? rows[i].max_overlap : m == 1 ? rows[i].mean_overlap : rows[i].rest_plot;
+        for (int m = 0; m < NMEASURES; m++) {
+            double ci, qi, cj, qj;
+            measure_of(&rows[i], m, &ci, &qi);
             int on = 1;
             for (int32_t j = 0; j < n && on; j++) {
                 if (j == i || strcmp(rows[j].scene, rows[i].scene) != 0 || rows[j].n != rows[i].n) continue;
-                double cj = m < 2 ? rows[j].median : rows[j].sleep_mean;
-                double qj = m == 0 ? rows[j].max_overlap : m == 1 ? rows[j].mean_overlap : rows[j].rest_plot;
+                measure_of(&rows[j], m, &cj, &qj);
                 if (dominates(cj, qj, ci, qi)) on = 0;
             }
             rows[i].front[m] = on;
@@ -86,9 +96,9 @@ static void print_row(const sweep_row *r)
     char rest[16];
     if (r->rest < 0) snprintf(rest, sizeof rest, "never");
     else snprintf(rest, sizeof rest, "%.2f", r->rest);
-    printf("%-6s %6d %-10s %3d %3d %-3s %9.3f %9.3f %9.3f %9.3f %7s  %s\n", r->scene, (int)r->n,
+    printf("%-6s %6d %-10s %3d %3d %-3s %9.3f %9.3f %9.3f %9.3f %9.3f %7s  %s\n", r->scene, (int)r->n,
            r->who->label, (int)r->a, (int)r->b, r->is_default ? "def" : "", r->median, 1e3 * r->max_overlap,
-           1e3 * r->mean_overlap, r->sleep_mean, rest, r->curve);
+           1e3 * r->peak, 1e3 * r->mean_overlap, r->sleep_mean, rest, r->curve);
     fflush(stdout);
 }
 
@@ -100,10 +110,11 @@ int bench_sweep(const bench_job *jobs, int njobs, const bench_entrant *who, int 
     if (rows == NULL) return 0;
     printf("quality against cost: each engine at several solver settings (a, b: rigid and Box2D 2.4 "
            "velocity, position iterations; v3 substeps; Chipmunk iterations)\n"
-           "median: ms per step, sleeping off; overlap at the end, sleeping off, in mm: deepest (bodies "
-           "or walls), mean over the overlapping pairs; sleeping on: mean ms per step and the time to "
-           "rest\n%-6s %6s %-10s %3s %3s %-3s %9s %9s %9s %9s %7s  %s\n", "scene", "N", "engine", "a",
-           "b", "", "median", "deepest", "mean", "sleep on", "rest", "curve");
+           "median: ms per step, sleeping off; overlaps, sleeping off, in mm: the deepest at the end "
+           "(bodies or walls), the deepest over the run (every %d steps), the mean over the pairs "
+           "overlapping at the end; sleeping on: mean ms per step and the time to rest\n"
+           "%-6s %6s %-10s %3s %3s %-3s %9s %9s %9s %9s %9s %7s  %s\n", BENCH_SAMPLE_EVERY, "scene", "N",
+           "engine", "a", "b", "", "median", "deepest", "peak", "mean", "sleep on", "rest", "curve");
     for (int j = 0; j < njobs; j++) {
         bench_scene s;
         if (!jobs[j].def->settles || !bench_scene_build(&s, jobs[j].def, jobs[j].n)) {
@@ -151,6 +162,7 @@ int bench_sweep(const bench_job *jobs, int njobs, const bench_entrant *who, int 
                 r->is_default = a == cv->def_a && b == cv->def_b;
                 r->median = res[0].median;
                 r->max_overlap = res[0].q.overlap > res[0].q.wall ? res[0].q.overlap : res[0].q.wall;
+                r->peak = res[0].q.peak;
                 r->mean_overlap = res[0].q.mean_overlap;
                 r->sleep_mean = res[1].mean;
                 r->rest = res[1].q.rest;
@@ -162,9 +174,11 @@ int bench_sweep(const bench_job *jobs, int njobs, const bench_entrant *who, int 
     }
     fronts(rows, nrows);
     printf("\nPareto fronts (no other setting of any engine at least as cheap and as good):\n");
-    for (int m = 0; m < 3; m++) {
-        static const char *const what[3] = { "median vs deepest overlap", "median vs mean overlap",
-                                             "sleeping-on mean vs time to rest" };
+    for (int m = 0; m < NMEASURES; m++) {
+        static const char *const what[NMEASURES] = { "median vs deepest overlap at the end",
+                                                     "median vs deepest overlap over the run",
+                                                     "median vs mean overlap at the end",
+                                                     "sleeping-on mean vs time to rest" };
         printf("  %s:", what[m]);
         for (int32_t i = 0; i < nrows; i++)
             if (rows[i].front[m] && !rows[i].copy)
@@ -179,14 +193,14 @@ int bench_sweep(const bench_job *jobs, int njobs, const bench_entrant *who, int 
             free(rows);
             return 0;
         }
-        fprintf(f, "scene,n,engine,curve,a,b,default,median_ms,max_overlap_m,mean_overlap_m,sleep_mean_ms,"
-                   "rest_s,rest_plot_s,front_max,front_mean,front_rest\n");
+        fprintf(f, "scene,n,engine,curve,a,b,default,median_ms,max_overlap_m,peak_overlap_m,mean_overlap_m,"
+                   "sleep_mean_ms,rest_s,rest_plot_s,front_max,front_peak,front_mean,front_rest\n");
         for (int32_t i = 0; i < nrows; i++) {
             const sweep_row *r = &rows[i];
-            fprintf(f, "%s,%d,%s,%s,%d,%d,%d,%.6f,%.6g,%.6g,%.6f,%.4g,%.4g,%d,%d,%d\n", r->scene, (int)r->n,
-                    r->who->label, r->curve, (int)r->a, (int)r->b, r->is_default, r->median, r->max_overlap,
-                    r->mean_overlap, r->sleep_mean, r->rest, r->rest_plot, r->front[0], r->front[1],
-                    r->front[2]);
+            fprintf(f, "%s,%d,%s,%s,%d,%d,%d,%.6f,%.6g,%.6g,%.6g,%.6f,%.4g,%.4g,%d,%d,%d,%d\n", r->scene,
+                    (int)r->n, r->who->label, r->curve, (int)r->a, (int)r->b, r->is_default, r->median,
+                    r->max_overlap, r->peak, r->mean_overlap, r->sleep_mean, r->rest, r->rest_plot,
+                    r->front[0], r->front[1], r->front[2], r->front[3]);
         }
         fclose(f);
     }

@@ -1,7 +1,7 @@
 # bench_pareto.gp: quality against cost from `bench --sweep` (tools/bench_sweep.c), every
-# engine on one chart: a row per scene (boxes, rain), a column per measure (the deepest
-# overlap and the mean overlap at the end, sleeping off, against the median ms per step;
-# the time to rest, sleeping on, against the mean ms per step).  Each line is one engine's
+# engine on one chart: a row per scene (boxes, rain), a column per measure (sleeping off,
+# against the median ms per step: the deepest overlap at the end, the deepest over the run,
+# the mean overlap at the end; sleeping on, against the mean ms per step: the time to rest).  Each line is one engine's
 # solver setting swept (the CSV's curve); circled: each engine's default; black dashed
 # steps: the Pareto front over every engine (the CSV's front_* = 1 rows, sorted by cost).
 #   gnuplot -e "csv='build/charts/bench_pareto.csv'; out='build/charts/bench_pareto'" tools/charts/bench_pareto.gp
@@ -15,37 +15,40 @@ array points[6] = [7, 5, 9, 11, 13, 15]
 array widths[6] = [2.5, 2.5, 1.5, 1.5, 1.5, 1.5]
 scenes = "boxes rain"
 # per column: the cost column, the measure's column, its front flag, its scale to the axis
-array cost_col[3] = [8, 8, 11]
-array q_col[3] = [9, 10, 13]
-array front_col[3] = [14, 15, 16]
-array q_scale[3] = [1000.0, 1000.0, 1.0]
-array q_label[3] = ["deepest overlap at the end (mm)", "mean overlap at the end (mm)", "time to rest (s)"]
-array x_label[3] = ["ms per step (median, sleeping off)", "ms per step (median, sleeping off)", \
-                    "ms per step (mean over the run, sleeping on)"]
-array q_title[3] = ["deepest overlap", "mean overlap", "time to rest, sleeping on"]
+M = 4
+array cost_col[M] = [8, 8, 8, 12]
+array q_col[M] = [9, 10, 11, 14]
+array front_col[M] = [15, 16, 17, 18]
+array q_scale[M] = [1000.0, 1000.0, 1000.0, 1.0]
+array q_label[M] = ["deepest overlap at the end (mm)", "deepest overlap over the run (mm)", \
+                    "mean overlap at the end (mm)", "time to rest (s)"]
+array x_label[M] = ["ms per step (median, sleeping off)", "ms per step (median, sleeping off)", \
+                    "ms per step (median, sleeping off)", "ms per step (mean over the run, sleeping on)"]
+array q_title[M] = ["deepest overlap at the end", "deepest overlap during the run (every 10 steps)", \
+                    "mean overlap at the end", "time to rest, sleeping on"]
 floor_mm = 1e-3   # overlaps below a micrometre are drawn on the axis floor
-never = system(sprintf("awk -F, 'NR > 1 && $12 < 0 { print $13; exit }' '%s'", csv)) + 0
+never = system(sprintf("awk -F, 'NR > 1 && $13 < 0 { print $14; exit }' '%s'", csv)) + 0
 
 do for [fmt in "svg png"] {
     if (fmt eq "svg") {
-        set terminal svg size 1500,900 dynamic enhanced font "Helvetica,12" background rgb "white"
+        set terminal svg size 1900,900 dynamic enhanced font "Helvetica,12" background rgb "white"
     } else {
-        set terminal pngcairo size 1500,900 enhanced font "Helvetica,11" background rgb "white"
+        set terminal pngcairo size 1900,900 enhanced font "Helvetica,11" background rgb "white"
     }
     set output out.".".fmt
-    set multiplot layout 2,3 title "Quality against cost: every engine at several solver settings (dt = 1/60 s, one thread; bench --sweep).\nLines: one setting swept per engine; circled: each engine's default; black dashed steps: the Pareto front over all engines (the best for that cost or less)" font ",13"
+    set multiplot layout 2,M title "Quality against cost: every engine at several solver settings (dt = 1/60 s, one thread; bench --sweep).\nLines: one setting swept per engine; circled: each engine's default; black dashed steps: the Pareto front over all engines (the best for that cost or less)" font ",13"
     set grid
     set logscale x
     set format x "%g"
-    set key top right font ",9" samplen 2 opaque
+    set key bottom right font ",9" samplen 2 opaque
     do for [s=1:2] {
         sc = word(scenes, s)
         n = system(sprintf("awk -F, 'NR > 1 && $1 == \"%s\" { print $2; exit }' '%s'", sc, csv))
-        do for [m=1:3] {
+        do for [m=1:M] {
             set title sprintf("%s %s: %s", sc, n, q_title[m]) noenhanced
             set xlabel x_label[m] font ",10"
             set ylabel q_label[m] font ",10"
-            if (m < 3) {
+            if (m < M) {
                 set logscale y
                 set format y "10^{%T}"
                 set yrange [floor_mm:*]
@@ -60,7 +63,7 @@ do for [fmt in "svg png"] {
                  if (strcol(1) eq sc && int(column(front_col[m])) == 1)
             unset table
             unset label 1
-            if (m == 3 && never > 0) {
+            if (m == M && never > 0) {
                 set label 1 sprintf("never at rest in %g s", never) at graph 0.02, first never * 1.035 font ",9"
             }
             plot for [i=1:6] csv using ((strcol(1) eq sc && strcol(4) eq curves[i]) ? column(cost_col[m]) : NaN):\
