@@ -47,23 +47,33 @@ static inline int dissipation_overshoots(rg_real v0x, rg_real v0y, rg_real nvx, 
  * step must treat dissipation implicitly, else 0 and the explicit velocity in *nvx, *nvy and
  * the dissipative acceleration added to *ax, *ay.  Every integrator makes this decision
  * from the start state: a multi-stage method evaluated past the stop sees friction flip
- * between stages, cancel, and creep forever instead of stopping. */
+ * between stages, cancel, and creep forever instead of stopping.
+ *
+ * Besides the overshoot, the step is stiff when the dissipation rate k (1/s: drag and
+ * friction per unit speed over the mass) reaches 1/h anywhere the step can go: explicit
+ * Euler then takes more than the whole velocity away along v0 (its factor 1 - kh <= 0) even
+ * when the other forces keep the result pointing along v_free, and RK4's and Verlet's
+ * stages overshoot and grow (their factors 1 - z + z^2/2 - ... stay in (0, 1) only for
+ * z = kh < 1).  `reach` bounds how far the speed can rise within the step (0 for Euler,
+ * h |a_free| for the multi-stage methods), so quadratic drag is judged at its largest. */
 static inline int dissipation_explicit(const body_store *b, int32_t i, rg_real v0x, rg_real v0y,
-                                       rg_real vfx, rg_real vfy, rg_real h, rg_real *ax,
-                                       rg_real *ay, rg_real *nvx, rg_real *nvy)
+                                       rg_real vfx, rg_real vfy, rg_real h, rg_real reach,
+                                       rg_real *ax, rg_real *ay, rg_real *nvx, rg_real *nvy)
 {
     rg_real speed = rg_sqrt(v0x * v0x + v0y * v0y);
-    rg_real dax = 0, day = 0;
+    rg_real im = b->inv_mass[i], lin = b->drag_lin[i], quad = b->drag_quad[i];
+    rg_real dax = 0, day = 0, kmax = (lin + quad * reach) * im;
     if (speed > 0) {
-        rg_real k = (b->drag_lin[i] + b->drag_quad[i] * speed + b->fric[i] / speed) * b->inv_mass[i];
+        rg_real k = (lin + quad * speed + b->fric[i] / speed) * im;
         dax = -k * v0x;
         day = -k * v0y;
+        kmax = (lin + quad * (speed + reach) + b->fric[i] / speed) * im;
     }
     *ax += dax;
     *ay += day;
     *nvx = vfx + dax * h;
     *nvy = vfy + day * h;
-    return dissipation_overshoots(v0x, v0y, *nvx, *nvy, vfx, vfy, b->fric[i]);
+    return !(kmax * h < 1) || dissipation_overshoots(v0x, v0y, *nvx, *nvy, vfx, vfy, b->fric[i]);
 }
 
 /* Explicit and semi-implicit Euler in one fused pass: one force evaluation at the start
@@ -90,7 +100,7 @@ static inline void euler_body(body_store *b, const euler_env *e, int32_t i)
     rg_real vfx = v0x + ax * h, vfy = v0y + ay * h; /* without dissipation */
     rg_real nvx = vfx, nvy = vfy;
     if (e->dissipative && (b->flags[i] & BODY_F_DISSIPATIVE) &&
-        dissipation_explicit(b, i, v0x, v0y, vfx, vfy, h, &ax, &ay, &nvx, &nvy))
+        dissipation_explicit(b, i, v0x, v0y, vfx, vfy, h, 0, &ax, &ay, &nvx, &nvy))
         dissipate_implicit(vfx, vfy, b->drag_lin[i], b->drag_quad[i], b->fric[i], im, h, &nvx, &nvy);
     b->ax[i] = ax;
     b->ay[i] = ay;
@@ -164,7 +174,8 @@ static EULER_INLINE void euler_commit(rg_real *restrict x, rg_real *restrict y, 
 /* The pass runs in blocks: a branch-free first loop computes every body's new velocity into
  * block-local arrays (and its acceleration, an output only, in place), and a second loop
  * commits the block unless one of its bodies needs what the fast path leaves out (quadratic
- * drag or surface friction, a body at rest or with a huge speed, a dissipation overshoot):
+ * drag or surface friction, a body at rest or with a huge speed, a dissipation overshoot or
+ * a stiff step, kh >= 1):
  * then the block runs body by body.  The fast path does the same IEEE operations in the
  * same order, so results are bit-identical either way: with quad and fric both +-0 and
  * 0 < |v|^2 < HUGE, quad*|v| == quad and fric/|v| == fric exactly, so k = (lin + quad +
@@ -215,7 +226,7 @@ static EULER_INLINE int euler_block(const body_store *b, int32_t i0, const euler
             rg_real k = lin[j] * im[j];
             rg_real dax = -k * v0x, day = -k * v0y;
             rg_real dvx = vfx + dax * h, dvy = vfy + day * h;
-            slow |= !((s2 > 0) & (s2 < RG_HUGE) & (dvx * vfx + dvy * vfy > 0));
+            slow |= !((s2 > 0) & (s2 < RG_HUGE) & (k * h < 1) & (dvx * vfx + dvy * vfy > 0));
             oax[j] = ax + dax;
             oay[j] = ay + day;
             nvx[j] = dvx;
@@ -239,7 +250,7 @@ static EULER_INLINE int euler_block(const body_store *b, int32_t i0, const euler
             /* quad, fric >= 0, so their sum is 0 exactly when both are.  The finiteness
              * test of tax, tay also keeps their adds out of the selects below (an add there
              * may trap under -ftrapping-math and would keep a branch). */
-            int32_t ok = (quad[j] + fric[j] == 0) & (s2 > 0) & (s2 < RG_HUGE) &
+            int32_t ok = (quad[j] + fric[j] == 0) & (s2 > 0) & (s2 < RG_HUGE) & (k * h < 1) &
                          (dvx * vfx + dvy * vfy > 0) & (tax - tax == 0) & (tay - tay == 0);
             slow |= d & !ok;
             oax[j] = d ? tax : ax;
@@ -316,7 +327,10 @@ static void free_velocity(rg_world *w, rg_real h)
         rg_real vfx = b->vx[i] + ax * h, vfy = b->vy[i] + ay * h, nvx, nvy;
         s->vfx[i] = vfx;
         s->vfy[i] = vfy;
-        s->implicit[i] = dissipation_explicit(b, i, b->vx[i], b->vy[i], vfx, vfy, h, &ax, &ay, &nvx, &nvy);
+        /* a_free now holds the other forces only (the call below adds the dissipation) */
+        rg_real reach = h * rg_sqrt(ax * ax + ay * ay);
+        s->implicit[i] = dissipation_explicit(b, i, b->vx[i], b->vy[i], vfx, vfy, h, reach, &ax, &ay,
+                                              &nvx, &nvy);
     }
 }
 

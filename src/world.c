@@ -1,6 +1,7 @@
 /* world.c: world lifetime and settings, status strings and the version. */
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "arg.h"
 #include "body.h"
@@ -36,14 +37,36 @@ RG_API const char *rg_status_string(rg_status s)
 RG_API int32_t rg_version(void) { return RG_VERSION; }
 RG_API int32_t rg_real_size(void) { return (int32_t)sizeof(rg_real); }
 
-/* The tag that makes one world's handles foreign to another: taken from the world's
- * address, so two live worlds never share it while they lie within 16 MiB of each other
- * (and otherwise only by a 2^-20 chance), with no global counter. */
+/* A counter of the machine that moves on between any two calls: the time-stamp counter
+ * where the compiler can read it, else the process clock (which a fast destroy-and-create
+ * may not see move). */
+static uint64_t world_ticks(void)
+{
+#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
+    return __builtin_ia32_rdtsc();
+#elif (defined(__GNUC__) || defined(__clang__)) && defined(__aarch64__)
+    uint64_t v;
+    __asm__ __volatile__("mrs %0, cntvct_el0" : "=r"(v));
+    return v;
+#else
+    return (uint64_t)clock();
+#endif
+}
+
+/* The tag that makes one world's handles foreign to another: per world and random, from
+ * the world's address (every bit of it), the machine's tick counter and the time, mixed.
+ * No state outlives a world, so nothing but chance (2^-20) lets two live worlds, or a
+ * world and the one destroyed before it in the same block (a level reload), share a tag;
+ * an address alone would give a reloaded level its predecessor's tag every time.  The tag
+ * decides no result: every handle of a world carries the same one. */
 static uint32_t world_tag(const rg_world *w)
 {
-    uintptr_t a = (uintptr_t)w;
-    uint32_t t = (uint32_t)(a >> 4) & POOL_TAG_MASK;
-    return t;
+    uint64_t z = (uint64_t)(uintptr_t)w ^ world_ticks() * 0x9E3779B97F4A7C15ull ^ (uint64_t)time(NULL) << 32 ^
+                 (uint64_t)clock() << 16;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return (uint32_t)z & POOL_TAG_MASK;
 }
 
 RG_API rg_status rg_world_create_with_allocator(rg_alloc_fn alloc, void *user, rg_world **out_world)

@@ -161,6 +161,58 @@ static void test_naive_dissipation_overshoots_where_the_library_does_not(void **
     }
 }
 
+/* A stiff step: the dissipation rate k (drag and friction per unit speed over the mass)
+ * reaches 1/h.  Mass 1, drag (1000, 1000), dt 0.1: kh >= 100, where RK4's stages (factor
+ * 1 - z + z^2/2 - z^3/6 + z^4/24 at z = 100) and explicit Euler's (1 - z) grow and turn a
+ * velocity.  Every integrator takes the backward-Euler step there: from rest each step's
+ * speed is below what free fall adds in one step (g dt), never upward, and it contracts by
+ * 1 / (1 + kh) <= 1/101 per step to the terminal speed vt (1000 vt + 1000 vt^2 = m g), so
+ * after 10 steps it is vt to rounding: a few ulps of vt from the quadratic's formula. */
+static void test_stiff_drag_never_grows_or_turns_a_velocity(void **state)
+{
+    (void)state;
+    const double g = 9.81, dt = 0.1, vt = (-1000 + sqrt(1e6 + 4 * 1000 * g)) / 2000;
+    for (int integ = 0; integ <= 3; integ++) {
+        rg_world *w = world_with(integ, 0, -g);
+        rg_body b = make_body(w, 1, 0, 0);
+        assert_ok(rg_body_set_drag(w, b, 1000, 1000));
+        for (int k = 0; k < 10; k++) {
+            assert_ok(rg_world_step(w, (rg_real)dt));
+            rg_vec2 v = vel_of(w, b);
+            if (!(speed_of(w, b) <= g * dt * (1 + 8 * REAL_EPS) && v.y <= 0 && v.x == 0))
+                fail_msg("integrator %d step %d: v = (%g, %g), free fall adds %g", integ, k + 1,
+                         (double)v.x, (double)v.y, g * dt);
+        }
+        assert_near(-vel_of(w, b).y, vt, 16 * REAL_EPS * vt);
+        rg_world_destroy(w);
+    }
+}
+
+/* Friction on a slow body under a perpendicular force: mu N h / m = 0.01 m/s takes more than
+ * the whole speed 0.005 along x, but gravity keeps the new velocity pointing along v_free, so
+ * the direction test alone would let the explicit step turn vx to -0.005.  kh = 2 >= 1 makes
+ * the step implicit: v' is v_free shortened, so vx keeps its sign and never grows. */
+static void test_friction_never_turns_a_velocity_that_a_perpendicular_force_keeps(void **state)
+{
+    (void)state;
+    const double dt = 1.0 / 60, v0 = 0.005;
+    for (int integ = 0; integ <= 3; integ++) {
+        rg_world *w = world_with(integ, 0, -9.81);
+        rg_body b = make_body(w, 1, 0, 0);
+        assert_ok(rg_body_set_velocity(w, b, v2(v0, 0)));
+        assert_ok(rg_body_set_surface_friction(w, b, 0.3f, 2));
+        double prev = v0;
+        for (int k = 0; k < 30; k++) {
+            assert_ok(rg_world_step(w, (rg_real)dt));
+            double vx = (double)vel_of(w, b).x;
+            if (!(vx >= 0 && vx <= prev))
+                fail_msg("integrator %d step %d: vx %g after %g", integ, k + 1, vx, prev);
+            prev = vx;
+        }
+        rg_world_destroy(w);
+    }
+}
+
 /* Wind is a force: a = wind / m, so a light body feels more.  Semi-implicit Euler from rest
  * under constant a: v_n = n a h, x_n = a h^2 n (n + 1) / 2. */
 static void test_wind_is_a_force_shared_by_dynamic_bodies(void **state)
@@ -409,6 +461,8 @@ int main(void)
         cmocka_unit_test(test_friction_stops_within_one_step_and_stays_at_exact_zero),
         cmocka_unit_test(test_friction_holds_a_resting_body_against_a_smaller_force),
         cmocka_unit_test(test_naive_dissipation_overshoots_where_the_library_does_not),
+        cmocka_unit_test(test_stiff_drag_never_grows_or_turns_a_velocity),
+        cmocka_unit_test(test_friction_never_turns_a_velocity_that_a_perpendicular_force_keeps),
         cmocka_unit_test(test_wind_is_a_force_shared_by_dynamic_bodies),
         cmocka_unit_test(test_gravity_scale_multiplies_gravity),
         cmocka_unit_test(test_impulse_changes_momentum_at_once),
