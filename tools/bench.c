@@ -515,8 +515,8 @@ int main(int argc, char **argv)
            "static (rigid, v3: a counting allocator, peak in the CSV; the others: heap growth)\n"
            "overlap: deepest between two moving bodies; mean: over the overlapping pairs (bodies and "
            "statics); wall: a moving body into a static shape;\nvmax at the end; rest: s until the "
-           "fastest body stays < %.1f m/s; x rigid: the engine's median over rigid's with as many "
-           "workers\n\n", BENCH_REST_SPEED);
+           "fastest body stays < %.1f m/s; x rigid: the engine's median (sleeping on: mean) over "
+           "rigid's with as many workers\n\n", BENCH_REST_SPEED);
     bench_report_header();
     fflush(stdout);
 

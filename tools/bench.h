@@ -133,6 +133,8 @@ extern const bench_engine bench_chipmunk_engine;
  * build, out[1] the AVX2 build, NULL where one is missing or the CPU cannot run it; why gets
  * a sentence for each one missing.  Returns how many were loaded. */
 int bench_v3_load(const char *dir, const bench_engine *out[2], char *why, size_t why_size);
+/* 1 when the CPU runs AVX2 and FMA (what v3's AVX2 build needs and rigid's dispatch picks). */
+int bench_cpu_has_avx2(void);
 
 /* ---------------------------------------------------------------- scenes (bench_scenes.c) */
 

@@ -49,8 +49,8 @@ void bench_report_row(const bench_result *r)
     fmt_q(mo, sizeof mo, r->q.mean_overlap, "%.4f");
     fmt_q(wl, sizeof wl, r->q.wall, "%.4f");
     fmt_rest(rest, sizeof rest, r->q.rest);
-    if (r->ref != NULL && r->ref != r->who && r->ref_median == r->ref_median)
-        snprintf(ratio, sizeof ratio, "%.2fx", r->median / r->ref_median);
+    if (r->ref != NULL && r->ref != r->who && r->ref_median == r->ref_median) /* as the tables */
+        snprintf(ratio, sizeof ratio, "%.2fx", r->sleep ? r->mean / r->ref_mean : r->median / r->ref_median);
     double spread = r->median > 0 ? 100.0 * (r->max_median - r->min_median) / r->median : 0;
     printf("%-19s %7d %-5s %-13s %8.3f %8.3f %8.3f %6.1f %8.2f %7.0f %7s %7s %7s %7s %7.3f %6s %4d %7s",
            r->scene, (int)r->n, sl, r->who->label, r->median, r->mean, r->p95, spread, r->ns_body,
@@ -106,8 +106,8 @@ void bench_report_machine(FILE *f)
         load[strcspn(load, "\n")] = 0;
         fclose(l);
     }
-    fprintf(f, "machine: %ld cpus, %s (family %s model %s); load average %s\n",
-            sysconf(_SC_NPROCESSORS_ONLN), model, family, modelno, load);
+    fprintf(f, "machine: %ld cpus, %s (family %s model %s), AVX2+FMA %s; load average %s\n",
+            sysconf(_SC_NPROCESSORS_ONLN), model, family, modelno, bench_cpu_has_avx2() ? "yes" : "no", load);
 }
 
 /* ---------------------------------------------------------------- the tables */
@@ -325,7 +325,11 @@ void bench_report_summary(const bench_result *rs, int32_t nr, const bench_entran
           rs, nr, who, nwho, ROWS_PILES, 1, 1, cell_rest, 10);
     table("== memory: bytes per body held at the end (all bodies, static too), sleeping off",
           rs, nr, who, nwho, ROWS_PILES, 0, 0, cell_bytes, 13);
-    table("== free scenes (no shapes): ns per body-step (median); x: against rigid's",
+    table(bench_cpu_has_avx2()
+              ? "== free scenes (no shapes): ns per body-step (median; this CPU has AVX2, which a GCC/glibc "
+                "x86-64 build of rigid picks at load); x: against rigid's"
+              : "== free scenes (no shapes): ns per body-step (median; no AVX2 here: rigid's portable pass); "
+                "x: against rigid's",
           rs, nr, who, nwho, ROWS_FREE, 0, 0, cell_ns, 13);
     print_capped(rs, nr);
     print_stage_costs(rs, nr);

@@ -11,7 +11,7 @@
 
 #include "bench.h"
 
-static int v3_cpu_has_avx2(void)
+int bench_cpu_has_avx2(void)
 {
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
     __builtin_cpu_init();
@@ -60,7 +60,7 @@ int bench_v3_load(const char *dir, const bench_engine *out[2], char *why, size_t
     int loaded = 0;
     for (int b = 0; b < 2; b++) {
         snprintf(path, sizeof path, "%s/libbench-v3-%s.so", base, builds[b]);
-        if (b == 1 && !v3_cpu_has_avx2()) {
+        if (b == 1 && !bench_cpu_has_avx2()) {
             v3_say(why, why_size, "Box2D v3 AVX2 build skipped: this CPU lacks AVX2 or FMA");
             continue;
         }
