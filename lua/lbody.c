@@ -32,15 +32,22 @@ lbody *lbody_check(lua_State *L, int i)
 rg_world *lbody_world_of(lua_State *L, const lbody *b)
 {
     if (b->world->w == NULL) luaL_error(L, "attempt to use a body of a closed world");
+    if (b->retired) luaL_error(L, "attempt to use a destroyed body");
     return b->world->w;
+}
+
+rg_body lbody_handle(lua_State *L, const lbody *b)
+{
+    lbody_world_of(L, b);
+    return b->h;
 }
 
 int lbody_info(lua_State *L, int idx, lrigid_body_info *out)
 {
     lbody *b = lbody_test(L, idx);
-    int32_t kind, sensor;
-    rg_vec2 half;
     if (b == NULL) return 0;
+    /* A live body's shape comes from the library; a destroyed one keeps what it had. */
+    lbody_refresh(b);
     out->handle = b->h;
     out->serial = b->serial;
     out->type = b->type;
@@ -48,23 +55,13 @@ int lbody_info(lua_State *L, int idx, lrigid_body_info *out)
     out->size[0] = b->size[0];
     out->size[1] = b->size[1];
     out->sensor = b->sensor;
-    /* A live body's shape comes from the library; a destroyed one keeps what was set. */
-    if (b->world->w != NULL && rg_body_get_shape(b->world->w, b->h, &kind, &half) == RG_OK &&
-        rg_body_is_sensor(b->world->w, b->h, &sensor) == RG_OK) {
-        out->shape = kind == RG_SHAPE_CIRCLE ? LRIGID_SHAPE_CIRCLE
-                     : kind == RG_SHAPE_AABB ? LRIGID_SHAPE_AABB : LRIGID_SHAPE_NONE;
-        out->size[0] = (double)half.x;
-        out->size[1] = (double)half.y;
-        out->sensor = sensor;
-    }
     lua_getiuservalue(L, idx, LBODY_UV_NAME);
     out->name = lua_tostring(L, -1);   /* the body value holds the string */
     lua_pop(L, 1);
     return 1;
 }
 
-/* A new body value for handle h of the world at world_idx, left on the stack. */
-static lbody *lbody_new(lua_State *L, int world_idx, rg_body h)
+lbody *lbody_new(lua_State *L, int world_idx, rg_body h)
 {
     lworld *lw = (lworld *)lua_touserdata(L, world_idx);
     lbody *b = (lbody *)lua_newuserdatauv(L, sizeof *b, 2);
@@ -106,14 +103,23 @@ void lbody_push(lua_State *L, int world_idx, rg_body h)
     }
 }
 
-/* ---------------------------------------------------------------- world:body{...} */
-
-/* Inserts t[k] = v for (t, k, v) on the stack, under lua_pcall. */
-static int lbody_rawset3(lua_State *L)
+/* A body was just created with handle h in the world at world_idx.  A value of a body
+ * destroyed with that handle can only exist when a restore took the world back to before
+ * that body was made and the world has now given its handle out again (the same creation
+ * after a rollback, or another): that old value stays destroyed for good (retired), and
+ * the handle's value is the new one.  Never allocates. */
+static void lbody_retire(lua_State *L, int world_idx, rg_body h)
 {
-    lua_rawset(L, 1);
-    return 0;
+    lua_getiuservalue(L, world_idx, LWORLD_UV_DEAD);
+    if (lua_rawgeti(L, -1, lbody_key(h)) != LUA_TNIL) {
+        ((lbody *)lua_touserdata(L, -1))->retired = 1;
+        lua_pushnil(L);
+        lua_rawseti(L, -3, lbody_key(h));
+    }
+    lua_pop(L, 2);
 }
+
+/* ---------------------------------------------------------------- world:body{...} */
 
 static const char *const lbody_options[] = {
     "type", "mass", "x", "y", "vx", "vy", "gravity_scale", "drag", "surface_friction",
@@ -138,7 +144,7 @@ static int lbody_create(lua_State *L)
     rg_body h = 0;
     rg_status st;
     lbody *b;
-    const char *failed = NULL, *hint = NULL;
+    const char *failed = NULL;
 
     if (lua_isnoneornil(L, 2)) {
         lua_settop(L, 1);
@@ -183,55 +189,38 @@ static int lbody_create(lua_State *L)
     b->type = type;
 
     st = rg_body_create(w, type, mass, (rg_vec2){ x, y }, &h);
-    if (st != RG_OK)
-        return lcheck_status(L, st, what,
-                             type == RG_BODY_DYNAMIC ? "a dynamic body needs a finite mass > 0"
-                                                     : NULL);
-#define TRY(cond, call, opt, why)                                               \
+    if (st != RG_OK) return lcheck_status(L, w, st, what);
+#define TRY(cond, call, opt)                                                    \
     if (st == RG_OK && (cond)) {                                                \
         st = (call);                                                            \
-        if (st != RG_OK) { failed = (opt); hint = (why); }                      \
+        if (st != RG_OK) failed = (opt);                                        \
     }
-    TRY(has_v, rg_body_set_velocity(w, h, (rg_vec2){ vx, vy }), "vx/vy",
-        "a static body cannot move")
-    TRY(has_gscale, rg_body_set_gravity_scale(w, h, gscale), "gravity_scale", NULL)
-    TRY(has_drag, rg_body_set_drag(w, h, drag[0], drag[1]), "drag",
-        "linear and quadratic must be >= 0")
-    TRY(has_sfric, rg_body_set_surface_friction(w, h, sfric[0], sfric[1]), "surface_friction",
-        "mu and normal_force must be >= 0")
-    TRY(has_limits, rg_body_set_speed_limits(w, h, min_speed, max_speed), "min_speed/max_speed",
-        "both >= 0, and max_speed >= min_speed unless max_speed is 0")
-    TRY(has_ud, rg_body_set_user_data(w, h, (uint64_t)user_data), "user_data", NULL)
-    TRY(has_circle, rg_body_set_circle(w, h, circle), "circle", "radius must be > 0")
-    TRY(has_aabb, rg_body_set_aabb(w, h, aabb[0], aabb[1]), "aabb", "half sizes must be > 0")
-    TRY(has_rest, rg_body_set_restitution(w, h, restitution), "restitution",
-        "restitution must be in [0, 1]")
-    TRY(has_fric, rg_body_set_friction(w, h, friction), "friction", "friction must be >= 0")
-    TRY(has_sensor, rg_body_set_sensor(w, h, sensor), "sensor", NULL)
-    TRY(has_filter, rg_body_set_filter(w, h, (uint32_t)category, (uint32_t)mask),
-        "category/mask", NULL)
-    TRY(has_one_way, rg_body_set_one_way(w, h, (rg_vec2){ one_way[0], one_way[1] }), "one_way",
-        "a unit normal, or {0, 0}")
+    TRY(has_v, rg_body_set_velocity(w, h, (rg_vec2){ vx, vy }), "vx/vy")
+    TRY(has_gscale, rg_body_set_gravity_scale(w, h, gscale), "gravity_scale")
+    TRY(has_drag, rg_body_set_drag(w, h, drag[0], drag[1]), "drag")
+    TRY(has_sfric, rg_body_set_surface_friction(w, h, sfric[0], sfric[1]), "surface_friction")
+    TRY(has_limits, rg_body_set_speed_limits(w, h, min_speed, max_speed), "min_speed/max_speed")
+    TRY(has_ud, rg_body_set_user_data(w, h, (uint64_t)user_data), "user_data")
+    TRY(has_circle, rg_body_set_circle(w, h, circle), "circle")
+    TRY(has_aabb, rg_body_set_aabb(w, h, aabb[0], aabb[1]), "aabb")
+    TRY(has_rest, rg_body_set_restitution(w, h, restitution), "restitution")
+    TRY(has_fric, rg_body_set_friction(w, h, friction), "friction")
+    TRY(has_sensor, rg_body_set_sensor(w, h, sensor), "sensor")
+    TRY(has_filter, rg_body_set_filter(w, h, (uint32_t)category, (uint32_t)mask), "category/mask")
+    TRY(has_one_way, rg_body_set_one_way(w, h, (rg_vec2){ one_way[0], one_way[1] }), "one_way")
 #undef TRY
     if (st != RG_OK) {
+        char why[LCHECK_REASON_SIZE];
+        lcheck_copyreason(w, st, why, sizeof why);   /* before the destroy replaces it */
         rg_body_destroy(w, h);
-        lua_pushfstring(L, "%s: option '%s'", what, failed);
-        return lcheck_status(L, st, lua_tostring(L, -1), hint);
+        return luaL_error(L, "%s: option '%s': %s", what, failed, why);
     }
-    if (has_circle) {
-        b->shape = LRIGID_SHAPE_CIRCLE;
-        b->size[0] = (double)circle;
-    } else if (has_aabb) {
-        b->shape = LRIGID_SHAPE_AABB;
-        b->size[0] = (double)aabb[0];
-        b->size[1] = (double)aabb[1];
-    }
-    b->sensor = sensor;
     b->h = h;
     b->serial = lw->next_serial++;
+    lbody_refresh(b);
     /* live[h] = body, protected: under a memory cap the insert may fail, and then the body
      * must not stay behind in the world. */
-    lua_pushcfunction(L, lbody_rawset3);
+    lua_pushcfunction(L, lworld_rawset3);
     lua_getiuservalue(L, 1, LWORLD_UV_LIVE);
     lua_pushinteger(L, lbody_key(h));
     lua_pushvalue(L, -4);
@@ -240,6 +229,7 @@ static int lbody_create(lua_State *L)
         b->h = 0;
         return lua_error(L);
     }
+    lbody_retire(L, 1, h);
     return 1;
 }
 
@@ -289,7 +279,7 @@ static int lbody_destroy(lua_State *L)
 {
     lbody *b = lbody_check(L, 1);
     rg_world *w = b->world->w;
-    if (w == NULL || rg_body_destroy(w, b->h) != RG_OK) {
+    if (w == NULL || b->retired || rg_body_destroy(w, b->h) != RG_OK) {
         lua_pushboolean(L, 0);
         return 1;
     }
@@ -313,18 +303,21 @@ static int lbody_close(lua_State *L)
     return 0;
 }
 
+static int lbody_live(const lbody *b)
+{
+    return b->world->w != NULL && !b->retired && rg_body_is_valid(b->world->w, b->h);
+}
+
 static int lbody_is_valid(lua_State *L)
 {
-    lbody *b = lbody_check(L, 1);
-    lua_pushboolean(L, b->world->w != NULL && rg_body_is_valid(b->world->w, b->h));
+    lua_pushboolean(L, lbody_live(lbody_check(L, 1)));
     return 1;
 }
 
 static int lbody_tostring(lua_State *L)
 {
     lbody *b = lbody_check(L, 1);
-    int valid = b->world->w != NULL && rg_body_is_valid(b->world->w, b->h);
-    const char *state = !valid ? "destroyed"
+    const char *state = !lbody_live(b) ? "destroyed"
                         : b->type >= 0 && b->type <= 2 ? lcheck_type_names[b->type] : "?";
     lua_getiuservalue(L, 1, LBODY_UV_NAME);
     if (lua_isstring(L, -1))
@@ -335,12 +328,14 @@ static int lbody_tostring(lua_State *L)
 }
 
 /* Two values of one body are the same body (the binding keeps one value per body, so this
- * only matters for a value made after the first was collected). */
+ * only matters for a value made after the first was collected).  A retired value is only
+ * itself: its handle names a body created after it. */
 static int lbody_eq(lua_State *L)
 {
     const lbody *a = lbody_test(L, 1);
     const lbody *b = lbody_test(L, 2);
-    lua_pushboolean(L, a != NULL && b != NULL && a->h == b->h && a->world == b->world);
+    lua_pushboolean(L, a != NULL && b != NULL && a->h == b->h && a->world == b->world &&
+                           !a->retired && !b->retired);
     return 1;
 }
 
@@ -366,8 +361,8 @@ static int lbody_id(lua_State *L)
 
 /* ---------------------------------------------------------------- getters and setters
  *
- * One function per shape of call; each method below names the library call, its Lua name
- * (for errors) and, for setters, the rule an invalid argument broke. */
+ * One function per shape of call; each method below names the library call and its Lua
+ * name (for errors: the library says which argument broke which rule). */
 
 typedef rg_status (*lbody_getvec)(const rg_world *, rg_body, rg_vec2 *);
 typedef rg_status (*lbody_setvec)(rg_world *, rg_body, rg_vec2);
@@ -379,66 +374,71 @@ typedef rg_status (*lbody_getflag)(const rg_world *, rg_body, int32_t *);
 static int lbody_get_vec2(lua_State *L, lbody_getvec get, const char *what)
 {
     lbody *b = lbody_check(L, 1);
+    rg_world *w = lbody_world_of(L, b);
     rg_vec2 v;
-    LCHECK(L, get(lbody_world_of(L, b), b->h, &v), what, NULL);
+    LCHECK(L, w, get(w, b->h, &v), what);
     lcheck_pushvec2(L, v);
     return 2;
 }
 
-static int lbody_set_vec2(lua_State *L, lbody_setvec set, const char *what, const char *hint)
+static int lbody_set_vec2(lua_State *L, lbody_setvec set, const char *what)
 {
     lbody *b = lbody_check(L, 1);
     rg_vec2 v = lcheck_vec2(L, 2);
-    LCHECK(L, set(lbody_world_of(L, b), b->h, v), what, hint);
+    rg_world *w = lbody_world_of(L, b);
+    LCHECK(L, w, set(w, b->h, v), what);
     return 0;
 }
 
 static int lbody_get_real(lua_State *L, lbody_getreal get, const char *what)
 {
     lbody *b = lbody_check(L, 1);
+    rg_world *w = lbody_world_of(L, b);
     rg_real v = 0;
-    LCHECK(L, get(lbody_world_of(L, b), b->h, &v), what, NULL);
+    LCHECK(L, w, get(w, b->h, &v), what);
     lcheck_pushreal(L, v);
     return 1;
 }
 
-static int lbody_set_real(lua_State *L, lbody_setreal set, const char *what, const char *hint)
+static int lbody_set_real(lua_State *L, lbody_setreal set, const char *what)
 {
     lbody *b = lbody_check(L, 1);
     rg_real v = lcheck_real(L, 2);
-    LCHECK(L, set(lbody_world_of(L, b), b->h, v), what, hint);
+    rg_world *w = lbody_world_of(L, b);
+    LCHECK(L, w, set(w, b->h, v), what);
     return 0;
 }
 
 /* Two numbers; when opt, an omitted second one is 0. */
-static int lbody_set_real2(lua_State *L, lbody_setreal2 set, int opt, const char *what,
-                           const char *hint)
+static int lbody_set_real2(lua_State *L, lbody_setreal2 set, int opt, const char *what)
 {
     lbody *b = lbody_check(L, 1);
     rg_real first = lcheck_real(L, 2), second = opt ? lcheck_optreal(L, 3, 0) : lcheck_real(L, 3);
-    LCHECK(L, set(lbody_world_of(L, b), b->h, first, second), what, hint);
+    rg_world *w = lbody_world_of(L, b);
+    LCHECK(L, w, set(w, b->h, first, second), what);
     return 0;
 }
 
 static int lbody_get_flag(lua_State *L, lbody_getflag get, const char *what)
 {
     lbody *b = lbody_check(L, 1);
+    rg_world *w = lbody_world_of(L, b);
     int32_t v = 0;
-    LCHECK(L, get(lbody_world_of(L, b), b->h, &v), what, NULL);
+    LCHECK(L, w, get(w, b->h, &v), what);
     lua_pushboolean(L, v != 0);
     return 1;
 }
 
 #define LBODY_GET_VEC2(name, call)                                              \
     static int lbody_##name(lua_State *L) { return lbody_get_vec2(L, call, #name); }
-#define LBODY_SET_VEC2(name, call, hint)                                        \
-    static int lbody_##name(lua_State *L) { return lbody_set_vec2(L, call, #name, hint); }
+#define LBODY_SET_VEC2(name, call)                                              \
+    static int lbody_##name(lua_State *L) { return lbody_set_vec2(L, call, #name); }
 #define LBODY_GET_REAL(name, call)                                              \
     static int lbody_##name(lua_State *L) { return lbody_get_real(L, call, #name); }
-#define LBODY_SET_REAL(name, call, hint)                                        \
-    static int lbody_##name(lua_State *L) { return lbody_set_real(L, call, #name, hint); }
-#define LBODY_SET_REAL2(name, call, opt, hint)                                  \
-    static int lbody_##name(lua_State *L) { return lbody_set_real2(L, call, opt, #name, hint); }
+#define LBODY_SET_REAL(name, call)                                              \
+    static int lbody_##name(lua_State *L) { return lbody_set_real(L, call, #name); }
+#define LBODY_SET_REAL2(name, call, opt)                                        \
+    static int lbody_##name(lua_State *L) { return lbody_set_real2(L, call, opt, #name); }
 #define LBODY_GET_FLAG(name, call)                                              \
     static int lbody_##name(lua_State *L) { return lbody_get_flag(L, call, #name); }
 
@@ -446,22 +446,20 @@ LBODY_GET_VEC2(position, rg_body_get_position)
 LBODY_GET_VEC2(velocity, rg_body_get_velocity)
 LBODY_GET_VEC2(interpolated_position, rg_body_get_interpolated_position)
 LBODY_GET_VEC2(acceleration, rg_body_get_acceleration)
-LBODY_SET_VEC2(set_position, rg_body_set_position, NULL)
-LBODY_SET_VEC2(set_velocity, rg_body_set_velocity, "a static body cannot move")
-LBODY_SET_VEC2(apply_force, rg_body_apply_force, NULL)
-LBODY_SET_VEC2(apply_impulse, rg_body_apply_impulse, NULL)
+LBODY_SET_VEC2(set_position, rg_body_set_position)
+LBODY_SET_VEC2(set_velocity, rg_body_set_velocity)
+LBODY_SET_VEC2(apply_force, rg_body_apply_force)
+LBODY_SET_VEC2(apply_impulse, rg_body_apply_impulse)
 LBODY_GET_REAL(mass, rg_body_get_mass)
 LBODY_GET_REAL(restitution, rg_body_get_restitution)
 LBODY_GET_REAL(friction, rg_body_get_friction)
-LBODY_SET_REAL(set_mass, rg_body_set_mass, "mass must be > 0, and only a dynamic body has one")
-LBODY_SET_REAL(set_gravity_scale, rg_body_set_gravity_scale, NULL)
-LBODY_SET_REAL(set_restitution, rg_body_set_restitution, "restitution must be in [0, 1]")
-LBODY_SET_REAL(set_friction, rg_body_set_friction, "friction must be >= 0")
-LBODY_SET_REAL2(set_drag, rg_body_set_drag, 1, "linear and quadratic must be >= 0")
-LBODY_SET_REAL2(set_surface_friction, rg_body_set_surface_friction, 0,
-                "mu and normal_force must be >= 0")
-LBODY_SET_REAL2(set_speed_limits, rg_body_set_speed_limits, 1,
-                "both >= 0, and max_speed >= min_speed unless max_speed is 0")
+LBODY_SET_REAL(set_mass, rg_body_set_mass)
+LBODY_SET_REAL(set_gravity_scale, rg_body_set_gravity_scale)
+LBODY_SET_REAL(set_restitution, rg_body_set_restitution)
+LBODY_SET_REAL(set_friction, rg_body_set_friction)
+LBODY_SET_REAL2(set_drag, rg_body_set_drag, 1)
+LBODY_SET_REAL2(set_surface_friction, rg_body_set_surface_friction, 0)
+LBODY_SET_REAL2(set_speed_limits, rg_body_set_speed_limits, 1)
 LBODY_GET_FLAG(grounded, rg_body_is_grounded)
 LBODY_GET_FLAG(is_sensor, rg_body_is_sensor)
 LBODY_GET_FLAG(is_awake, rg_body_is_awake)
@@ -469,8 +467,9 @@ LBODY_GET_FLAG(is_awake, rg_body_is_awake)
 static int lbody_type(lua_State *L)
 {
     lbody *b = lbody_check(L, 1);
+    rg_world *w = lbody_world_of(L, b);
     int32_t t = 0;
-    LCHECK(L, rg_body_get_type(lbody_world_of(L, b), b->h, &t), "type", NULL);
+    LCHECK(L, w, rg_body_get_type(w, b->h, &t), "type");
     lua_pushstring(L, lcheck_type_names[t >= 0 && t <= 2 ? t : 0]);
     return 1;
 }
@@ -478,8 +477,9 @@ static int lbody_type(lua_State *L)
 static int lbody_user_data(lua_State *L)
 {
     lbody *b = lbody_check(L, 1);
+    rg_world *w = lbody_world_of(L, b);
     uint64_t u = 0;
-    LCHECK(L, rg_body_get_user_data(lbody_world_of(L, b), b->h, &u), "user_data", NULL);
+    LCHECK(L, w, rg_body_get_user_data(w, b->h, &u), "user_data");
     lua_pushinteger(L, (lua_Integer)u);
     return 1;
 }
@@ -488,21 +488,38 @@ static int lbody_set_user_data(lua_State *L)
 {
     lbody *b = lbody_check(L, 1);
     lua_Integer u = luaL_checkinteger(L, 2);
-    LCHECK(L, rg_body_set_user_data(lbody_world_of(L, b), b->h, (uint64_t)u), "set_user_data",
-           NULL);
+    rg_world *w = lbody_world_of(L, b);
+    LCHECK(L, w, rg_body_set_user_data(w, b->h, (uint64_t)u), "set_user_data");
     return 0;
 }
 
 /* ---------------------------------------------------------------- shapes and contacts */
 
+/* What the binding keeps of a live body's shape for when it is destroyed (lbody_info),
+ * read from the library. */
+void lbody_refresh(lbody *b)
+{
+    rg_world *w = b->world->w;
+    int32_t kind, sensor, type;
+    rg_vec2 half;
+    if (w == NULL || b->retired || !rg_body_is_valid(w, b->h)) return;
+    if (rg_body_get_type(w, b->h, &type) == RG_OK) b->type = type;
+    if (rg_body_get_shape(w, b->h, &kind, &half) == RG_OK) {
+        b->shape = kind == RG_SHAPE_CIRCLE ? LRIGID_SHAPE_CIRCLE
+                   : kind == RG_SHAPE_AABB ? LRIGID_SHAPE_AABB : LRIGID_SHAPE_NONE;
+        b->size[0] = (double)half.x;
+        b->size[1] = (double)half.y;
+    }
+    if (rg_body_is_sensor(w, b->h, &sensor) == RG_OK) b->sensor = sensor;
+}
+
 static int lbody_set_circle(lua_State *L)
 {
     lbody *b = lbody_check(L, 1);
     rg_real r = lcheck_real(L, 2);
-    LCHECK(L, rg_body_set_circle(lbody_world_of(L, b), b->h, r), "set_circle",
-           "radius must be > 0");
-    b->shape = LRIGID_SHAPE_CIRCLE;
-    b->size[0] = (double)r;
+    rg_world *w = lbody_world_of(L, b);
+    LCHECK(L, w, rg_body_set_circle(w, b->h, r), "set_circle");
+    lbody_refresh(b);
     return 0;
 }
 
@@ -510,19 +527,18 @@ static int lbody_set_aabb(lua_State *L)
 {
     lbody *b = lbody_check(L, 1);
     rg_real hw = lcheck_real(L, 2), hh = lcheck_real(L, 3);
-    LCHECK(L, rg_body_set_aabb(lbody_world_of(L, b), b->h, hw, hh), "set_aabb",
-           "half sizes must be > 0");
-    b->shape = LRIGID_SHAPE_AABB;
-    b->size[0] = (double)hw;
-    b->size[1] = (double)hh;
+    rg_world *w = lbody_world_of(L, b);
+    LCHECK(L, w, rg_body_set_aabb(w, b->h, hw, hh), "set_aabb");
+    lbody_refresh(b);
     return 0;
 }
 
 static int lbody_clear_shape(lua_State *L)
 {
     lbody *b = lbody_check(L, 1);
-    LCHECK(L, rg_body_clear_shape(lbody_world_of(L, b), b->h), "clear_shape", NULL);
-    b->shape = LRIGID_SHAPE_NONE;
+    rg_world *w = lbody_world_of(L, b);
+    LCHECK(L, w, rg_body_clear_shape(w, b->h), "clear_shape");
+    lbody_refresh(b);
     return 0;
 }
 
@@ -530,9 +546,10 @@ static int lbody_clear_shape(lua_State *L)
 static int lbody_shape(lua_State *L)
 {
     lbody *b = lbody_check(L, 1);
+    rg_world *w = lbody_world_of(L, b);
     int32_t kind = 0;
     rg_vec2 half;
-    LCHECK(L, rg_body_get_shape(lbody_world_of(L, b), b->h, &kind, &half), "shape", NULL);
+    LCHECK(L, w, rg_body_get_shape(w, b->h, &kind, &half), "shape");
     if (kind == RG_SHAPE_CIRCLE) {
         lua_pushliteral(L, "circle");
         lcheck_pushreal(L, half.x);
@@ -551,7 +568,8 @@ static int lbody_set_sensor(lua_State *L)
 {
     lbody *b = lbody_check(L, 1);
     int s = lcheck_boolean(L, 2);
-    LCHECK(L, rg_body_set_sensor(lbody_world_of(L, b), b->h, s), "set_sensor", NULL);
+    rg_world *w = lbody_world_of(L, b);
+    LCHECK(L, w, rg_body_set_sensor(w, b->h, s), "set_sensor");
     b->sensor = s;
     return 0;
 }
@@ -560,15 +578,17 @@ static int lbody_set_filter(lua_State *L)
 {
     lbody *b = lbody_check(L, 1);
     uint32_t category = lcheck_mask(L, 2), mask = lcheck_mask(L, 3);
-    LCHECK(L, rg_body_set_filter(lbody_world_of(L, b), b->h, category, mask), "set_filter", NULL);
+    rg_world *w = lbody_world_of(L, b);
+    LCHECK(L, w, rg_body_set_filter(w, b->h, category, mask), "set_filter");
     return 0;
 }
 
 static int lbody_filter(lua_State *L)
 {
     lbody *b = lbody_check(L, 1);
+    rg_world *w = lbody_world_of(L, b);
     uint32_t category = 0, mask = 0;
-    LCHECK(L, rg_body_get_filter(lbody_world_of(L, b), b->h, &category, &mask), "filter", NULL);
+    LCHECK(L, w, rg_body_get_filter(w, b->h, &category, &mask), "filter");
     lua_pushinteger(L, (lua_Integer)category);
     lua_pushinteger(L, (lua_Integer)mask);
     return 2;
@@ -577,7 +597,8 @@ static int lbody_filter(lua_State *L)
 static int lbody_wake(lua_State *L)
 {
     lbody *b = lbody_check(L, 1);
-    LCHECK(L, rg_body_wake(lbody_world_of(L, b), b->h), "wake", NULL);
+    rg_world *w = lbody_world_of(L, b);
+    LCHECK(L, w, rg_body_wake(w, b->h), "wake");
     return 0;
 }
 

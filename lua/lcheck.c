@@ -131,13 +131,29 @@ void lcheck_pushvec2(lua_State *L, rg_vec2 v)
     lua_pushnumber(L, (lua_Number)v.y);
 }
 
-int lcheck_status(lua_State *L, rg_status s, const char *what, const char *hint)
+/* The library's reason names the C function first ("rg_body_set_circle: radius ..."); the
+ * binding's message names the Lua call instead, so that prefix is left out. */
+const char *lcheck_reason(const rg_world *w, rg_status s)
+{
+    const char *why = w != NULL ? rg_world_last_error(w) : "";
+    const char *colon = strstr(why, ": ");
+    if (why[0] == '\0') return rg_status_string(s);
+    if (strncmp(why, "rg_", 3) == 0 && colon != NULL) why = colon + 2;
+    return why;
+}
+
+void lcheck_copyreason(const rg_world *w, rg_status s, char *out, size_t size)
+{
+    size_t n = strlen(lcheck_reason(w, s));
+    if (n >= size) n = size - 1;
+    memcpy(out, lcheck_reason(w, s), n);
+    out[n] = '\0';
+}
+
+int lcheck_status(lua_State *L, const rg_world *w, rg_status s, const char *what)
 {
     if (s == RG_ERR_STALE_HANDLE) return luaL_error(L, "attempt to use a destroyed body");
-    if (s == RG_ERR_OUT_OF_MEMORY) return luaL_error(L, "%s: not enough memory", what);
-    if (s == RG_ERR_INVALID_ARGUMENT && hint != NULL)
-        return luaL_error(L, "%s: invalid argument (%s)", what, hint);
-    return luaL_error(L, "%s: %s", what, rg_status_string(s));
+    return luaL_error(L, "%s: %s", what, lcheck_reason(w, s));
 }
 
 /* ---------------------------------------------------------------- option tables */

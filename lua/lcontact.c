@@ -17,7 +17,7 @@ static int lcontact_contacts(lua_State *L)
     int32_t n = rg_body_get_contacts(w, b->h, NULL, 0), i;
     rg_contact *c;
     lua_settop(L, 1);
-    if (n < 0) return lcheck_status(L, n, "contacts", NULL);
+    if (n < 0) return lcheck_status(L, w, n, "contacts");
     lua_getiuservalue(L, 1, LBODY_UV_WORLD);   /* 2: the world value */
     c = (rg_contact *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *c, 0);
     if (n > 0) n = rg_body_get_contacts(w, b->h, c, n);
@@ -45,16 +45,17 @@ static int lcontact_set_one_way(lua_State *L)
 {
     lbody *b = lbody_check(L, 1);
     rg_vec2 n = lcheck_vec2(L, 2);
-    LCHECK(L, rg_body_set_one_way(lbody_world_of(L, b), b->h, n), "set_one_way",
-           "a unit normal, or (0, 0)");
+    rg_world *w = lbody_world_of(L, b);
+    LCHECK(L, w, rg_body_set_one_way(w, b->h, n), "set_one_way");
     return 0;
 }
 
 static int lcontact_one_way(lua_State *L)
 {
     lbody *b = lbody_check(L, 1);
+    rg_world *w = lbody_world_of(L, b);
     rg_vec2 n;
-    LCHECK(L, rg_body_get_one_way(lbody_world_of(L, b), b->h, &n), "one_way", NULL);
+    LCHECK(L, w, rg_body_get_one_way(w, b->h, &n), "one_way");
     lcheck_pushvec2(L, n);
     return 2;
 }
@@ -65,8 +66,8 @@ static int lcontact_pass_through(lua_State *L)
     lbody *o = lbody_test(L, 2);
     if (o == NULL) return luaL_typeerror(L, 2, LBODY_MT);
     if (o->world != b->world) return luaL_argerror(L, 2, "a body of the same world");
-    LCHECK(L, rg_body_pass_through(lbody_world_of(L, b), b->h, o->h), "pass_through",
-           "two different bodies with shapes");
+    rg_world *w = lbody_world_of(L, b);
+    LCHECK(L, w, rg_body_pass_through(w, b->h, lbody_handle(L, o)), "pass_through");
     return 0;
 }
 
@@ -83,7 +84,7 @@ static const char *const lcontact_move_options[] = { "mask", "response", NULL };
  * (rg_body_set_position would not). */
 static int lcontact_move(lua_State *L)
 {
-    const char *what = "move", *hint = "a body with a shape and a finite target";
+    const char *what = "move";
     lbody *b = lbody_check(L, 1);
     rg_world *w = lbody_world_of(L, b);
     rg_vec2 target = lcheck_vec2(L, 2), start, end;
@@ -99,15 +100,15 @@ static int lcontact_move(lua_State *L)
     }
     lua_settop(L, 1);
     lua_getiuservalue(L, 1, LBODY_UV_WORLD);   /* 2: the world value */
-    LCHECK(L, rg_body_get_position(w, b->h, &start), what, NULL);
-    LCHECK(L, rg_body_move(w, b->h, target, (uint32_t)mask, response, &end, hits, cap, &n), what,
-           hint);
+    LCHECK(L, w, rg_body_get_position(w, b->h, &start), what);
+    LCHECK(L, w, rg_body_move(w, b->h, target, (uint32_t)mask, response, &end, hits, cap, &n),
+           what);
     if (n > cap) {
-        LCHECK(L, rg_body_move(w, b->h, start, 0, RG_MOVE_CROSS, NULL, NULL, 0, NULL), what, NULL);
+        LCHECK(L, w, rg_body_move(w, b->h, start, 0, RG_MOVE_CROSS, NULL, NULL, 0, NULL), what);
         hits = (rg_ray_hit *)lua_newuserdatauv(L, (size_t)n * sizeof *hits, 0);
         cap = n;
-        LCHECK(L, rg_body_move(w, b->h, target, (uint32_t)mask, response, &end, hits, cap, &n),
-               what, hint);
+        LCHECK(L, w, rg_body_move(w, b->h, target, (uint32_t)mask, response, &end, hits, cap, &n),
+               what);
         if (n > cap) n = cap;   /* the same path crosses the same shapes */
     }
     lworld_charge(L, rg_world_body_count(w));

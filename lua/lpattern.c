@@ -392,6 +392,7 @@ static const char *find_plain(mstate *ms, const char *s, size_t ls, const char *
 static int find_aux(lua_State *L, int find)
 {
     size_t ls, lp, init;
+    int plain;
     const char *s = luaL_checklstring(L, 1, &ls);
     const char *p = luaL_checklstring(L, 2, &lp);
     mstate ms;
@@ -402,7 +403,12 @@ static int find_aux(lua_State *L, int find)
     }
     prepare(&ms, L, s, ls, p, lp);
     ms.units = ls / 64;   /* a plain scan or a pass over the subject */
-    if (find && (lua_toboolean(L, 4) || !has_specials(p, lp))) {
+    plain = find && lua_toboolean(L, 4);
+    if (find && !plain) {
+        ms.units += lp;   /* the look for specials: a unit per pattern byte */
+        plain = !has_specials(p, lp);
+    }
+    if (plain) {
         const char *hit = find_plain(&ms, s + init, ls - init, p, lp);
         flush(&ms);
         if (hit != NULL) {

@@ -1,6 +1,6 @@
 /* lquery.c: what the Lua binding reads out of a world after a step: contact events
  * (world:events) and queries (world:raycast, raycast_all, query_aabb, query_point,
- * cast_circle, cast_box).  Bodies come back as the values scripts hold (lbody_push); the
+ * cast_circle, cast_box, stopped).  Bodies come back as the values scripts hold (lbody_push); the
  * bodies visited are charged to the host. */
 #include "lrigid_int.h"
 
@@ -21,7 +21,7 @@ void lquery_pushevents(lua_State *L, int idx)
     if (w == NULL) luaL_error(L, "attempt to use a closed world");
     idx = lua_absindex(L, idx);
     n = rg_world_get_contact_events(w, NULL, 0);
-    if (n < 0) lcheck_status(L, n, "events", NULL);
+    if (n < 0) lcheck_status(L, w, n, "events");
     ev = (rg_contact_event *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *ev, 0);
     if (n > 0) n = rg_world_get_contact_events(w, ev, n);
     lworld_charge(L, n);
@@ -78,7 +78,7 @@ static int lquery_raycast(lua_State *L)
     uint32_t mask = lcheck_optmask(L, 6);
     rg_ray_hit hit;
     int32_t r = rg_world_raycast(w, o, d, mask, &hit);
-    if (r < 0) return lcheck_status(L, r, "raycast", NULL);
+    if (r < 0) return lcheck_status(L, w, r, "raycast");
     lworld_charge(L, rg_world_body_count(w));
     return lquery_returnhit(L, r, &hit);
 }
@@ -91,7 +91,7 @@ static int lquery_aabb(lua_State *L)
     int32_t n = rg_world_query_aabb(w, lo, hi, mask, NULL, 0), i;
     rg_body *out;
     lua_settop(L, 1);
-    if (n < 0) return lcheck_status(L, n, "query_aabb", "lower must not exceed upper");
+    if (n < 0) return lcheck_status(L, w, n, "query_aabb");
     out = (rg_body *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *out, 0);
     if (n > 0) n = rg_world_query_aabb(w, lo, hi, mask, out, n);
     lworld_charge(L, rg_world_body_count(w));
@@ -124,7 +124,7 @@ static int lquery_raycast_all(lua_State *L)
     int32_t n = rg_world_raycast_all(w, o, d, mask, NULL, 0), i;
     rg_ray_hit *out;
     lua_settop(L, 1);
-    if (n < 0) return lcheck_status(L, n, "raycast_all", NULL);
+    if (n < 0) return lcheck_status(L, w, n, "raycast_all");
     out = (rg_ray_hit *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *out, 0);
     if (n > 0) n = rg_world_raycast_all(w, o, d, mask, out, n);
     lworld_charge(L, rg_world_body_count(w));
@@ -144,7 +144,7 @@ static int lquery_point(lua_State *L)
     int32_t n = rg_world_query_point(w, p, mask, NULL, 0), i;
     rg_body *out;
     lua_settop(L, 1);
-    if (n < 0) return lcheck_status(L, n, "query_point", NULL);
+    if (n < 0) return lcheck_status(L, w, n, "query_point");
     out = (rg_body *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *out, 0);
     if (n > 0) n = rg_world_query_point(w, p, mask, out, n);
     lworld_charge(L, n);
@@ -156,17 +156,35 @@ static int lquery_point(lua_State *L)
     return 1;
 }
 
+/* world:stopped(): the bodies the last stepping call stopped at the edge of the range. */
+static int lquery_stopped(lua_State *L)
+{
+    rg_world *w = lworld_checkopen(L, 1);
+    int32_t n = rg_world_get_stopped(w, NULL, 0), i;
+    rg_body *out;
+    lua_settop(L, 1);
+    if (n < 0) return lcheck_status(L, w, n, "stopped");
+    out = (rg_body *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *out, 0);
+    if (n > 0) n = rg_world_get_stopped(w, out, n);
+    lworld_charge(L, n);
+    lua_createtable(L, n, 0);
+    for (i = 0; i < n; i++) {
+        lbody_push(L, 1, out[i]);
+        lua_rawseti(L, -2, i + 1);
+    }
+    return 1;
+}
+
 /* world:cast_circle(r, x, y, dx, dy [, mask]) and world:cast_box(hw, hh, x, y, dx, dy
  * [, mask]): the returns of world:raycast. */
-static int lquery_cast(lua_State *L, int32_t shape, rg_vec2 size, int at, const char *what,
-                       const char *hint)
+static int lquery_cast(lua_State *L, int32_t shape, rg_vec2 size, int at, const char *what)
 {
     rg_world *w = lworld_checkopen(L, 1);
     rg_vec2 o = lcheck_vec2(L, at), d = lcheck_vec2(L, at + 2);
     uint32_t mask = lcheck_optmask(L, at + 4);
     rg_ray_hit hit;
     int32_t r = rg_world_cast_shape(w, shape, size, o, d, mask, &hit);
-    if (r < 0) return lcheck_status(L, r, what, hint);
+    if (r < 0) return lcheck_status(L, w, r, what);
     lworld_charge(L, rg_world_body_count(w));
     return lquery_returnhit(L, r, &hit);
 }
@@ -174,13 +192,13 @@ static int lquery_cast(lua_State *L, int32_t shape, rg_vec2 size, int at, const 
 static int lquery_cast_circle(lua_State *L)
 {
     rg_vec2 size = { lcheck_real(L, 2), 0 };
-    return lquery_cast(L, RG_SHAPE_CIRCLE, size, 3, "cast_circle", "radius must be > 0");
+    return lquery_cast(L, RG_SHAPE_CIRCLE, size, 3, "cast_circle");
 }
 
 static int lquery_cast_box(lua_State *L)
 {
     rg_vec2 size = lcheck_vec2(L, 2);
-    return lquery_cast(L, RG_SHAPE_AABB, size, 4, "cast_box", "half sizes must be > 0");
+    return lquery_cast(L, RG_SHAPE_AABB, size, 4, "cast_box");
 }
 
 const luaL_Reg lquery_world_methods[] = {
@@ -189,6 +207,7 @@ const luaL_Reg lquery_world_methods[] = {
     { "raycast_all", lquery_raycast_all },
     { "query_aabb", lquery_aabb },
     { "query_point", lquery_point },
+    { "stopped", lquery_stopped },
     { "cast_circle", lquery_cast_circle },
     { "cast_box", lquery_cast_box },
     { NULL, NULL }

@@ -30,6 +30,9 @@
  *   world:set_solver_iterations(velocity [, position]) (position kept when omitted)
  *   world:solver_iterations() --> velocity, position  set_contact_tuning(slop, bias_rate,
  *   max_push, restitution_threshold)  set_continuous(on)  awake_body_count()  touching_count()
+ *   world:save() --> string   world:restore(string)   world:hash() --> integer (64 bits)
+ *                      (a restore brings back the saved bodies as the values they had, and
+ *                      destroys those made since; a bad string raises and changes nothing)
  *   world:close() (also <close> and garbage collection)  world:is_open()
  *   body:position() / set_position(x, y)   body:velocity() / set_velocity(vx, vy)
  *   body:apply_force(fx, fy)  body:apply_impulse(ix, iy)  body:acceleration()
@@ -109,7 +112,7 @@ LRIGID_API int luaopen_rigid(lua_State *L)
 {
     static const luaL_Reg *const world[] = { lworld_methods, lbody_world_methods,
                                              lspring_world_methods, lquery_world_methods,
-                                             NULL };
+                                             lsnap_world_methods, NULL };
     static const luaL_Reg *const body[] = { lbody_methods, lcontact_methods, NULL };
     static const luaL_Reg *const spring[] = { lspring_methods, NULL };
     int32_t v = rg_version();

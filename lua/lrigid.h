@@ -38,13 +38,17 @@ typedef struct lrigid_body_info {
 } lrigid_body_info;
 
 typedef struct lrigid_hooks {
-    /* Cost of work done in C on the script's behalf (body-steps of a world:step, bodies
-     * visited by a query), in units comparable to VM instructions.  Must not raise. */
+    /* Cost of work done in C on the script's behalf (a world:step by the touching pairs,
+     * awake bodies and springs it leaves; bodies visited by a query), in units comparable
+     * to VM instructions.  Must not raise. */
     void (*charge)(lua_State *L, void *ud, double units);
     /* Called after world:step or world:advance took `steps` (> 0) steps; the world is at
      * stack index world_index.  May raise a Lua error, which reaches the script. */
     void (*after_step)(lua_State *L, void *ud, int world_index, int steps);
     void *ud;
+    /* The task system every world made from now on steps with (rg_world_set_task_system);
+     * NULL: one thread.  Not copied: it must outlive the worlds. */
+    const rg_task_system *tasks;
 } lrigid_hooks;
 
 /* Installs hooks for every world of this state (NULL removes them).  The struct is not

@@ -7,6 +7,7 @@
  *   lspring.c  springs, world:spring                               lcheck, lworld, lbody
  *   lquery.c   contact events and queries                          lcheck, lworld, lbody
  *   lcontact.c a body's contacts, one-way, passing through, moving  lcheck, lbody, lquery
+ *   lsnapshot.c world:save, world:restore, world:hash               lcheck, lworld, lbody
  *   lrigid.c   luaopen_rigid (metatables) and the host interface    all of the above
  *
  * Every method gets its class's metatable as upvalue 1 (lrigid.c), which lcheck_self
@@ -47,13 +48,19 @@ int lcheck_enum(lua_State *L, int i, const char *const names[], const char *what
 void lcheck_pushreal(lua_State *L, rg_real v);
 void lcheck_pushvec2(lua_State *L, rg_vec2 v);   /* pushes x, y */
 
-/* Raises for a failed call: names the call (what) and says what was wrong (hint, which may
- * be NULL, for RG_ERR_INVALID_ARGUMENT). */
-int lcheck_status(lua_State *L, rg_status s, const char *what, const char *hint);
-#define LCHECK(L, call, what, hint)                                             \
+/* Raises for the failed call of status s on w: "what: " and the library's reason
+ * (rg_world_last_error without the C function's name, which what replaces); w may be NULL
+ * (rg_status_string then).  A stale handle raises "attempt to use a destroyed body". */
+int lcheck_status(lua_State *L, const rg_world *w, rg_status s, const char *what);
+/* That reason, valid until the next call on w, and a copy of it for a failure that must
+ * undo library calls (which change it) before it raises. */
+#define LCHECK_REASON_SIZE 256   /* rg_world_last_error holds at most 199 bytes */
+const char *lcheck_reason(const rg_world *w, rg_status s);
+void lcheck_copyreason(const rg_world *w, rg_status s, char *out, size_t size);
+#define LCHECK(L, w, call, what)                                                \
     do {                                                                        \
         rg_status st_ = (call);                                                 \
-        if (st_ != RG_OK) lcheck_status((L), st_, (what), (hint));              \
+        if (st_ != RG_OK) lcheck_status((L), (w), st_, (what));                 \
     } while (0)
 
 /* Option tables (the table at index t; what names the call in messages).  Every key must
@@ -79,9 +86,12 @@ extern const char *const lcheck_type_names[];
 /* Uservalues of a world: the bodies created through Lua, by handle.  `live` holds every
  * live one strongly (a body lives in its world whether or not a script keeps its value),
  * `dead` holds destroyed ones weakly, so a body keeps its identity for as long as anyone
- * holds it. */
-#define LWORLD_UV_LIVE 1
-#define LWORLD_UV_DEAD 2
+ * holds it.  `springs` holds the spring values weakly by handle (lspring.c).  A restore
+ * (lsnapshot.c) puts every body value where the restored world says it is. */
+#define LWORLD_UV_LIVE    1
+#define LWORLD_UV_DEAD    2
+#define LWORLD_UV_SPRINGS 3
+#define LWORLD_UVS        3
 
 typedef struct lworld {
     rg_world *w;             /* NULL once closed */
@@ -94,6 +104,9 @@ rg_world *lworld_checkopen(lua_State *L, int i);
 /* Reports work done in C for the script (see lrigid_hooks.charge). */
 void lworld_charge(lua_State *L, double units);
 void lworld_sethooks(lua_State *L, const lrigid_hooks *hooks);
+/* t[k] = v for (t, k, v) on the stack: called with lua_pcall, to insert into the world's
+ * tables where a memory error must be caught and the library call undone. */
+int lworld_rawset3(lua_State *L);
 /* rigid.world{...}; upvalue 1 is the world metatable. */
 int lworld_new(lua_State *L);
 int lworld_gc(lua_State *L);
@@ -109,17 +122,24 @@ extern const luaL_Reg lworld_meta[];
 typedef struct lbody {
     rg_body h;
     lworld *world;           /* kept alive by uservalue LBODY_UV_WORLD */
-    lua_Integer serial;
+    lua_Integer serial;      /* creation order in its world (a restore puts back the saved) */
     int32_t type;
-    int32_t shape;           /* LRIGID_SHAPE_*, as the binding last set it */
+    int32_t shape;           /* LRIGID_SHAPE_*, as the library last had it (lbody_refresh) */
     double size[2];
     int32_t sensor;
+    int32_t retired;         /* 1: destroyed for good, h now names a later body (lbody.c) */
 } lbody;
 
 lbody *lbody_test(lua_State *L, int i);         /* NULL when i is not a body */
 lbody *lbody_check(lua_State *L, int i);        /* methods only: compares with upvalue 1 */
-/* The open world of body b; raises when it is closed. */
+/* The open world of body b; raises when it is closed or b is retired. */
 rg_world *lbody_world_of(lua_State *L, const lbody *b);
+/* b's handle, for a body given as an argument; raises as lbody_world_of does. */
+rg_body lbody_handle(lua_State *L, const lbody *b);
+/* A new body value for handle h of the world at world_idx (no name, serial 0), pushed. */
+lbody *lbody_new(lua_State *L, int world_idx, rg_body h);
+/* Reads b's type, shape and sensor flag from the library when b is live. */
+void lbody_refresh(lbody *b);
 /* Pushes the body value for handle h of the world at world_idx (see lrigid_pushbody). */
 void lbody_push(lua_State *L, int world_idx, rg_body h);
 int lbody_info(lua_State *L, int idx, lrigid_body_info *out);
@@ -146,5 +166,10 @@ extern const luaL_Reg lquery_world_methods[];
 
 /* body:contacts, body:pass_through, body:set_one_way, body:one_way, body:move */
 extern const luaL_Reg lcontact_methods[];
+
+/* ---------------------------------------------------------------- lsnapshot.c */
+
+/* world:save, world:restore, world:hash */
+extern const luaL_Reg lsnap_world_methods[];
 
 #endif

@@ -7,14 +7,22 @@
 #include <lua.h>
 #include <lualib.h>
 
+#include "lcount.h"
+#include "llong.h"
 #include "lpattern.h"
 #include "lsandbox.h"
+#include "lutf8.h"
 
 #define HOOK_EVERY      1000            /* instructions between count hooks */
 #define BYTES_PER_UNIT  64              /* allocation charged to the budget */
 #define REPORT_HEADROOM (1u << 20)      /* memory the error report may use past the cap */
 #define LOOP_BATCH      1024            /* C loop iterations between budget checks */
 #define NORMAL_MASK     (LUA_MASKCOUNT | LUA_MASKCALL)
+/* Each block is counted as malloc sizes it: glibc's chunk is the request plus one size
+ * word, rounded to 16, at least 32 bytes. */
+#define CHUNK_OVERHEAD  8
+#define COMPARE_BYTES_PER_UNIT 64       /* memcmp: 90 bytes in the 1.8 ns of one instruction */
+#define PARSE_BYTES_PER_UNIT   1        /* the lexer skips a blank in 1.4 ns */
 
 struct lsandbox {
     size_t used, peak, limit;
@@ -25,6 +33,8 @@ struct lsandbox {
     int count;               /* instructions per count hook */
     lpattern_meter meter;
     char where[200];         /* "file:line" of the script at the last count hook */
+    llong longs;             /* live long strings: every instruction and call is charged
+                                what one comparison of two of them may read */
 };
 
 static const char modules_key = 'm';
@@ -38,25 +48,44 @@ static lsandbox *getsb(lua_State *L)
 
 /* ---------------------------------------------------------------- memory */
 
+static size_t block_cost(size_t n)
+{
+    size_t c = (n + CHUNK_OVERHEAD + 15) & ~(size_t)15;
+    return c < 32 ? 32 : c;
+}
+
 static void *sb_alloc(void *ud, void *ptr, size_t osize, size_t nsize)
 {
     lsandbox *sb = (lsandbox *)ud;
-    size_t old = ptr != NULL ? osize : 0;   /* for a new block, osize is a type tag */
+    size_t old = ptr != NULL ? block_cost(osize) : 0;   /* for a new block, osize is a type tag */
+    size_t cost, limit = sb->limit + (sb->reporting ? REPORT_HEADROOM : 0);
     void *p;
     if (nsize == 0) {
+        if (ptr != NULL) llong_forget(&sb->longs, ptr, osize);
         free(ptr);
         sb->used -= old;
         return NULL;
     }
-    if (nsize > old) {
-        size_t grow = nsize - old;
-        size_t limit = sb->limit + (sb->reporting ? REPORT_HEADROOM : 0);
+    if (nsize > ((size_t)-1) / 2) return NULL;
+    cost = block_cost(nsize);
+    if (cost > old) {
+        size_t grow = cost - old;
         if (sb->limit != 0 && (grow > limit || sb->used > limit - grow)) return NULL;
-        if (sb->budget > 0) sb->spent += (double)(grow / BYTES_PER_UNIT);
+        if (sb->budget > 0 && nsize > (ptr != NULL ? osize : 0))
+            sb->spent += (double)((nsize - (ptr != NULL ? osize : 0)) / BYTES_PER_UNIT);
     }
     p = realloc(ptr, nsize);
-    if (p == NULL) return nsize <= old ? ptr : NULL;   /* a shrink may keep the block */
-    sb->used = sb->used - old + nsize;
+    if (p == NULL) return ptr != NULL && nsize <= osize ? ptr : NULL;   /* a shrink may keep it */
+    if (ptr == NULL && osize == LUA_TSTRING && nsize >= LLONG_MIN_BLOCK) {
+        size_t before = sb->longs.bytes;
+        size_t room = sb->limit == 0 ? (size_t)-1 : limit - (sb->used < limit ? sb->used : limit);
+        if (!llong_add(&sb->longs, p, nsize, room)) {
+            free(p);
+            return NULL;
+        }
+        sb->used += sb->longs.bytes - before;   /* the table counts against the cap */
+    }
+    sb->used = sb->used - old + cost;
     if (sb->used > sb->peak) sb->peak = sb->used;
     return p;
 }
@@ -102,14 +131,16 @@ static void arm(lua_State *L, const lsandbox *sb)
 static void hook(lua_State *L, lua_Debug *ar)
 {
     lsandbox *sb = getsb(L);
+    /* Each instruction or call since the last hook may have compared two long strings. */
+    double per = 1.0 + (double)(llong_take_peak(&sb->longs) / COMPARE_BYTES_PER_UNIT);
     if (ar->event == LUA_HOOKCOUNT) {
-        sb->spent += (double)lua_gethookcount(L);
+        sb->spent += (double)lua_gethookcount(L) * per;
         /* Where the script is, for a memory error (Lua reports those without a handler,
          * so without a position); once per count hook, which is cheap. */
         if (lua_getinfo(L, "Sl", ar) && ar->currentline > 0)
             snprintf(sb->where, sizeof sb->where, "%s:%d", ar->short_src, ar->currentline);
     } else {
-        sb->spent += 1.0;
+        sb->spent += per;
     }
     if (!sb->exhausted && sb->spent <= sb->budget) {
         if (lua_gethookmask(L) != NORMAL_MASK) arm(L, sb);   /* from an earlier entry */
@@ -156,12 +187,32 @@ static void meter_charge(lua_State *L, void *ud, size_t units)
 
 /* ---------------------------------------------------------------- safe library functions */
 
-/* load(chunk [, chunkname [, mode [, env]]]) with mode forced to "t": no bytecode. */
+/* The reader of a load(function): the script's reader (upvalue 1), its pieces charged to
+ * the budget by size before the parser reads them. */
+static int metered_reader(lua_State *L)
+{
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_call(L, 0, 1);
+    if (lua_type(L, -1) == LUA_TSTRING)
+        charge_now(L, getsb(L), (double)(lua_rawlen(L, -1) / PARSE_BYTES_PER_UNIT));
+    return 1;
+}
+
+/* load(chunk [, chunkname [, mode [, env]]]) with mode forced to "t": no bytecode.  The
+ * parser runs in C, so its input is charged by size: a string chunk before parsing, a reader
+ * function's pieces as they come. */
 static int safe_load(lua_State *L)
 {
     int top = lua_gettop(L), n;
     int t = lua_type(L, 1);
     luaL_argexpected(L, t == LUA_TSTRING || t == LUA_TFUNCTION, 1, "string or function");
+    if (t == LUA_TSTRING) {
+        charge_now(L, getsb(L), (double)(lua_rawlen(L, 1) / PARSE_BYTES_PER_UNIT));
+    } else {
+        lua_pushvalue(L, 1);
+        lua_pushcclosure(L, metered_reader, 1);
+        lua_replace(L, 1);
+    }
     if (!lua_isnoneornil(L, 2)) luaL_checkstring(L, 2);
     if (!lua_isnoneornil(L, 3)) luaL_checkstring(L, 3);
     lua_settop(L, 4);
@@ -473,6 +524,10 @@ static int open_libraries(lua_State *L)
     lua_getglobal(L, LUA_STRLIBNAME);
     lpattern_open(L, -1, &sb->meter);
     lua_pop(L, 1);
+    lua_getglobal(L, LUA_UTF8LIBNAME);
+    lutf8_open(L, -1, &sb->meter);
+    lua_pop(L, 1);
+    lcount_open(L, &sb->meter);
     replace(L, LUA_TABLIBNAME, "insert", safe_insert, 0);
     replace(L, LUA_TABLIBNAME, "remove", safe_remove, 0);
     replace(L, LUA_TABLIBNAME, "move", safe_move, 0);
@@ -501,6 +556,12 @@ static int open_libraries(lua_State *L)
     return 0;
 }
 
+static void sb_free(lsandbox *sb)
+{
+    llong_free(&sb->longs);
+    free(sb);
+}
+
 lua_State *lsandbox_new(size_t memory_limit, long long budget, lsandbox **out)
 {
     lsandbox *sb = (lsandbox *)calloc(1, sizeof *sb);
@@ -513,13 +574,13 @@ lua_State *lsandbox_new(size_t memory_limit, long long budget, lsandbox **out)
     sb->meter.ud = sb;
     L = lua_newstate(sb_alloc, sb);
     if (L == NULL) {
-        free(sb);
+        sb_free(sb);
         return NULL;
     }
     lua_pushcfunction(L, open_libraries);
     if (lua_pcall(L, 0, 0, 0) != LUA_OK) {
         lua_close(L);
-        free(sb);
+        sb_free(sb);
         return NULL;
     }
     *out = sb;
@@ -535,7 +596,7 @@ void lsandbox_close(lua_State *L, lsandbox *sb)
         arm(L, sb);
         lua_close(L);
     }
-    free(sb);
+    sb_free(sb);
 }
 
 void lsandbox_provide(lua_State *L, const char *name, lua_CFunction openf)
@@ -567,11 +628,16 @@ static int msgh(lua_State *L)
 
 int lsandbox_call(lua_State *L, lsandbox *sb, int nargs, int nresults)
 {
-    int base = lua_gettop(L) - nargs, status;
     sb->spent = 0;
     sb->exhausted = 0;
-    sb->reporting = 0;
     sb->where[0] = '\0';
+    return lsandbox_continue(L, sb, nargs, nresults);
+}
+
+int lsandbox_continue(lua_State *L, lsandbox *sb, int nargs, int nresults)
+{
+    int base = lua_gettop(L) - nargs, status;
+    sb->reporting = 0;
     arm(L, sb);
     lua_pushcfunction(L, msgh);
     lua_insert(L, base);
@@ -579,6 +645,17 @@ int lsandbox_call(lua_State *L, lsandbox *sb, int nargs, int nresults)
     lua_remove(L, base);
     sb->reporting = 0;
     return status;
+}
+
+int lsandbox_getfunction(lua_State *L, const char *name)
+{
+    lua_pushglobaltable(L);
+    lua_pushstring(L, name);
+    lua_rawget(L, -2);
+    lua_remove(L, -2);
+    if (lua_type(L, -1) == LUA_TFUNCTION) return 1;
+    lua_pop(L, 1);
+    return 0;
 }
 
 const char *lsandbox_where(const lsandbox *sb)

@@ -11,8 +11,14 @@ typedef struct lsandbox lsandbox;
 
 /* A new state whose allocations stop at memory_limit bytes (0: no cap) and whose every entry
  * (lsandbox_call) may spend `budget` units (0: no budget).  A unit is one VM instruction;
- * a function call, 64 bytes allocated, and C work reported through lsandbox_charge cost
- * units too.  Libraries: base (load only for text, no dofile/loadfile), string (no dump;
+ * a function call, 64 bytes allocated, a byte of source parsed (load), a byte scanned by
+ * utf8.len/codepoint/offset/codes, and C work reported through lsandbox_charge cost units
+ * too; while two long strings (over 40 bytes) live, every instruction and call is charged
+ * 1 + 2^(k+1)/64 units, 2^(k+1) bounding the shorter one: what one ==, < or rawequal
+ * between them may read (inside one instruction, where the VM cannot be metered; llong.h).
+ * The cap counts each block as malloc sizes it (request + 8, rounded to 16, at least 32)
+ * and the sandbox's table of long strings: fragmentation and the process's own code and
+ * libraries are not counted.  Libraries: base (load only for text, no dofile/loadfile), string (no dump;
  * metered patterns), table, math (seeded with 0, so runs repeat), utf8, coroutine, and os
  * with only clock and time.  Returns NULL when out of memory. */
 lua_State *lsandbox_new(size_t memory_limit, long long budget, lsandbox **out);
@@ -29,6 +35,14 @@ int lsandbox_loadfile(lua_State *L, const char *path);
 /* lua_pcall with a fresh budget and a traceback handler.  On error the message at the top
  * of the stack reads "file:line: message" followed by the traceback. */
 int lsandbox_call(lua_State *L, lsandbox *sb, int nargs, int nresults);
+/* The same under what is left of the current entry's budget: several calls that share one
+ * budget (a host frame: update and every contact call after it).  Once that budget is
+ * spent, the call raises at its first instruction. */
+int lsandbox_continue(lua_State *L, lsandbox *sb, int nargs, int nresults);
+
+/* Pushes the global function `name`, looked up without metamethods, and returns 1; pushes
+ * nothing and returns 0 when that global is not a function. */
+int lsandbox_getfunction(lua_State *L, const char *name);
 
 /* Adds units of work done in C on the script's behalf.  Never raises: when the budget runs
  * out the script stops at its next instruction. */

@@ -1,4 +1,9 @@
-/* lspring.c: Lua spring values: world:spring{...}, spring:destroy(), spring:is_valid(). */
+/* lspring.c: Lua spring values: world:spring{...}, spring:destroy(), spring:is_valid().
+ *
+ * The world's `springs` uservalue maps handles to spring values weakly, for one case: a
+ * restore can take the world back to before a spring was made, and the world then gives
+ * that handle out again; the old value is retired then (destroyed for good), so that it
+ * never names the new spring. */
 #include "lrigid_int.h"
 
 #define LSPRING_UV_WORLD 1   /* the world value, which keeps the world alive */
@@ -6,6 +11,7 @@
 typedef struct lspring {
     uint64_t h;
     lworld *world;
+    int retired;
 } lspring;
 
 static const char *const lspring_options[] = { "a", "b", "anchor", "rest_length", "stiffness",
@@ -19,6 +25,7 @@ static lbody *lspring_option_body(lua_State *L, int t, const char *key, const ch
     b = lbody_test(L, -1);
     if (b == NULL) lcheck_option_error(L, what, key, "a body");
     if (b->world != lw) luaL_error(L, "%s: option '%s' is a body of another world", what, key);
+    lbody_handle(L, b);
     lua_pop(L, 1);
     return b;
 }
@@ -47,14 +54,29 @@ static int lspring_create(lua_State *L)
     s = (lspring *)lua_newuserdatauv(L, sizeof *s, 1);
     s->h = 0;
     s->world = (lworld *)lua_touserdata(L, 1);
+    s->retired = 0;
     luaL_setmetatable(L, LSPRING_MT);
     lua_pushvalue(L, 1);
     lua_setiuservalue(L, -2, LSPRING_UV_WORLD);
-    LCHECK(L, rg_spring_create(w, a->h, b != NULL ? b->h : 0, (rg_vec2){ anchor[0], anchor[1] },
-                               rest, k, damping, &h),
-           what,
-           "rest_length, stiffness and damping must be >= 0, and a and b distinct live bodies");
+    lua_getiuservalue(L, 1, LWORLD_UV_SPRINGS);   /* 4 */
+    lua_pushcfunction(L, lworld_rawset3);
+    lua_pushvalue(L, 4);
+    LCHECK(L, w, rg_spring_create(w, a->h, b != NULL ? b->h : 0,
+                                  (rg_vec2){ anchor[0], anchor[1] }, rest, k, damping, &h),
+           what);
+    /* The value that had this handle before is retired (see the top).  The insert may fail
+     * under a memory cap, and then the spring must not stay behind. */
+    lua_pushinteger(L, (lua_Integer)h);
+    if (lua_rawget(L, 4) == LUA_TUSERDATA) ((lspring *)lua_touserdata(L, -1))->retired = 1;
+    lua_pop(L, 1);
+    lua_pushinteger(L, (lua_Integer)h);
+    lua_pushvalue(L, 3);
+    if (lua_pcall(L, 3, 0, 0) != LUA_OK) {
+        rg_spring_destroy(w, h);
+        return lua_error(L);
+    }
     s->h = h;
+    lua_settop(L, 3);
     return 1;
 }
 
@@ -65,13 +87,13 @@ static lspring *lspring_check(lua_State *L, int i)
 
 static int lspring_live(const lspring *s)
 {
-    return s->world->w != NULL && rg_spring_is_valid(s->world->w, s->h);
+    return s->world->w != NULL && !s->retired && rg_spring_is_valid(s->world->w, s->h);
 }
 
 static int lspring_destroy(lua_State *L)
 {
     lspring *s = lspring_check(L, 1);
-    lua_pushboolean(L, s->world->w != NULL && rg_spring_destroy(s->world->w, s->h) == RG_OK);
+    lua_pushboolean(L, lspring_live(s) && rg_spring_destroy(s->world->w, s->h) == RG_OK);
     return 1;
 }
 

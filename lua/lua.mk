@@ -9,14 +9,16 @@ LOVE_BIN ?= love
 
 LUA_MOD := $(B)/rigid.so
 LUA_HOST := $(B)/rigid
-LUA_HOST_SRC := lua/host.c lua/lsandbox.c lua/lpattern.c lua/lsvg.c lua/lsample.c lua/lhtml.c \
-                lua/lframes.c lua/lenc.c
+LUA_HOST_SRC := lua/host.c lua/lsandbox.c lua/llong.c lua/lcount.c lua/lpattern.c lua/lutf8.c \
+                lua/lsvg.c lua/lsample.c lua/lhtml.c lua/lframes.c lua/lenc.c
 # The replay viewer's page, compiled in as an array of lines (lua/viewer.mk).
 LUA_VIEWER := $(B)/lua/lviewer_html.o
 LUA_HOST_OBJ := $(patsubst lua/%.c,$(B)/lua/%.o,$(LUA_HOST_SRC)) $(LUA_VIEWER)
 ZLIB_LIBS := $(shell pkg-config --libs zlib 2>/dev/null || echo -lz)
-# The binding: checks, world, body, springs, events and queries, registration.
-LUA_BIND_SRC := lua/lcheck.c lua/lworld.c lua/lbody.c lua/lspring.c lua/lquery.c lua/lcontact.c lua/lrigid.c
+# The binding: checks, world, body, springs, events and queries, contacts, snapshots,
+# registration.
+LUA_BIND_SRC := lua/lcheck.c lua/lworld.c lua/lbody.c lua/lspring.c lua/lquery.c lua/lcontact.c \
+                lua/lsnapshot.c lua/lrigid.c
 LUA_BIND_OBJ := $(patsubst lua/%.c,$(B)/lua/%.o,$(LUA_BIND_SRC))
 LUA_PATFUZZ := $(B)/lua/pattern_fuzz
 
@@ -109,7 +111,7 @@ check-readme-lua: $(LUA_HOST) $(B)/readme_example.lua
 LUA_CMOD_DIR ?= $(PREFIX)/lib/lua/5.4
 LUA_LMOD_DIR ?= $(PREFIX)/share/lua/5.1
 LUA_JIT_FILES := rigid_jit.lua rigid_jit/ffi.lua rigid_jit/check.lua rigid_jit/query.lua \
-                 rigid_jit/contact.lua
+                 rigid_jit/contact.lua rigid_jit/snapshot.lua
 .PHONY: install-lua uninstall-lua rock-build rock-install check-rock
 ifeq ($(REAL),float)
 install: install-lua

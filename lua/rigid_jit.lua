@@ -5,12 +5,14 @@
 -- Its parts: rigid_jit/ffi.lua loads the library (RIGID_LIBRARY, else librigid) and
 -- declares the header; rigid_jit/check.lua checks arguments and words the errors;
 -- rigid_jit/query.lua has the events and queries of a world, rigid_jit/contact.lua a body's
--- contacts, passing through and moving (as lua/lquery.c and lua/lcontact.c).
+-- contacts, passing through and moving, rigid_jit/snapshot.lua world:save, world:restore
+-- and world:hash (as lua/lquery.c, lua/lcontact.c and lua/lsnapshot.c).
 -- Bodies, worlds and springs are tables with a protected metatable.  A body is one value
 -- wherever it appears (world:body, world:bodies, events, queries), so tables can be keyed
 -- by it, also after it is destroyed, for as long as anyone holds it; a world stays alive
--- while any of its bodies is held.  Where LuaJIT has no 64-bit integers, body:id() and a
--- large body:user_data() are int64_t cdata, and user data may be given as such cdata.
+-- while any of its bodies is held.  Where LuaJIT has no 64-bit integers, body:id(),
+-- world:hash() and a large body:user_data() are int64_t cdata, and user data may be given
+-- as such cdata.
 local ffi = require "ffi"
 local lib = require "rigid_jit.ffi"
 local check = require "rigid_jit.check"
@@ -44,16 +46,20 @@ end
 
 -- ---------------------------------------------------------------- objects
 --
--- A world is { box, live, dead, next serial }.  box, a struct rigid_jit_world, holds the
--- rg_world pointer (NULL once closed) and destroys the library world when it is collected,
--- which is once neither the world value nor any of its bodies is held.  live maps handle
--- keys to the bodies created through Lua (strongly: a body lives in its world whether or
--- not a script holds it); dead maps destroyed ones, weakly.
--- A body is { box, handle, world, serial, type at creation, name }; a spring
--- { box, handle, world }.  The library checks every handle, so a table that poses as one
--- of these can only name bodies of a world that is still open.
-local W_BOX, W_LIVE, W_DEAD, W_SERIAL = 1, 2, 3, 4
-local B_BOX, B_H, B_WORLD, B_SERIAL, B_TYPE, B_NAME = 1, 2, 3, 4, 5, 6
+-- A world is { box, live, dead, next serial, springs }.  box, a struct rigid_jit_world,
+-- holds the rg_world pointer (NULL once closed) and destroys the library world when it is
+-- collected, which is once neither the world value nor any of its bodies is held.  live
+-- maps handle keys to the bodies created through Lua (strongly: a body lives in its world
+-- whether or not a script holds it); dead maps destroyed ones, weakly; springs maps handle
+-- keys to spring values, weakly.
+-- A body is { box, handle, world, serial, type, name, retired }; a spring { box, handle,
+-- world, retired }.  retired is true for a value destroyed for good because a restore took
+-- the world back to before it was made and the world gave its handle out again (as
+-- lua/lbody.c and lua/lspring.c).  The library checks every handle, so a table that poses
+-- as one of these can only name bodies of a world that is still open.
+local W_BOX, W_LIVE, W_DEAD, W_SERIAL, W_SPRINGS = 1, 2, 3, 4, 5
+local B_BOX, B_H, B_WORLD, B_SERIAL, B_TYPE, B_NAME, B_RETIRED = 1, 2, 3, 4, 5, 6, 7
+local S_RETIRED = 4
 local World, Body, Spring = {}, {}, {}
 local world_mt = { __index = World, __metatable = WORLD }
 local body_mt = { __index = Body, __metatable = BODY }
@@ -91,7 +97,14 @@ local function body_wh(b)
   if getmetatable(b) ~= BODY then typeerror(1, BODY, b) end
   local p = b[B_BOX].w
   if p == nil then raise("attempt to use a body of a closed world") end
+  if b[B_RETIRED] then raise("attempt to use a destroyed body") end
   return p, b[B_H]
+end
+
+-- The handle of body b given as an argument (checked as body_wh does).
+local function body_handle(b)
+  local _, h = body_wh(b)
+  return h
 end
 
 local function new_body(world, h, type_, serial, name)
@@ -125,25 +138,26 @@ local function new_world(...)
     integrator = option_enum(opts, "integrator", what, INTEGRATORS)
     dt = option_real(opts, "dt", what)
     max_steps = option_integer(opts, "max_steps", what, 1, 0x7FFFFFFF)
-    if dt and not (dt > 0) then raise(what .. ": option 'dt' must be > 0") end
   end
   local box = ffi.gc(ffi.new("struct rigid_jit_world"), world_destroy)
   local st = C.rg_world_create(wptr)
-  if st ~= 0 then status_error(st, what) end
-  local p = wptr[0]
+  if st ~= 0 then status_error(nil, st, what) end
+  local p, failed = wptr[0], nil
   box.w = p
-  if st == 0 and gx then st = V.rg_world_set_gravity(p, gx, gy) end
-  if st == 0 and wx then st = V.rg_world_set_wind(p, wx, wy) end
-  if st == 0 and integrator then st = C.rg_world_set_integrator(p, integrator) end
+  if st == 0 and gx then st, failed = V.rg_world_set_gravity(p, gx, gy), "gravity" end
+  if st == 0 and wx then st, failed = V.rg_world_set_wind(p, wx, wy), "wind" end
+  if st == 0 and integrator then st, failed = C.rg_world_set_integrator(p, integrator), "integrator" end
   if st == 0 and (dt or max_steps) then
-    st = C.rg_world_get_fixed_step(p, real, i32)
+    st, failed = C.rg_world_get_fixed_step(p, real, i32), dt and "dt" or "max_steps"
     if st == 0 then st = C.rg_world_set_fixed_step(p, dt or real[0], max_steps or i32[0]) end
   end
   if st ~= 0 then
+    local why = check.reason(p, st)   -- before the destroy frees it
     world_destroy(box)
-    status_error(st, what)
+    raise(("%s: option '%s': %s"):format(what, failed, why))
   end
-  return setmetatable({ box, {}, setmetatable({}, { __mode = "v" }), 1 }, world_mt)
+  return setmetatable({ box, {}, setmetatable({}, { __mode = "v" }), 1,
+                        setmetatable({}, { __mode = "v" }) }, world_mt)
 end
 
 function World.close(w) world_destroy(check_world(w)) end
@@ -160,25 +174,27 @@ end
 function World.step(w, ...)
   local p = open_world(w)
   local st = C.rg_world_step(p, real1(2, ...))
-  if st ~= 0 then status_error(st, "step", "dt must be > 0") end
+  if st ~= 0 then status_error(p, st, "step") end
 end
 
 function World.advance(w, ...)
   local p = open_world(w)
   local st = C.rg_world_advance(p, real1(2, ...), i32)
-  if st ~= 0 then status_error(st, "advance", "frame_time must be >= 0") end
+  if st ~= 0 then status_error(p, st, "advance") end
   return i32[0]
 end
 
 function World.alpha(w)
-  local st = C.rg_world_get_alpha(open_world(w), real)
-  if st ~= 0 then status_error(st, "alpha") end
+  local p = open_world(w)
+  local st = C.rg_world_get_alpha(p, real)
+  if st ~= 0 then status_error(p, st, "alpha") end
   return real[0]
 end
 
 function World.fixed_step(w)
-  local st = C.rg_world_get_fixed_step(open_world(w), real, i32)
-  if st ~= 0 then status_error(st, "fixed_step") end
+  local p = open_world(w)
+  local st = C.rg_world_get_fixed_step(p, real, i32)
+  if st ~= 0 then status_error(p, st, "fixed_step") end
   return real[0], i32[0]
 end
 
@@ -186,31 +202,33 @@ function World.set_fixed_step(w, ...)
   local p = open_world(w)
   local dt, max = real1(2, ...), select(2, ...)
   local st = C.rg_world_get_fixed_step(p, real, i32)
-  if st ~= 0 then status_error(st, "set_fixed_step") end
+  if st ~= 0 then status_error(p, st, "set_fixed_step") end
   max = max == nil and i32[0] or check.checkint32(3, max, true, 1, 0x7FFFFFFF, "max_steps must be >= 1")
   st = C.rg_world_set_fixed_step(p, dt, max)
-  if st ~= 0 then status_error(st, "set_fixed_step", "dt must be > 0") end
+  if st ~= 0 then status_error(p, st, "set_fixed_step") end
 end
 
 -- gravity and wind: a getter and a setter for a world vector.
 local function world_vec2(get, set, name)
   World[name] = function(w)
-    local st = get(open_world(w), vec)
-    if st ~= 0 then status_error(st, name) end
+    local p = open_world(w)
+    local st = get(p, vec)
+    if st ~= 0 then status_error(p, st, name) end
     return vec[0].x, vec[0].y
   end
   World["set_" .. name] = function(w, ...)
     local p = open_world(w)
     local st = set(p, real2(2, ...))
-    if st ~= 0 then status_error(st, "set_" .. name) end
+    if st ~= 0 then status_error(p, st, "set_" .. name) end
   end
 end
 world_vec2(C.rg_world_get_gravity, V.rg_world_set_gravity, "gravity")
 world_vec2(C.rg_world_get_wind, V.rg_world_set_wind, "wind")
 
 function World.integrator(w)
-  local st = C.rg_world_get_integrator(open_world(w), i32)
-  if st ~= 0 then status_error(st, "integrator") end
+  local p = open_world(w)
+  local st = C.rg_world_get_integrator(p, i32)
+  if st ~= 0 then status_error(p, st, "integrator") end
   if i32[0] < 0 or i32[0] > 3 then raise(("integrator: unknown integrator %d"):format(i32[0])) end
   return INTEGRATORS[i32[0] + 1]
 end
@@ -219,7 +237,7 @@ function World.set_integrator(w, ...)
   local p = open_world(w)
   local i = check.checkenum(2, (...), INTEGRATORS, "integrator", select("#", ...) >= 1)
   local st = C.rg_world_set_integrator(p, i)
-  if st ~= 0 then status_error(st, "set_integrator") end
+  if st ~= 0 then status_error(p, st, "set_integrator") end
 end
 
 for _, name in ipairs{ "body_count", "spring_count", "awake_body_count", "touching_count" } do
@@ -230,38 +248,40 @@ end
 function World.set_sleeping(w, ...)
   local p = open_world(w)
   local st = C.rg_world_set_sleeping(p, check.checkboolean(2, (...), select("#", ...) >= 1) and 1 or 0)
-  if st ~= 0 then status_error(st, "set_sleeping") end
+  if st ~= 0 then status_error(p, st, "set_sleeping") end
 end
 
 function World.sleeping(w)
-  local st = C.rg_world_get_sleeping(open_world(w), i32)
-  if st ~= 0 then status_error(st, "sleeping") end
+  local p = open_world(w)
+  local st = C.rg_world_get_sleeping(p, i32)
+  if st ~= 0 then status_error(p, st, "sleeping") end
   return i32[0] ~= 0
 end
 
 function World.set_sleep_thresholds(w, ...)
   local p = open_world(w)
   local st = C.rg_world_set_sleep_thresholds(p, real2(2, ...))
-  if st ~= 0 then status_error(st, "set_sleep_thresholds", "speed >= 0 and time > 0") end
+  if st ~= 0 then status_error(p, st, "set_sleep_thresholds") end
 end
 
 -- Without `position`, the world keeps the position iterations it has.
 function World.set_solver_iterations(w, ...)
   local p, big = open_world(w), 0x7FFFFFFF
   local st = C.rg_world_get_solver_iterations(p, i32, i32 + 1)
-  if st ~= 0 then status_error(st, "set_solver_iterations") end
+  if st ~= 0 then status_error(p, st, "set_solver_iterations") end
   local velocity = check.checkint32(2, (...), select("#", ...) >= 1, -big, big, "out of range")
   local position = select(2, ...)
   position = position == nil and i32[1] or check.checkint32(3, position, true, -big, big, "out of range")
   st = C.rg_world_set_solver_iterations(p, velocity, position)
   if st ~= 0 then
-    status_error(st, "set_solver_iterations", "velocity in 1..64, position in 0..64")
+    status_error(p, st, "set_solver_iterations")
   end
 end
 
 function World.solver_iterations(w)
-  local st = C.rg_world_get_solver_iterations(open_world(w), i32, i32 + 1)
-  if st ~= 0 then status_error(st, "solver_iterations") end
+  local p = open_world(w)
+  local st = C.rg_world_get_solver_iterations(p, i32, i32 + 1)
+  if st ~= 0 then status_error(p, st, "solver_iterations") end
   return i32[0], i32[1]
 end
 
@@ -269,15 +289,14 @@ function World.set_contact_tuning(w, ...)
   local p = open_world(w)
   local st = C.rg_world_set_contact_tuning(p, real4(2, ...))
   if st ~= 0 then
-    status_error(st, "set_contact_tuning",
-                 "slop >= 0, bias_rate in (0, 1], max_push > 0, restitution_threshold >= 0")
+    status_error(p, st, "set_contact_tuning")
   end
 end
 
 function World.set_continuous(w, ...)
   local p = open_world(w)
   local st = C.rg_world_set_continuous(p, check.checkboolean(2, (...), select("#", ...) >= 1) and 1 or 0)
-  if st ~= 0 then status_error(st, "set_continuous") end
+  if st ~= 0 then status_error(p, st, "set_continuous") end
 end
 
 -- Live bodies in creation order.
@@ -303,11 +322,11 @@ local function user_data_bits(v)
 end
 
 -- One setting of a new body: the status so far and the option that failed, then whether
--- the option is present, its name and hint, the call and its arguments.
-local function try(st, failed, hint, present, opt, why, f, ...)
-  if st ~= 0 or not present then return st, failed, hint end
+-- the option is present, its name, the call and its arguments.
+local function try(st, failed, present, opt, f, ...)
+  if st ~= 0 or not present then return st, failed end
   st = f(...)
-  if st ~= 0 then return st, opt, why end
+  if st ~= 0 then return st, opt end
   return 0
 end
 
@@ -340,44 +359,39 @@ function World.body(w, ...)
   if circle and a1 then raise(what .. ": options 'circle' and 'aabb' exclude each other") end
 
   local st = V.rg_body_create(p, type_, mass, x, y, u64)
+  if st ~= 0 then status_error(p, st, what) end
+  local h, failed = u64[0], nil
+  st, failed = try(st, failed, has_v, "vx/vy", V.rg_body_set_velocity, p, h, vx or 0, vy or 0)
+  st, failed = try(st, failed, gscale, "gravity_scale", C.rg_body_set_gravity_scale, p, h, gscale)
+  st, failed = try(st, failed, d1, "drag", C.rg_body_set_drag, p, h, d1, d2)
+  st, failed = try(st, failed, f1, "surface_friction", C.rg_body_set_surface_friction, p, h, f1, f2)
+  st, failed = try(st, failed, min_speed or max_speed, "min_speed/max_speed",
+                   C.rg_body_set_speed_limits, p, h, min_speed or 0, max_speed or 0)
+  st, failed = try(st, failed, user_data, "user_data", C.rg_body_set_user_data, p, h,
+                   user_data and user_data_bits(user_data))
+  st, failed = try(st, failed, circle, "circle", C.rg_body_set_circle, p, h, circle)
+  st, failed = try(st, failed, a1, "aabb", C.rg_body_set_aabb, p, h, a1, a2)
+  st, failed = try(st, failed, restitution, "restitution", C.rg_body_set_restitution, p, h, restitution)
+  st, failed = try(st, failed, friction, "friction", C.rg_body_set_friction, p, h, friction)
+  st, failed = try(st, failed, sensor ~= nil, "sensor", C.rg_body_set_sensor, p, h, sensor and 1 or 0)
+  st, failed = try(st, failed, category or mask, "category/mask", C.rg_body_set_filter, p, h,
+                   category or 1, mask or 0xFFFFFFFF)
+  st, failed = try(st, failed, o1, "one_way", V.rg_body_set_one_way, p, h, o1, o2)
   if st ~= 0 then
-    status_error(st, what, type_ == C.RG_BODY_DYNAMIC and "a dynamic body needs a finite mass > 0" or nil)
-  end
-  local h, failed, hint = u64[0], nil, nil
-  st, failed, hint = try(st, failed, hint, has_v, "vx/vy", "a static body cannot move",
-                         V.rg_body_set_velocity, p, h, vx or 0, vy or 0)
-  st, failed, hint = try(st, failed, hint, gscale, "gravity_scale", nil,
-                         C.rg_body_set_gravity_scale, p, h, gscale)
-  st, failed, hint = try(st, failed, hint, d1, "drag", "linear and quadratic must be >= 0",
-                         C.rg_body_set_drag, p, h, d1, d2)
-  st, failed, hint = try(st, failed, hint, f1, "surface_friction", "mu and normal_force must be >= 0",
-                         C.rg_body_set_surface_friction, p, h, f1, f2)
-  st, failed, hint = try(st, failed, hint, min_speed or max_speed, "min_speed/max_speed",
-                         "both >= 0, and max_speed >= min_speed unless max_speed is 0",
-                         C.rg_body_set_speed_limits, p, h, min_speed or 0, max_speed or 0)
-  st, failed, hint = try(st, failed, hint, user_data, "user_data", nil,
-                         C.rg_body_set_user_data, p, h, user_data and user_data_bits(user_data))
-  st, failed, hint = try(st, failed, hint, circle, "circle", "radius must be > 0",
-                         C.rg_body_set_circle, p, h, circle)
-  st, failed, hint = try(st, failed, hint, a1, "aabb", "half sizes must be > 0",
-                         C.rg_body_set_aabb, p, h, a1, a2)
-  st, failed, hint = try(st, failed, hint, restitution, "restitution", "restitution must be in [0, 1]",
-                         C.rg_body_set_restitution, p, h, restitution)
-  st, failed, hint = try(st, failed, hint, friction, "friction", "friction must be >= 0",
-                         C.rg_body_set_friction, p, h, friction)
-  st, failed, hint = try(st, failed, hint, sensor ~= nil, "sensor", nil,
-                         C.rg_body_set_sensor, p, h, sensor and 1 or 0)
-  st, failed, hint = try(st, failed, hint, category or mask, "category/mask", nil,
-                         C.rg_body_set_filter, p, h, category or 1, mask or 0xFFFFFFFF)
-  st, failed, hint = try(st, failed, hint, o1, "one_way", "a unit normal, or {0, 0}",
-                         V.rg_body_set_one_way, p, h, o1, o2)
-  if st ~= 0 then
+    local why = check.reason(p, st)   -- before the destroy replaces it
     C.rg_body_destroy(p, h)
-    status_error(st, what .. ": option '" .. failed .. "'", hint)
+    raise(("%s: option '%s': %s"):format(what, failed, why))
   end
-  local b = new_body(w, h, type_, w[W_SERIAL], name)
+  local b, key = new_body(w, h, type_, w[W_SERIAL], name), hkey(h)
   w[W_SERIAL] = w[W_SERIAL] + 1
-  w[W_LIVE][hkey(h)] = b
+  w[W_LIVE][key] = b
+  -- A value of a body destroyed with this handle exists only when a restore took the world
+  -- back to before that body was made: it stays destroyed for good (see objects above).
+  local old = w[W_DEAD][key]
+  if old then
+    rawset(old, B_RETIRED, true)   -- bodies have no fields to set from outside
+    w[W_DEAD][key] = nil
+  end
   return b
 end
 
@@ -386,7 +400,7 @@ end
 function Body.destroy(b)
   check_body(b)
   local p, h = b[B_BOX].w, b[B_H]
-  if p == nil or C.rg_body_destroy(p, h) ~= 0 then return false end
+  if p == nil or b[B_RETIRED] or C.rg_body_destroy(p, h) ~= 0 then return false end
   local world, key = b[B_WORLD], hkey(h)
   world[W_LIVE][key] = nil
   world[W_DEAD][key] = b
@@ -395,7 +409,7 @@ end
 
 function Body.is_valid(b)
   local p = check_body(b)[B_BOX].w
-  return p ~= nil and C.rg_body_is_valid(p, b[B_H]) ~= 0
+  return p ~= nil and not b[B_RETIRED] and C.rg_body_is_valid(p, b[B_H]) ~= 0
 end
 
 function Body.name(b) return check_body(b)[B_NAME] end
@@ -412,31 +426,32 @@ function body_mt.__tostring(b)
 end
 
 -- One value per body, so this only matters for a value made after the first was collected.
+-- A retired value is only itself: its handle names a body made after it.
 function body_mt.__eq(a, b)
   return getmetatable(a) == BODY and getmetatable(b) == BODY and a[B_H] == b[B_H] and
-         rawequal(a[B_BOX], b[B_BOX])
+         rawequal(a[B_BOX], b[B_BOX]) and not a[B_RETIRED] and not b[B_RETIRED]
 end
 
 function body_mt.__newindex(b)
   raise("attempt to index a rigid.body value (bodies have no fields to set)")
 end
 
--- One function per shape of call, as in lua/lbody.c: the method's name (for errors), the
--- library call and, for setters, the rule an invalid argument broke.
+-- One function per shape of call, as in lua/lbody.c: the method's name (for errors: the
+-- library says which argument broke which rule) and the library call.
 local function get_vec2(name, get)
   Body[name] = function(b)
     local p, h = body_wh(b)
     local st = get(p, h, vec)
-    if st ~= 0 then status_error(st, name) end
+    if st ~= 0 then status_error(p, st, name) end
     return vec[0].x, vec[0].y
   end
 end
 
-local function set_vec2(name, set, hint)
+local function set_vec2(name, set)
   Body[name] = function(b, ...)
     local p, h = body_wh(b)
     local st = set(p, h, real2(2, ...))
-    if st ~= 0 then status_error(st, name, hint) end
+    if st ~= 0 then status_error(p, st, name) end
   end
 end
 
@@ -444,28 +459,28 @@ local function get_real(name, get)
   Body[name] = function(b)
     local p, h = body_wh(b)
     local st = get(p, h, real)
-    if st ~= 0 then status_error(st, name) end
+    if st ~= 0 then status_error(p, st, name) end
     return real[0]
   end
 end
 
-local function set_real(name, set, hint)
+local function set_real(name, set)
   Body[name] = function(b, ...)
     local p, h = body_wh(b)
     local st = set(p, h, real1(2, ...))
-    if st ~= 0 then status_error(st, name, hint) end
+    if st ~= 0 then status_error(p, st, name) end
   end
 end
 
 -- Two numbers; when opt, an omitted second one is 0.
-local function set_real2(name, set, opt, hint)
+local function set_real2(name, set, opt)
   Body[name] = function(b, ...)
     local p, h = body_wh(b)
     local first, second
     if opt then first, second = real1(2, ...), optreal(3, select(2, ...), 0)
     else first, second = real2(2, ...) end
     local st = set(p, h, first, second)
-    if st ~= 0 then status_error(st, name, hint) end
+    if st ~= 0 then status_error(p, st, name) end
   end
 end
 
@@ -473,7 +488,7 @@ local function get_flag(name, get)
   Body[name] = function(b)
     local p, h = body_wh(b)
     local st = get(p, h, i32)
-    if st ~= 0 then status_error(st, name) end
+    if st ~= 0 then status_error(p, st, name) end
     return i32[0] ~= 0
   end
 end
@@ -483,25 +498,23 @@ get_vec2("velocity", C.rg_body_get_velocity)
 get_vec2("interpolated_position", C.rg_body_get_interpolated_position)
 get_vec2("acceleration", C.rg_body_get_acceleration)
 get_vec2("one_way", C.rg_body_get_one_way)
-set_vec2("set_position", V.rg_body_set_position, nil)
-set_vec2("set_velocity", V.rg_body_set_velocity, "a static body cannot move")
-set_vec2("apply_force", V.rg_body_apply_force, nil)
-set_vec2("apply_impulse", V.rg_body_apply_impulse, nil)
-set_vec2("set_one_way", V.rg_body_set_one_way, "a unit normal, or (0, 0)")
+set_vec2("set_position", V.rg_body_set_position)
+set_vec2("set_velocity", V.rg_body_set_velocity)
+set_vec2("apply_force", V.rg_body_apply_force)
+set_vec2("apply_impulse", V.rg_body_apply_impulse)
+set_vec2("set_one_way", V.rg_body_set_one_way)
 get_real("mass", C.rg_body_get_mass)
 get_real("restitution", C.rg_body_get_restitution)
 get_real("friction", C.rg_body_get_friction)
-set_real("set_mass", C.rg_body_set_mass, "mass must be > 0, and only a dynamic body has one")
-set_real("set_gravity_scale", C.rg_body_set_gravity_scale, nil)
-set_real("set_restitution", C.rg_body_set_restitution, "restitution must be in [0, 1]")
-set_real("set_friction", C.rg_body_set_friction, "friction must be >= 0")
-set_real("set_circle", C.rg_body_set_circle, "radius must be > 0")
-set_real2("set_aabb", C.rg_body_set_aabb, false, "half sizes must be > 0")
-set_real2("set_drag", C.rg_body_set_drag, true, "linear and quadratic must be >= 0")
-set_real2("set_surface_friction", C.rg_body_set_surface_friction, false,
-          "mu and normal_force must be >= 0")
-set_real2("set_speed_limits", C.rg_body_set_speed_limits, true,
-          "both >= 0, and max_speed >= min_speed unless max_speed is 0")
+set_real("set_mass", C.rg_body_set_mass)
+set_real("set_gravity_scale", C.rg_body_set_gravity_scale)
+set_real("set_restitution", C.rg_body_set_restitution)
+set_real("set_friction", C.rg_body_set_friction)
+set_real("set_circle", C.rg_body_set_circle)
+set_real2("set_aabb", C.rg_body_set_aabb, false)
+set_real2("set_drag", C.rg_body_set_drag, true)
+set_real2("set_surface_friction", C.rg_body_set_surface_friction, false)
+set_real2("set_speed_limits", C.rg_body_set_speed_limits, true)
 get_flag("grounded", C.rg_body_is_grounded)
 get_flag("is_sensor", C.rg_body_is_sensor)
 get_flag("is_awake", C.rg_body_is_awake)
@@ -509,14 +522,14 @@ get_flag("is_awake", C.rg_body_is_awake)
 function Body.type(b)
   local p, h = body_wh(b)
   local st = C.rg_body_get_type(p, h, i32)
-  if st ~= 0 then status_error(st, "type") end
+  if st ~= 0 then status_error(p, st, "type") end
   return TYPES[i32[0] + 1] or TYPES[1]
 end
 
 function Body.user_data(b)
   local p, h = body_wh(b)
   local st = C.rg_body_get_user_data(p, h, u64)
-  if st ~= 0 then status_error(st, "user_data") end
+  if st ~= 0 then status_error(p, st, "user_data") end
   return int64(u64[0])
 end
 
@@ -524,20 +537,20 @@ function Body.set_user_data(b, ...)
   local p, h = body_wh(b)
   local u = check.checkinteger(2, (...), select("#", ...) >= 1)
   local st = C.rg_body_set_user_data(p, h, user_data_bits(u))
-  if st ~= 0 then status_error(st, "set_user_data") end
+  if st ~= 0 then status_error(p, st, "set_user_data") end
 end
 
 function Body.clear_shape(b)
   local p, h = body_wh(b)
   local st = C.rg_body_clear_shape(p, h)
-  if st ~= 0 then status_error(st, "clear_shape") end
+  if st ~= 0 then status_error(p, st, "clear_shape") end
 end
 
 -- "circle", r | "aabb", half_width, half_height | "none"
 function Body.shape(b)
   local p, h = body_wh(b)
   local st = C.rg_body_get_shape(p, h, i32, vec)
-  if st ~= 0 then status_error(st, "shape") end
+  if st ~= 0 then status_error(p, st, "shape") end
   if i32[0] == C.RG_SHAPE_CIRCLE then return "circle", vec[0].x end
   if i32[0] == C.RG_SHAPE_AABB then return "aabb", vec[0].x, vec[0].y end
   return "none"
@@ -547,26 +560,26 @@ function Body.set_sensor(b, ...)
   local p, h = body_wh(b)
   local s = check.checkboolean(2, (...), select("#", ...) >= 1)
   local st = C.rg_body_set_sensor(p, h, s and 1 or 0)
-  if st ~= 0 then status_error(st, "set_sensor") end
+  if st ~= 0 then status_error(p, st, "set_sensor") end
 end
 
 function Body.set_filter(b, category, mask)
   local p, h = body_wh(b)
   local st = C.rg_body_set_filter(p, h, check.checkmask(2, category), check.checkmask(3, mask))
-  if st ~= 0 then status_error(st, "set_filter") end
+  if st ~= 0 then status_error(p, st, "set_filter") end
 end
 
 function Body.filter(b)
   local p, h = body_wh(b)
   local st = C.rg_body_get_filter(p, h, u32, u32 + 1)
-  if st ~= 0 then status_error(st, "filter") end
+  if st ~= 0 then status_error(p, st, "filter") end
   return u32[0], u32[1]
 end
 
 function Body.wake(b)
   local p, h = body_wh(b)
   local st = C.rg_body_wake(p, h)
-  if st ~= 0 then status_error(st, "wake") end
+  if st ~= 0 then status_error(p, st, "wake") end
 end
 
 -- ---------------------------------------------------------------- springs
@@ -580,6 +593,7 @@ local function option_body(t, key, what, w)
   if not rawequal(b[B_BOX], w[W_BOX]) then
     raise(("%s: option '%s' is a body of another world"):format(what, key))
   end
+  body_handle(b)
   return b
 end
 
@@ -599,16 +613,19 @@ function World.spring(w, ...)
   if k == nil then raise(what .. ": option 'stiffness' is required") end
   local damping = option_real(opts, "damping", what) or 0
   local st = V.rg_spring_create(p, a[B_H], b and b[B_H] or 0, ax or 0, ay or 0, rest, k, damping, u64)
-  if st ~= 0 then
-    status_error(st, what, "rest_length, stiffness and damping must be >= 0, and a and b distinct live bodies")
-  end
-  return setmetatable({ w[W_BOX], u64[0], w }, spring_mt)
+  if st ~= 0 then status_error(p, st, what) end
+  local s, key = setmetatable({ w[W_BOX], u64[0], w, false }, spring_mt), hkey(u64[0])
+  -- The value that had this handle before is retired (see objects above).
+  local old = w[W_SPRINGS][key]
+  if old then old[S_RETIRED] = true end
+  w[W_SPRINGS][key] = s
+  return s
 end
 
 local function spring_live(s)
   if getmetatable(s) ~= SPRING then typeerror(1, SPRING, s) end
   local p = s[1].w
-  return p ~= nil and C.rg_spring_is_valid(p, s[2]) ~= 0
+  return p ~= nil and not s[S_RETIRED] and C.rg_spring_is_valid(p, s[2]) ~= 0
 end
 
 function Spring.destroy(s)
@@ -624,8 +641,12 @@ function spring_mt.__tostring(s) return "rigid.spring (" .. (spring_live(s) and 
 
 do
   local core = { World = World, Body = Body, open_world = open_world, body_wh = body_wh,
-                 push_body = push_body, B_BOX = B_BOX, B_H = B_H, B_WORLD = B_WORLD }
+                 body_handle = body_handle, push_body = push_body, new_body = new_body,
+                 hkey = hkey, W_LIVE = W_LIVE, W_DEAD = W_DEAD, W_SERIAL = W_SERIAL,
+                 B_BOX = B_BOX, B_H = B_H, B_WORLD = B_WORLD, B_SERIAL = B_SERIAL,
+                 B_TYPE = B_TYPE, B_NAME = B_NAME }
   require("rigid_jit.contact")(core, require("rigid_jit.query")(core))
+  require("rigid_jit.snapshot")(core)
 end
 
 -- ---------------------------------------------------------------- module

@@ -106,6 +106,7 @@ static void chain_link(broadphase *bp, int32_t slot)
     bp_entry *e = &bp->e[slot];
     if (e->level == BP_HUGE) {
         e->next = bp->n_huge;
+        e->prev = -1; /* as a restore makes it (a snapshot holds the links) */
         bp->huge[bp->n_huge++] = slot;
         return;
     }

@@ -275,3 +275,10 @@ void contact_block_adopt(rg_world *w, contact_block *b)
     }
     b->new_contacts = b->new_events = 0;
 }
+
+void contact_manifold_now(const rg_world *w, int32_t i, int32_t j, coll_manifold *m)
+{
+    const body_store *b = &w->b;
+    coll_manifold_of(b->shape[i], rg_v2(b->x[i], b->y[i]), rg_v2(b->hx[i], b->hy[i]), b->shape[j],
+                     rg_v2(b->x[j], b->y[j]), rg_v2(b->hx[j], b->hy[j]), m);
+}

@@ -7,6 +7,7 @@
 
 #include <stdint.h>
 
+#include "collision.h"
 #include "state.h"
 
 
@@ -28,6 +29,9 @@ void contact_refresh_materials(struct rg_world *w, int32_t s);
 void contact_refresh_flags(struct rg_world *w, int32_t s);
 /* The contact between body slots s and t, or -1. */
 int32_t contact_find(const struct rg_world *w, int32_t s, int32_t t);
+/* The manifold of dense bodies i and j as they are now, normal from i toward j: what the
+ * public calls report (a stored contact point is where the narrowphase last computed it). */
+void contact_manifold_now(const struct rg_world *w, int32_t i, int32_t j, coll_manifold *m);
 /* Contact storage of an exact capacity with room for n_ev events, made aside (restoring a
  * snapshot) and taken by contact_block_adopt, which frees what it replaces and leaves the
  * contents to the caller.  Nothing is allocated when the world's storage already fits. */

@@ -17,14 +17,6 @@ RG_API rg_status rg_world_set_pre_solve(rg_world *world, rg_pre_solve_fn *fn, vo
     return RG_OK;
 }
 
-/* The manifold of dense bodies i and j as they are now, normal from i toward j. */
-static void contact_api_manifold(const rg_world *w, int32_t i, int32_t j, coll_manifold *m)
-{
-    const body_store *b = &w->b;
-    coll_manifold_of(b->shape[i], rg_v2(b->x[i], b->y[i]), rg_v2(b->hx[i], b->hy[i]), b->shape[j],
-                     rg_v2(b->x[j], b->y[j]), rg_v2(b->hx[j], b->hy[j]), m);
-}
-
 RG_API rg_status rg_body_pass_through(rg_world *world, rg_body body, rg_body other)
 {
     BODY_SET(world, body, i);
@@ -39,7 +31,7 @@ RG_API rg_status rg_body_pass_through(rg_world *world, rg_body body, rg_body oth
         /* no contact: the fat boxes do not overlap (then the shapes are apart), or the pair
          * search has not met them yet (a body just placed) */
         coll_manifold m;
-        contact_api_manifold(world, i, j, &m);
+        contact_manifold_now(world, i, j, &m);
         if (!(m.depth >= -world->coll.slop) || !pairs_admitted(world, i, j)) return RG_OK;
         id = contact_create(world, s, t);
         if (id < 0) return error_alloc(world, __func__, RG_ERR_OUT_OF_MEMORY, "contact storage", "INT32_MAX / 8");
@@ -78,7 +70,7 @@ RG_API int32_t rg_body_get_contacts(const rg_world *world, rg_body body, rg_cont
         if (capacity == 0) continue;
         int32_t t = contact_other(c, s), j = body_dense(world, t);
         coll_manifold m;
-        contact_api_manifold(world, i, j, &m);
+        contact_manifold_now(world, i, j, &m);
         rg_contact r;
         r.other = pool_handle(&world->body_pool, t);
         r.normal = m.normal;

@@ -6,6 +6,7 @@
 #include "contact.h"
 #include "continuous.h"
 #include "state.h"
+#include "task.h"
 #include "vec2.h"
 
 /* Impacts of one body within this fraction of the step of each other count as one (a box
@@ -86,14 +87,21 @@ static inline int continuous_one_way_blocks(const body_store *b, int32_t i, rg_r
     return (ox == 0 && oy == 0) || nx * ox + ny * oy > 0;
 }
 
-void continuous_sweep(rg_world *w, const collide_step *x)
+typedef struct sweep_task {
+    rg_world *w;
+} sweep_task;
+
+/* Awake bodies [begin, end): each fast dynamic body against the immovable and sleeping
+ * bodies it has contacts with, which no body of the sweep moves, so each body is its own. */
+static void continuous_sweep_range(int32_t k0, int32_t k1, int32_t worker, void *context)
 {
+    rg_world *w = ((const sweep_task *)context)->w;
     collide_world *cw = &w->coll;
     const contact_store *cs = &cw->contacts;
     const narrow_state *ns = &cw->narrow;
     body_store *b = &w->b;
-    if (!cw->continuous) return;
-    for (int32_t k = 0; k < x->na; k++) {
+    (void)worker;
+    for (int32_t k = k0; k < k1; k++) {
         int32_t i = ns->adense[k];
         if (b->type[i] != RG_BODY_DYNAMIC) continue;
         rg_vec2 p0 = rg_v2(ns->sx0[k], ns->sy0[k]), p1 = rg_v2(b->x[i], b->y[i]);
@@ -138,4 +146,14 @@ void continuous_sweep(rg_world *w, const collide_step *x)
             b->vy[i] -= vn * nbest.y;
         }
     }
+}
+
+/* Bodies per sweep range (most are slow and skip at once). */
+#define SWEEP_RANGE 256
+
+void continuous_sweep(rg_world *w, const collide_step *x)
+{
+    if (!w->coll.continuous) return;
+    sweep_task t = { w };
+    task_for(w, continuous_sweep_range, x->na, SWEEP_RANGE, &t);
 }

@@ -2,6 +2,7 @@
  * springs handed to the caller's callbacks in a fixed order. */
 #include "arg.h"
 #include "body.h"
+#include "contact.h"
 #include "state.h"
 #include "vec2.h"
 
@@ -57,12 +58,15 @@ static void draw_contacts(const rg_world *w, const rg_debug_draw *d)
     for (int32_t id = 0; id < cw->cap; id++) {
         const contact *c = &cw->c[id];
         if (!(c->flags & CT_TOUCHING)) continue;
-        rg_vec2 p = rg_v2(c->px, c->py);
+        /* where the shapes touch now, as rg_body_get_contacts reports it */
+        coll_manifold m;
+        contact_manifold_now(w, body_dense(w, c->sa), body_dense(w, c->sb), &m);
+        rg_vec2 p = m.point;
         uint32_t col = (c->flags & CT_SENSOR) ? RG_COLOR_SENSOR : RG_COLOR_CONTACT;
         if (d->point != NULL) d->point(p, col, d->user);
         if (d->segment != NULL)
-            d->segment(p, rg_v2(p.x + c->nx * RG_R(RG_DRAW_NORMAL_LENGTH), p.y + c->ny * RG_R(RG_DRAW_NORMAL_LENGTH)), col,
-                       d->user);
+            d->segment(p, rg_v2(p.x + m.normal.x * RG_R(RG_DRAW_NORMAL_LENGTH), p.y + m.normal.y * RG_R(RG_DRAW_NORMAL_LENGTH)),
+                       col, d->user);
     }
 }
 

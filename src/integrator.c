@@ -3,9 +3,11 @@
 #include <string.h>
 
 #include "body.h"
+#include "bounds.h"
 #include "force.h"
 #include "integrator.h"
 #include "state.h"
+#include "task.h"
 #include "vec2.h"
 
 /* Backward-Euler dissipation for one body: given the velocity v_free the other forces give
@@ -85,8 +87,9 @@ typedef struct euler_env {
 } euler_env;
 
 /* One body of the pass, exactly as specified; the blocked loop below runs it wherever its
- * fast path does not apply. */
-static inline void euler_body(body_store *b, const euler_env *e, int32_t i)
+ * fast path does not apply.  Returns 1 when the body's new state is out of range
+ * (bounds.h). */
+static inline int32_t euler_body(body_store *b, const euler_env *e, int32_t i)
 {
     rg_real h = e->h;
     rg_real im = b->inv_mass[i];
@@ -113,6 +116,7 @@ static inline void euler_body(body_store *b, const euler_env *e, int32_t i)
     }
     b->vx[i] = nvx;
     b->vy[i] = nvy;
+    return bounds_out(b->x[i], b->y[i], nvx, nvy);
 }
 
 /* On x86-64 with GCC and glibc the pass is also built for AVX2 and picked at load time
@@ -148,27 +152,34 @@ static EULER_INLINE euler_bits euler_bits_of(rg_real v)
 }
 
 /* The commit of a block whose bodies all took the fast path: positions from the old
- * (explicit) or new (semi-implicit) velocities, then the new velocities. */
-static EULER_INLINE void euler_commit(rg_real *restrict x, rg_real *restrict y, rg_real *restrict vx,
+ * (explicit) or new (semi-implicit) velocities, then the new velocities.  Returns 1 when a
+ * body's new state is out of range (bounds.h), checked here while it is in registers. */
+static EULER_INLINE int32_t euler_commit(rg_real *restrict x, rg_real *restrict y, rg_real *restrict vx,
                                 rg_real *restrict vy, const rg_real *restrict nvx,
                                 const rg_real *restrict nvy, rg_real h, int explicit_euler)
 {
+    int32_t out = 0;
     if (explicit_euler) {
         for (int j = 0; j < EULER_BLOCK; j++) {
-            x[j] += vx[j] * h;
-            y[j] += vy[j] * h;
+            rg_real px = x[j] + vx[j] * h, py = y[j] + vy[j] * h;
+            x[j] = px;
+            y[j] = py;
             vx[j] = nvx[j];
             vy[j] = nvy[j];
+            out |= bounds_out(px, py, nvx[j], nvy[j]);
         }
     } else {
         for (int j = 0; j < EULER_BLOCK; j++) {
-            rg_real px = nvx[j], py = nvy[j];
-            x[j] += px * h;
-            y[j] += py * h;
-            vx[j] = px;
-            vy[j] = py;
+            rg_real ux = nvx[j], uy = nvy[j];
+            rg_real px = x[j] + ux * h, py = y[j] + uy * h;
+            x[j] = px;
+            y[j] = py;
+            vx[j] = ux;
+            vy[j] = uy;
+            out |= bounds_out(px, py, ux, uy);
         }
     }
+    return out;
 }
 
 /* The pass runs in blocks: a branch-free first loop computes every body's new velocity into
@@ -262,37 +273,69 @@ static EULER_INLINE int euler_block(const body_store *b, int32_t i0, const euler
     return slow != 0;
 }
 
-EULER_DISPATCH static void euler_step(rg_world *w, rg_real h, int explicit_euler)
-{
-    body_store *b = &w->b;
-    int32_t n = b->n_active;
+/* The pass over blocks [begin, end) of EULER_BLOCK bodies (the last one short), as a task
+ * (task.h): each block's bodies are its own, so any split gives the same results.  The
+ * worker's slot of `out` records a body out of range. */
+typedef struct euler_task {
+    body_store *b;
     euler_env e;
-    e.h = h;
-    e.gx = w->gravity.x;
-    e.gy = w->gravity.y;
-    e.wx = w->wind.x;
-    e.wy = w->wind.y;
-    e.springs = w->springs.count > 0;
-    e.dissipative = w->dissipative_count > 0;
-    e.explicit_euler = explicit_euler;
-    /* the springs at the start state come from the forces stage (force_begin) */
-    e.sax = w->scratch.sax;
-    e.say = w->scratch.say;
+    int32_t n;
+    int32_t out[RG_MAX_WORKERS];
+} euler_task;
+
+EULER_DISPATCH static void euler_range(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    euler_task *t = context;
+    body_store *b = t->b;
+    const euler_env *e = &t->e;
     rg_real no_spring[EULER_BLOCK];
     for (int j = 0; j < EULER_BLOCK; j++) no_spring[j] = -RG_R(0.0);
-    int32_t i0 = 0;
-    for (; i0 + EULER_BLOCK <= n; i0 += EULER_BLOCK) {
-        rg_real nvx[EULER_BLOCK], nvy[EULER_BLOCK];
-        const rg_real *spx = e.springs ? e.sax + i0 : no_spring;
-        const rg_real *spy = e.springs ? e.say + i0 : no_spring;
-        /* A slow block's accelerations are written again by euler_body. */
-        if (euler_block(b, i0, &e, spx, spy, nvx, nvy, b->ax + i0, b->ay + i0)) {
-            for (int j = 0; j < EULER_BLOCK; j++) euler_body(b, &e, i0 + j);
+    int32_t out = 0;
+    for (int32_t k = begin; k < end; k++) {
+        int32_t i0 = k * EULER_BLOCK;
+        if (i0 + EULER_BLOCK > t->n) { /* the short last block */
+            for (int32_t i = i0; i < t->n; i++) out |= euler_body(b, e, i);
             continue;
         }
-        euler_commit(b->x + i0, b->y + i0, b->vx + i0, b->vy + i0, nvx, nvy, h, explicit_euler);
+        rg_real nvx[EULER_BLOCK], nvy[EULER_BLOCK];
+        const rg_real *spx = e->springs ? e->sax + i0 : no_spring;
+        const rg_real *spy = e->springs ? e->say + i0 : no_spring;
+        /* A slow block's accelerations are written again by euler_body. */
+        if (euler_block(b, i0, e, spx, spy, nvx, nvy, b->ax + i0, b->ay + i0)) {
+            for (int j = 0; j < EULER_BLOCK; j++) out |= euler_body(b, e, i0 + j);
+            continue;
+        }
+        out |= euler_commit(b->x + i0, b->y + i0, b->vx + i0, b->vy + i0, nvx, nvy, e->h, e->explicit_euler);
     }
-    for (int32_t i = i0; i < n; i++) euler_body(b, &e, i);
+    t->out[worker] |= out;
+}
+
+/* Blocks per task range: some 1000 bodies, so a range outweighs handing it out. */
+#define EULER_RANGE 16
+
+/* Returns 1 when a body's new state is out of range. */
+static int32_t euler_step(rg_world *w, rg_real h, int explicit_euler)
+{
+    euler_task t;
+    euler_env *e = &t.e;
+    t.b = &w->b;
+    t.n = w->b.n_active;
+    e->h = h;
+    e->gx = w->gravity.x;
+    e->gy = w->gravity.y;
+    e->wx = w->wind.x;
+    e->wy = w->wind.y;
+    e->springs = w->springs.count > 0;
+    e->dissipative = w->dissipative_count > 0;
+    e->explicit_euler = explicit_euler;
+    /* the springs at the start state come from the forces stage (force_begin) */
+    e->sax = w->scratch.sax;
+    e->say = w->scratch.say;
+    int32_t workers = task_workers(w), out = 0;
+    for (int32_t k = 0; k < workers; k++) t.out[k] = 0;
+    task_for(w, euler_range, (t.n + EULER_BLOCK - 1) / EULER_BLOCK, EULER_RANGE, &t);
+    for (int32_t k = 0; k < workers; k++) out |= t.out[k];
+    return out;
 }
 
 static void save_start(rg_world *w, int32_t n)
@@ -431,15 +474,13 @@ rg_status integrator_prepare(rg_world *w)
     return RG_OK;
 }
 
-void integrator_step(rg_world *w, rg_real h)
+int integrator_step(rg_world *w, rg_real h)
 {
     switch (w->integrator) {
     case RG_INTEGRATOR_EXPLICIT_EULER:
-        euler_step(w, h, 1);
-        break;
+        return euler_step(w, h, 1);
     case RG_INTEGRATOR_SEMI_IMPLICIT_EULER:
-        euler_step(w, h, 0);
-        break;
+        return euler_step(w, h, 0);
     default: {
         int32_t n = w->b.n_active;
         save_start(w, n);
@@ -449,7 +490,7 @@ void integrator_step(rg_world *w, rg_real h)
         else
             rk4_step(w, h);
         if (w->dissipative_count > 0) guard_dissipation(w, h);
-        break;
+        return 1; /* four or two force passes: the range guard's own pass costs little */
     }
     }
 }

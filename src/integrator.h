@@ -12,7 +12,8 @@ struct rg_world;
 rg_status integrator_prepare(struct rg_world *w);
 /* Advances the active bodies by h seconds from the forces stage's start state (force_begin):
  * integration and the dissipation guard.  Records the start-of-step acceleration in b.ax,
- * b.ay. */
-void integrator_step(struct rg_world *w, rg_real h);
+ * b.ay.  Returns 1 when a body may be out of range (the Euler passes check each body as they
+ * write it; Verlet and RK4 leave it to the range guard, bounds.h), else 0. */
+int integrator_step(struct rg_world *w, rg_real h);
 
 #endif

@@ -33,12 +33,20 @@ static inline int pairs_admitted(const rg_world *w, int32_t i, int32_t j)
 void pairs_refresh_now(struct rg_world *w, int32_t i, rg_real lx, rg_real ly, rg_real ux, rg_real uy,
                        rg_real mx, rg_real my, rg_real ax, rg_real ay);
 
+/* Whether box (lx, ly, ux, uy) lies in entry e's fat box and e need not be searched anyway:
+ * no refresh (pairs_refresh_now) is due. */
+static inline int pairs_inside(const bp_entry *e, const rg_real *box)
+{
+    return !e->moved && box[0] >= e->lx && box[1] >= e->ly && box[2] <= e->ux && box[3] <= e->uy;
+}
+
 /* The test inline, the refresh out of line: most bodies stay inside their fat box. */
 static inline void pairs_refresh(struct rg_world *w, const bp_entry *e, int32_t i, rg_real lx,
                                  rg_real ly, rg_real ux, rg_real uy, rg_real mx, rg_real my,
                                  rg_real ax, rg_real ay)
 {
-    if (!e->moved && lx >= e->lx && ly >= e->ly && ux <= e->ux && uy <= e->uy) return;
+    const rg_real box[4] = { lx, ly, ux, uy };
+    if (pairs_inside(e, box)) return;
     pairs_refresh_now(w, i, lx, ly, ux, uy, mx, my, ax, ay);
 }
 

@@ -69,14 +69,8 @@ typedef struct box_query {
     const rg_world *w;
     rg_real lx, ly, ux, uy;
     uint32_t mask;
-    rg_body *out;       /* a max-heap of the smallest handles, [0, min(count, cap)) */
-    int32_t cap, count;
+    query_handles hs;
 } box_query;
-
-/* Counts handle h and keeps it if it is among the cap smallest so far. */
-static void query_keep(box_query *q, rg_body h);
-/* The kept handles of a finished query in ascending order; returns the count. */
-static int32_t query_sorted(box_query *q);
 
 static void heap_down(rg_body *h, int32_t root, int32_t n)
 {
@@ -101,10 +95,10 @@ static void box_visit(void *p, int32_t slot)
     if (!(b->x[i] - b->hx[i] <= q->ux && q->lx <= b->x[i] + b->hx[i] &&
           b->y[i] - b->hy[i] <= q->uy && q->ly <= b->y[i] + b->hy[i]))
         return;
-    query_keep(q, pool_handle(&q->w->body_pool, slot));
+    query_keep(&q->hs, pool_handle(&q->w->body_pool, slot));
 }
 
-static void query_keep(box_query *q, rg_body h)
+void query_keep(query_handles *q, rg_body h)
 {
     int32_t n = q->count < q->cap ? q->count : q->cap;
     q->count++;
@@ -142,14 +136,14 @@ RG_API int32_t rg_world_query_aabb(const rg_world *world, rg_vec2 lower, rg_vec2
     q.ux = upper.x;
     q.uy = upper.y;
     q.mask = mask;
-    q.out = out;
-    q.cap = capacity;
-    q.count = 0;
+    q.hs.out = out;
+    q.hs.cap = capacity;
+    q.hs.count = 0;
     broadphase_query(&world->coll.bp, lower.x, lower.y, upper.x, upper.y, box_visit, &q);
-    return query_sorted(&q);
+    return query_sorted(&q.hs);
 }
 
-static int32_t query_sorted(box_query *q)
+int32_t query_sorted(query_handles *q)
 {
     /* heapsort the kept handles into ascending order */
     int32_t n = q->count < q->cap ? q->count : q->cap;
@@ -173,7 +167,7 @@ static void point_visit(void *p, int32_t slot)
     rg_real dx = q->lx - b->x[i], dy = q->ly - b->y[i];
     int in = b->shape[i] == RG_SHAPE_CIRCLE ? dx * dx + dy * dy <= b->hx[i] * b->hx[i]
                                             : rg_fabs(dx) <= b->hx[i] && rg_fabs(dy) <= b->hy[i];
-    if (in) query_keep(q, pool_handle(&q->w->body_pool, slot));
+    if (in) query_keep(&q->hs, pool_handle(&q->w->body_pool, slot));
 }
 
 RG_API int32_t rg_world_query_point(const rg_world *world, rg_vec2 point, uint32_t mask,
@@ -187,11 +181,11 @@ RG_API int32_t rg_world_query_point(const rg_world *world, rg_vec2 point, uint32
     q.lx = q.ux = point.x;
     q.ly = q.uy = point.y;
     q.mask = mask;
-    q.out = out;
-    q.cap = capacity;
-    q.count = 0;
+    q.hs.out = out;
+    q.hs.cap = capacity;
+    q.hs.count = 0;
     broadphase_query(&world->coll.bp, point.x, point.y, point.x, point.y, point_visit, &q);
-    return query_sorted(&q);
+    return query_sorted(&q.hs);
 }
 
 /* ---------------------------------------------------------------- every hit along a ray */

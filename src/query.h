@@ -1,10 +1,23 @@
-/* query.h: what the mover shares with the queries. */
+/* query.h: what the mover and the other handle lists share with the queries. */
 #ifndef RG_QUERY_H
 #define RG_QUERY_H
 
 #include <stdint.h>
 
 #include "collision.h"
+#include "rigid.h"
+
+/* A list call's output: the `cap` smallest handles counted so far, kept as a max-heap in
+ * out[0, min(count, cap)) while the list is built. */
+typedef struct query_handles {
+    rg_body *out;
+    int32_t cap, count;
+} query_handles;
+
+/* Counts handle h and keeps it if it is among the cap smallest so far. */
+void query_keep(query_handles *q, rg_body h);
+/* The kept handles in ascending order; returns the count. */
+int32_t query_sorted(query_handles *q);
 
 /* The time of impact of shape b moving by r against shape a, as coll_sweep, except that
  * shapes that touch at the start (depth >= 0, their boundaries meeting included) count as

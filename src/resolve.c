@@ -5,6 +5,7 @@
 #include "continuous.h"
 #include "resolve.h"
 #include "state.h"
+#include "task.h"
 #include "vec2.h"
 
 void resolve_layout(mem_layout *l, resolve_state *s, int32_t n)
@@ -110,6 +111,38 @@ static int resolve_order(rg_world *w, int32_t nc, rg_real *ux, rg_real *uy)
     return shock;
 }
 
+/* The wide rows colour by colour, each colour's rows split over the task system (its rows
+ * share no movable body); the colours in order. */
+enum { RESOLVE_WARM, RESOLVE_VELOCITY, RESOLVE_POSITION };
+
+typedef struct resolve_task {
+    solver_batch *sb;
+    rg_real *v;
+    int32_t r0;
+    int what;
+} resolve_task;
+
+static void resolve_rows(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    const resolve_task *t = context;
+    (void)worker;
+    if (t->what == RESOLVE_WARM) solver_wide_warm_start(t->sb, t->r0 + begin, t->r0 + end, t->v);
+    else if (t->what == RESOLVE_VELOCITY) solver_wide_iterate(t->sb, t->r0 + begin, t->r0 + end, t->v);
+    else solver_wide_iterate_position(t->sb, t->r0 + begin, t->r0 + end, t->v);
+}
+
+/* Wide rows per range: 64 lanes. */
+#define RESOLVE_RANGE 8
+
+static void resolve_wide(rg_world *w, solver_batch *sb, rg_real *v, int what)
+{
+    resolve_task t = { sb, v, 0, what };
+    for (int col = 0; col < 32; col++) {
+        t.r0 = sb->cstart[col];
+        task_for(w, resolve_rows, sb->cstart[col + 1] - t.r0, RESOLVE_RANGE, &t);
+    }
+}
+
 void resolve_run(rg_world *w, collide_step *x)
 {
     collide_world *cw = &w->coll;
@@ -131,15 +164,18 @@ void resolve_run(rg_world *w, collide_step *x)
     rg_real *v = rs->sv;
     v[0] = v[1] = 0;
     for (int32_t q = 1; q <= ns; q++) {
-        v[2 * q] = b->vx[sbody[q]];
-        v[2 * q + 1] = b->vy[sbody[q]];
+        /* an immovable body's zero velocity as +0: the rows store it back unchanged, in
+         * whatever order they run (solver.h) */
+        rg_real z = b->inv_mass[sbody[q]] > 0 ? -RG_R(0.0) : 0;
+        v[2 * q] = b->vx[sbody[q]] + z;
+        v[2 * q + 1] = b->vy[sbody[q]] + z;
     }
     solver_batch *sb = &rows->batch;
     solver_pack(con, ord, nc, ns + 1, rs->cmask, rows->color, sb);
-    solver_wide_warm_start(sb, v);
+    resolve_wide(w, sb, v, RESOLVE_WARM);
     solver_warm_start(con, sb->over, sb->nover, v);
     for (int32_t it = 0; it < cw->iterations; it++) {
-        solver_wide_iterate(sb, v);
+        resolve_wide(w, sb, v, RESOLVE_VELOCITY);
         solver_iterate(con, sb->over, sb->nover, v);
     }
     solver_unpack(sb, con, nc, 0);
@@ -173,7 +209,7 @@ void resolve_run(rg_world *w, collide_step *x)
         memset(pv, 0, (size_t)(2 * ns + 2) * sizeof *pv);
         solver_pack_position(sb, con, nc);
         for (int32_t it = 0; it < cw->position; it++) {
-            solver_wide_iterate_position(sb, pv);
+            resolve_wide(w, sb, pv, RESOLVE_POSITION);
             solver_iterate_position(con, sb->over, sb->nover, pv);
         }
         solver_unpack(sb, con, nc, 1);

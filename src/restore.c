@@ -287,7 +287,7 @@ static int restore_check_pool(const snap_in *in, size_t gen, size_t index, int32
         } else if (g == 0) {
             if (i != -1) return BAD; /* retired */
         } else {
-            int32_t next = -i - 2;
+            int64_t next = -(int64_t)i - 2; /* in 64 bits: a forged INT32_MIN must not overflow */
             if (next < -1 || next >= slots) return BAD;
             nfree++;
         }
@@ -827,6 +827,7 @@ static void restore_load(rg_world *w, const snap_in *in, const restore_scratch *
     }
     w->dissipative_count = dissipative;
     w->limit_count = limited;
+    w->stopped_any = 0; /* the flags above hold no BODY_F_STOPPED: a restore is no step */
     restore_pool(&w->springs.pool, in, in->l.sgen, in->l.sindex, s->sslots, s->stag, s->smax_gen,
                  s->smax_slots, s->sfree, s->slive);
     for (int32_t k = 0; k < s->springs; k++) {

@@ -202,9 +202,11 @@ void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, in
     int32_t rows = 0;
     for (int col = 0; col < 32; col++) {
         start[col] = rows;
+        out->cstart[col] = rows;
         lane_of[col] = 0;
         rows += (count[col] + SOLVER_LANES - 1) / SOLVER_LANES;
     }
+    out->cstart[32] = rows;
     out->nrows = rows;
     out->nover = 0;
     solver_wide *w = out->rows;
@@ -401,10 +403,10 @@ __attribute__((target("avx2"))) static inline void scatter8(float *v, const int3
     _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[7]), p67);
 }
 
-__attribute__((target("avx2"))) static void wide_iterate_avx2(solver_batch *s, float *v)
+__attribute__((target("avx2"))) static void wide_iterate_avx2(solver_batch *s, int32_t r0, int32_t r1, float *v)
 {
     const __m256 zero = _mm256_setzero_ps();
-    for (int32_t r = 0; r < s->nrows; r++) {
+    for (int32_t r = r0; r < r1; r++) {
         solver_wide *q = &s->rows[r];
         __m256 vax, vay, vbx, vby;
         gather8(v, q->a, &vax, &vay);
@@ -429,34 +431,34 @@ __attribute__((target("avx2"))) static void wide_iterate_avx2(solver_batch *s, f
 }
 #endif
 
-void solver_wide_warm_start(const solver_batch *s, rg_real *v)
+void solver_wide_warm_start(const solver_batch *s, int32_t r0, int32_t r1, rg_real *v)
 {
-    for (int32_t r = 0; r < s->nrows; r++)
+    for (int32_t r = r0; r < r1; r++)
         for (int h = 0; h < SOLVER_LANES; h += 4) warm_start4(&s->rows[r], h, v);
 }
 
-void solver_wide_iterate(solver_batch *s, rg_real *v)
+void solver_wide_iterate(solver_batch *s, int32_t r0, int32_t r1, rg_real *v)
 {
 #if SOLVER_AVX2
     if (__builtin_cpu_supports("avx2")) {
-        wide_iterate_avx2(s, v);
+        wide_iterate_avx2(s, r0, r1, v);
         return;
     }
 #endif
-    for (int32_t r = 0; r < s->nrows; r++)
+    for (int32_t r = r0; r < r1; r++)
         for (int h = 0; h < SOLVER_LANES; h += 4) iterate4(&s->rows[r], h, v);
 }
 
-void solver_wide_iterate_position(solver_batch *s, rg_real *pv)
+void solver_wide_iterate_position(solver_batch *s, int32_t r0, int32_t r1, rg_real *pv)
 {
-    for (int32_t r = 0; r < s->nrows; r++)
+    for (int32_t r = r0; r < r1; r++)
         for (int h = 0; h < SOLVER_LANES; h += 4) iterate_position4(&s->rows[r], h, pv);
 }
 #else
 /* The same arithmetic lane by lane: all loads of a row before its stores, as in SSE. */
-void solver_wide_warm_start(const solver_batch *s, rg_real *v)
+void solver_wide_warm_start(const solver_batch *s, int32_t r0, int32_t r1, rg_real *v)
 {
-    for (int32_t r = 0; r < s->nrows; r++) {
+    for (int32_t r = r0; r < r1; r++) {
         const solver_wide *q = &s->rows[r];
         rg_real px[SOLVER_LANES], py[SOLVER_LANES];
         for (int l = 0; l < SOLVER_LANES; l++) {
@@ -476,9 +478,9 @@ void solver_wide_warm_start(const solver_batch *s, rg_real *v)
     }
 }
 
-void solver_wide_iterate(solver_batch *s, rg_real *v)
+void solver_wide_iterate(solver_batch *s, int32_t r0, int32_t r1, rg_real *v)
 {
-    for (int32_t r = 0; r < s->nrows; r++) {
+    for (int32_t r = r0; r < r1; r++) {
         solver_wide *q = &s->rows[r];
         rg_real ax[SOLVER_LANES], ay[SOLVER_LANES], bx[SOLVER_LANES], by[SOLVER_LANES];
         for (int l = 0; l < SOLVER_LANES; l++) {
@@ -515,9 +517,9 @@ void solver_wide_iterate(solver_batch *s, rg_real *v)
     }
 }
 
-void solver_wide_iterate_position(solver_batch *s, rg_real *pv)
+void solver_wide_iterate_position(solver_batch *s, int32_t r0, int32_t r1, rg_real *pv)
 {
-    for (int32_t r = 0; r < s->nrows; r++) {
+    for (int32_t r = r0; r < r1; r++) {
         solver_wide *q = &s->rows[r];
         rg_real ax[SOLVER_LANES], ay[SOLVER_LANES], bx[SOLVER_LANES], by[SOLVER_LANES];
         for (int l = 0; l < SOLVER_LANES; l++) {

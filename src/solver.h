@@ -151,6 +151,7 @@ typedef struct solver_wide {
 typedef struct solver_batch {
     solver_wide *rows;   /* [0, nrows) */
     int32_t nrows;
+    int32_t cstart[33];  /* colour c's rows: [cstart[c], cstart[c + 1]) */
     int32_t *map;        /* per row of c: its wide slot (row * SOLVER_LANES + lane), or -1 */
     int32_t *over;       /* rows of c in the overflow list, [0, nover) */
     int32_t nover;
@@ -162,13 +163,17 @@ typedef struct solver_batch {
  * map and over are indexed by row of c. */
 void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, int32_t nbodies,
                  uint32_t *mask, int32_t *color, solver_batch *out);
-void solver_wide_warm_start(const solver_batch *s, rg_real *v);
-void solver_wide_iterate(solver_batch *s, rg_real *v);
+/* The wide calls take rows [r0, r1): within a colour the rows share no movable body, so its
+ * rows may run in any split and order, at once on several threads, with the same results
+ * (lanes on immovable bodies store back the velocity they loaded, which the caller makes
+ * +0 where it is zero: resolve.c). */
+void solver_wide_warm_start(const solver_batch *s, int32_t r0, int32_t r1, rg_real *v);
+void solver_wide_iterate(solver_batch *s, int32_t r0, int32_t r1, rg_real *v);
 /* Copies the accumulated impulses pn, pt (or the pseudo impulses pp) back into c. */
 void solver_unpack(const solver_batch *s, solver_constraint *c, int32_t n, int position);
 /* Copies c's position rows (pmin, pp = 0) into the lanes. */
 void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t n);
-void solver_wide_iterate_position(solver_batch *s, rg_real *pv);
+void solver_wide_iterate_position(solver_batch *s, int32_t r0, int32_t r1, rg_real *pv);
 
 /* ---- the rows of a step and their scratch, sized by the contact capacity (one row per
  * contact at most), in one block. */

@@ -48,6 +48,7 @@
 
 #define BODY_F_DISSIPATIVE 1u /* has drag or surface friction (and is dynamic) */
 #define BODY_F_LIMITED     2u /* has a speed limit (and is dynamic) */
+#define BODY_F_STOPPED     4u /* the last stepping call stopped it at the range's edge (bounds.c) */
 
 /* cflags: collision state of a body */
 #define CF_SENSOR     1u
@@ -125,6 +126,7 @@ typedef struct spring_store {
 #define CT_CLOSING  8u  /* the step's free motion would make the pair overlap */
 #define CT_ONEWAY  16u  /* a body of the pair is one-way (narrow.c decides when it blocks) */
 #define CT_PASS    32u  /* passing: neither solved nor touching until a step ends apart */
+#define CT_ACTIVE  64u  /* scratch within the narrowphase: the pair meets within the step (narrow.c) */
 
 typedef struct contact {
     int32_t sa, sb;           /* body slots; a has the lower handle; -1 when the id is free */
@@ -182,6 +184,7 @@ typedef struct narrow_state {
     rg_real *sx0, *sy0;       /* k: positions before integration */
     rg_real *svx0, *svy0;     /* k: velocities before integration */
     int32_t *adense;          /* k: dense index during the step */
+    uint8_t *refresh;         /* k: the fat box must be refreshed (narrow_views) */
 } narrow_state;
 
 typedef struct island_state {
@@ -257,6 +260,7 @@ struct rg_world {
     /* What the scene uses, so a stage nobody uses costs nothing. */
     int32_t dissipative_count; /* dynamic bodies with drag or surface friction */
     int32_t limit_count;       /* dynamic bodies with speed limits */
+    int32_t stopped_any;       /* some body may carry BODY_F_STOPPED (bounds.c) */
 
     /* Fixed-step accumulator (double, so that long runs do not drift). */
     double fixed_dt;
@@ -276,6 +280,10 @@ struct rg_world {
     rg_pre_solve_fn *pre_solve;
     void *pre_solve_user;
     int32_t locked;
+
+    /* The task system the stages spread over (task.c); tasks_on 0: one thread. */
+    rg_task_system tasks;
+    int32_t tasks_on;
 };
 
 /* At the top of every call that changes the world: ERROR_BEGIN, and RG_ERR_LOCKED inside a

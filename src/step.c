@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "arg.h"
+#include "bounds.h"
 #include "collide.h"
 #include "continuous.h"
 #include "events.h"
@@ -42,7 +43,8 @@ static void step_collide(rg_world *w, rg_real dt)
 }
 
 /* One step after validation and preparation; cannot fail.  The pipeline of the header's
- * rg_world_step: forces, integrate, limits, collide (and sleep), events, clear. */
+ * rg_world_step: forces, integrate, limits, range guard, collide (and sleep), events,
+ * clear. */
 static void step_run(rg_world *w, rg_real dt)
 {
     body_store *b = &w->b;
@@ -50,8 +52,13 @@ static void step_run(rg_world *w, rg_real dt)
     int shapes = w->coll.shape_count > 0;
     if (shapes) narrow_record_start(w);  /* where the step begins, for the collide stage */
     force_begin(w);
-    integrator_step(w, dt);
-    speed_limits_apply(w);
+    int out = integrator_step(w, dt);
+    speed_limits_apply(w); /* only ever slows a body: it keeps a state in range */
+    if (out) {
+        /* Verlet and RK4 keep where the step began (the integrator's scratch) */
+        int kept = w->integrator == RG_INTEGRATOR_VELOCITY_VERLET || w->integrator == RG_INTEGRATOR_RK4;
+        bounds_guard(w, kept ? w->scratch.x0 : NULL, kept ? w->scratch.y0 : NULL);
+    }
     if (collide) {
         events_begin_step(&w->coll.events);
         if (shapes) step_collide(w, dt);
@@ -84,6 +91,7 @@ RG_API rg_status rg_world_step(rg_world *world, rg_real dt)
     rg_status st = step_prepare(world, __func__);
     if (st != RG_OK) return st;
     events_clear(&world->coll.events);
+    bounds_begin(world);
     step_run(world, dt);
     world->prev_valid = 0;
     ERROR_CLEAR(world); /* a callback's failed call inside the step is not this call's */
@@ -102,6 +110,7 @@ RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *
     int cut = 0;
     /* The events readable after an advance are those of all its steps, in step order. */
     events_clear(&world->coll.events);
+    bounds_begin(world);
     world->accumulator += (double)frame_time;
     while (world->accumulator >= world->fixed_dt && steps < world->max_steps) {
         /* The first step's events always fit (their room comes with the contact storage);

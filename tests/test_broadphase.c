@@ -192,8 +192,8 @@ static rg_real ray_record(void *p, int32_t slot, rg_real max_t)
 static int segment_hits(const box *b, rg_vec2 o, rg_vec2 d)
 {
     double t0 = 0, t1 = 1;
-    double os[2] = {o.x, o.y}, ds[2] = {d.x, d.y};
-    double lo[2] = {b->lx, b->ly}, hi[2] = {b->ux, b->uy};
+    double os[2] = {(double)o.x, (double)o.y}, ds[2] = {(double)d.x, (double)d.y};
+    double lo[2] = {(double)b->lx, (double)b->ly}, hi[2] = {(double)b->ux, (double)b->uy};
     for (int k = 0; k < 2; k++) {
         if (ds[k] == 0) {
             if (os[k] < lo[k] || os[k] > hi[k]) return 0;

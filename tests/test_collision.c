@@ -42,9 +42,9 @@ static void test_circle_circle_is_antisymmetric_in_its_arguments(void **state)
     coll_manifold m1, m2;
     coll_circle_circle(v2(0.3, -0.2), 0.7, v2(1.1, 0.4), 0.5, &m1);
     coll_circle_circle(v2(1.1, 0.4), 0.5, v2(0.3, -0.2), 0.7, &m2);
-    assert_vec(m2.normal, -m1.normal.x, -m1.normal.y, TOL);
+    assert_vec(m2.normal, -(double)m1.normal.x, -(double)m1.normal.y, TOL);
     assert_near(m2.depth, m1.depth, TOL);
-    assert_vec(m2.point, m1.point.x, m1.point.y, TOL);
+    assert_vec(m2.point, (double)m1.point.x, (double)m1.point.y, TOL);
 }
 
 static void test_circle_circle_coincident_centres_push_along_plus_y(void **state)

@@ -47,7 +47,8 @@ share/lua/5.1/rigid_jit.lua
 share/lua/5.1/rigid_jit/check.lua
 share/lua/5.1/rigid_jit/contact.lua
 share/lua/5.1/rigid_jit/ffi.lua
-share/lua/5.1/rigid_jit/query.lua"
+share/lua/5.1/rigid_jit/query.lua
+share/lua/5.1/rigid_jit/snapshot.lua"
 fi
 (cd "$root" && find . -type f -o -type l | sed 's|^\./||' | LC_ALL=C sort) > "$tmp/files"
 echo "$expected" | LC_ALL=C sort > "$tmp/expected"

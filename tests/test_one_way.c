@@ -171,6 +171,37 @@ static void test_pass_through_drops_a_resting_body_and_it_collides_again_once_ap
     rg_world_destroy(w);
 }
 
+/* A row of flush one-way tiles is a floor like a two-way one: a box or a ball sliding across
+ * their seams rests on their tops (within the slop) all the way, at walking and running
+ * speeds.  A box whose edge starts on a seam meets the next tile's corner first, with a side
+ * normal; judged by that normal alone the pair passed and the box fell through the next tile
+ * as it left the first. */
+static void test_sliding_across_the_seams_of_flush_tiles_never_falls_through(void **state)
+{
+    (void)state;
+    const double speeds[] = { 0.2, 1, 3, 8 };
+    for (size_t k = 0; k < sizeof speeds / sizeof speeds[0]; k++)
+        for (int round = 0; round < 2; round++) {
+            rg_world *w = gravity_world(-G);
+            for (int t = 0; t < 12; t++) {
+                rg_body tile = platform(w, t + 0.5, -0.5, 0.5, 0.5);
+                assert_ok(rg_body_set_friction(w, tile, 0));
+            }
+            rg_body b = round == 0 ? box_body(w, RG_BODY_DYNAMIC, 1, 0.6, 0.4, 0.4, 0.4)
+                                   : circle_body(w, RG_BODY_DYNAMIC, 1, 0.6, 0.4, 0.4);
+            assert_ok(rg_body_set_friction(w, b, 0));
+            step_n(w, 30, DT);
+            assert_ok(rg_body_set_velocity(w, b, v2(speeds[k], 0)));
+            while (PX(w, b) < 11.4) {
+                step_n(w, 1, DT);
+                if (!(PY(w, b) >= 0.4 - SLOP))
+                    fail_msg("%s at %g m/s: y = %g at x = %g", round == 0 ? "box" : "ball", speeds[k],
+                             PY(w, b), PX(w, b));
+            }
+            rg_world_destroy(w);
+        }
+}
+
 /* A wall facing +x blocks what comes from +x moving -x and lets the rest through; a diagonal
  * normal blocks from its side. */
 static void test_normals_in_any_direction(void **state)
@@ -216,7 +247,8 @@ static void test_bad_input_is_rejected_and_changes_nothing(void **state)
     rg_body p = platform(w, 0, 0, 2, 0.1);
     rg_body b = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 1, 0.2);
     rg_body bare = make_body(w, 1, 5, 5);
-    const double bad[][2] = { { NAN, 1 }, { 0, INFINITY }, { 0.5, 0 }, { 0, 1.01 }, { 1e30, 1e30 } };
+    const double bad[][2] = { { (double)NAN, 1 }, { 0, (double)INFINITY }, { 0.5, 0 }, { 0, 1.01 },
+                              { 1e30, 1e30 } };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++)
         assert_status(rg_body_set_one_way(w, p, v2(bad[k][0], bad[k][1])), RG_ERR_INVALID_ARGUMENT);
     rg_vec2 n;
@@ -247,6 +279,7 @@ int main(void)
         cmocka_unit_test(test_walking_into_its_side_while_overlapping_is_not_pushed),
         cmocka_unit_test(test_a_fast_body_from_above_lands_on_a_thin_platform),
         cmocka_unit_test(test_pass_through_drops_a_resting_body_and_it_collides_again_once_apart),
+        cmocka_unit_test(test_sliding_across_the_seams_of_flush_tiles_never_falls_through),
         cmocka_unit_test(test_normals_in_any_direction),
         cmocka_unit_test(test_bad_input_is_rejected_and_changes_nothing),
     };

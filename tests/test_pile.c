@@ -34,7 +34,7 @@ static pile_stats pile(int boxes, int n, double W, double seconds, int sleeping)
     for (int i = 0; i < n; i++) {
         p[i] = pos_of(w, b[i]);
         rg_vec2 v = vel_of(w, b[i]);
-        st.max_speed = fmax(st.max_speed, hypot(v.x, v.y));
+        st.max_speed = fmax(st.max_speed, hypot((double)v.x, (double)v.y));
         double x = (double)p[i].x, y = (double)p[i].y;
         if (fabs(x) > W / 2 - 0.5 + 0.01 || y < 0.49 || y > 40) st.escaped++;
         st.max_overlap = fmax(st.max_overlap, 0.5 - y);

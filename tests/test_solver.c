@@ -642,6 +642,8 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
     }
 #undef RND
     memcpy(ref, rows, sizeof rows);
+    static solver_constraint ref0[N];
+    memcpy(ref0, rows, sizeof rows);
     solver_batch sb;
     sb.rows = wide;
     sb.map = map;
@@ -649,10 +651,10 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
     solver_pack(rows, order, N, BODIES + 1, mask, color, &sb);
     assert_true(sb.nover > 0); /* the overflow list is exercised too */
     memcpy(va, v0, sizeof v0);
-    solver_wide_warm_start(&sb, va);
+    solver_wide_warm_start(&sb, 0, sb.nrows, va);
     solver_warm_start(rows, sb.over, sb.nover, va);
     for (int it = 0; it < ITERS; it++) {
-        solver_wide_iterate(&sb, va);
+        solver_wide_iterate(&sb, 0, sb.nrows, va);
         solver_iterate(rows, sb.over, sb.nover, va);
     }
     solver_unpack(&sb, rows, N, 0);
@@ -672,6 +674,27 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
     for (int k = 0; k < N; k++) {
         assert_memory_equal(&rows[k].pn, &ref[k].pn, sizeof(rg_real));
         assert_memory_equal(&rows[k].pt, &ref[k].pt, sizeof(rg_real));
+    }
+    /* Any split of a colour's wide rows, in any order, gives the same bytes (what lets the
+     * step spread a colour over threads): each colour's rows one at a time, last first. */
+    static solver_constraint again[N];
+    memcpy(again, ref0, sizeof again);
+    solver_pack(again, order, N, BODIES + 1, mask, color, &sb);
+    rg_real vc[2 * (BODIES + 1)];
+    memcpy(vc, v0, sizeof v0);
+    for (int col = 0; col < 32; col++)
+        for (int32_t r = sb.cstart[col + 1] - 1; r >= sb.cstart[col]; r--) solver_wide_warm_start(&sb, r, r + 1, vc);
+    solver_warm_start(again, sb.over, sb.nover, vc);
+    for (int it = 0; it < ITERS; it++) {
+        for (int col = 0; col < 32; col++)
+            for (int32_t r = sb.cstart[col + 1] - 1; r >= sb.cstart[col]; r--) solver_wide_iterate(&sb, r, r + 1, vc);
+        solver_iterate(again, sb.over, sb.nover, vc);
+    }
+    solver_unpack(&sb, again, N, 0);
+    assert_memory_equal(va, vc, sizeof va);
+    for (int k = 0; k < N; k++) {
+        assert_memory_equal(&rows[k].pn, &again[k].pn, sizeof(rg_real));
+        assert_memory_equal(&rows[k].pt, &again[k].pt, sizeof(rg_real));
     }
 }
 

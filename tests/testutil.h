@@ -33,11 +33,11 @@
         if (!(fabs(a_ - b_) <= t_)) fail_msg("%s = %.9g, expected %.9g +- %.3g", #a, a_, b_, t_); \
     } while (0)
 
-static inline rg_vec2 v2(double x, double y)
+static inline rg_vec2 v2(rg_real x, rg_real y)
 {
     rg_vec2 v;
-    v.x = (rg_real)x;
-    v.y = (rg_real)y;
+    v.x = x;
+    v.y = y;
     return v;
 }
 

@@ -4,7 +4,8 @@
 # --charts adds gnuplot; --love adds LOVE and a headless X server for the LOVE game's test
 # (make test skips it without them); --browser adds Chromium for the replay viewer's test
 # and bench (make test skips it without); --cross adds an aarch64 cross compiler and
-# qemu-user for the snapshot's across-machines check (make test skips it without them).
+# qemu-user for the snapshot's across-machines check (make test skips it without them);
+# --fuzz adds clang's sanitizer and libFuzzer runtimes (make fuzz, make sanitize CC=clang).
 # clang is always installed: make test compares the state hash of a clang build with gcc's.
 # Uses sudo when not root.
 set -e
@@ -16,7 +17,8 @@ for arg in "$@"; do
     --love) pkgs="$pkgs love xvfb xauth" ;;
     --cross) pkgs="$pkgs gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user" ;;
     --browser) pkgs="$pkgs chromium" ;;
-    *) echo "usage: $0 [--bench] [--charts] [--love] [--browser] [--cross]" >&2; exit 2 ;;
+    --fuzz) pkgs="$pkgs libclang-rt-14-dev" ;;
+    *) echo "usage: $0 [--bench] [--charts] [--love] [--browser] [--cross] [--fuzz]" >&2; exit 2 ;;
     esac
 done
 missing=""

@@ -60,13 +60,18 @@ function M.typeerror(i, expected, v, present)
 end
 local typeerror = M.typeerror
 
-function M.status_error(st, what, hint)
+-- The library's reason for the failure st of the last call on world pointer p (nil: none),
+-- without the C function's name, which the binding's message replaces (as lua/lcheck.c).
+function M.reason(p, st)
+  local why = p ~= nil and ffi.string(C.rg_world_last_error(p)) or ""
+  if why == "" then return ffi.string(C.rg_status_string(st)) end
+  return why:match("^rg_[%w_]*: (.*)$") or why
+end
+
+-- Raises for the failed call of status st on world pointer p: "what: " and the reason.
+function M.status_error(p, st, what)
   if st == C.RG_ERR_STALE_HANDLE then raise("attempt to use a destroyed body") end
-  if st == C.RG_ERR_OUT_OF_MEMORY then raise(what .. ": not enough memory") end
-  if st == C.RG_ERR_INVALID_ARGUMENT and hint then
-    raise(what .. ": invalid argument (" .. hint .. ")")
-  end
-  raise(what .. ": " .. ffi.string(C.rg_status_string(st)))
+  raise(what .. ": " .. M.reason(p, st))
 end
 
 -- lua_pushfstring's %f: "%.14g", and ".0" after what would read as an integer.

@@ -18,7 +18,8 @@ local MOVE_OPTIONS = { "mask", "response" }
 local HITS = 16
 
 return function(core, query)
-  local Body, body_wh, push_body = core.Body, core.body_wh, core.push_body
+  local Body, body_wh, body_handle, push_body = core.Body, core.body_wh, core.body_handle,
+                                               core.push_body
   local B_BOX, B_H, B_WORLD = core.B_BOX, core.B_H, core.B_WORLD
   local pushhit, grow = query.pushhit, query.grow
 
@@ -29,7 +30,7 @@ return function(core, query)
   function Body.contacts(b)
     local p, h = body_wh(b)
     local n = C.rg_body_get_contacts(p, h, nil, 0)
-    if n < 0 then status_error(n, "contacts") end
+    if n < 0 then status_error(p, n, "contacts") end
     contacts, contacts_cap = grow(contacts, contacts_cap, n, "rg_contact[?]")
     if n > 0 then n = C.rg_body_get_contacts(p, h, contacts, n) end
     local w, out = b[B_WORLD], {}
@@ -50,13 +51,12 @@ return function(core, query)
     if getmetatable(other) ~= BODY then typeerror(2, BODY, other, select("#", ...) >= 1) end
     if not rawequal(other[B_BOX], b[B_BOX]) then argerror(2, "a body of the same world") end
     local p, h = body_wh(b)
-    local st = C.rg_body_pass_through(p, h, other[B_H])
-    if st ~= 0 then status_error(st, "pass_through", "two different bodies with shapes") end
+    local st = C.rg_body_pass_through(p, h, body_handle(other))
+    if st ~= 0 then status_error(p, st, "pass_through") end
   end
 
   local hits, hits_cap = ffi.new("rg_ray_hit[?]", HITS), HITS
   local start, pos, count = ffi.new("rg_vec2[1]"), ffi.new("rg_vec2[1]"), ffi.new("int32_t[1]")
-  local MOVE_HINT = "a body with a shape and a finite target"
 
   -- x, y, { { body, x, y, nx, ny, fraction }... }: where the body stopped and the surfaces
   -- met.  A CROSS lands on its target exactly, so one back to the start restores the
@@ -74,16 +74,16 @@ return function(core, query)
       response = check.option_enum(opts, "response", what, RESPONSES) or response
     end
     local st = C.rg_body_get_position(p, h, start)
-    if st ~= 0 then status_error(st, what) end
+    if st ~= 0 then status_error(p, st, what) end
     st = V.rg_body_move(p, h, tx, ty, mask, response, pos, hits, hits_cap, count)
-    if st ~= 0 then status_error(st, what, MOVE_HINT) end
+    if st ~= 0 then status_error(p, st, what) end
     local n = count[0]
     if n > hits_cap then
       st = V.rg_body_move(p, h, start[0].x, start[0].y, 0, C.RG_MOVE_CROSS, nil, nil, 0, nil)
-      if st ~= 0 then status_error(st, what) end
+      if st ~= 0 then status_error(p, st, what) end
       hits, hits_cap = grow(hits, hits_cap, n, "rg_ray_hit[?]")
       st = V.rg_body_move(p, h, tx, ty, mask, response, pos, hits, hits_cap, count)
-      if st ~= 0 then status_error(st, what, MOVE_HINT) end
+      if st ~= 0 then status_error(p, st, what) end
       n = math.min(count[0], hits_cap)   -- the same path crosses the same shapes
     end
     local w, out = b[B_WORLD], {}

@@ -67,6 +67,7 @@ rg_status rg_world_get_fixed_step(const rg_world *world, rg_real *out_dt, int32_
 rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *out_steps);
 rg_status rg_world_get_alpha(const rg_world *world, rg_real *out_alpha);
 rg_status rg_body_get_interpolated_position(const rg_world *world, rg_body body, rg_vec2 *out);
+int32_t rg_world_get_stopped(const rg_world *world, rg_body *out, int32_t capacity);
 int32_t rg_world_body_count(const rg_world *world);
 int32_t rg_world_spring_count(const rg_world *world);
 rg_status rg_body_create(rg_world *world, int32_t type, rg_real mass, rg_vec2 position, rg_body *out_body);
@@ -177,6 +178,18 @@ typedef struct rg_debug_draw {
   void *user;
 } rg_debug_draw;
 rg_status rg_world_draw(const rg_world *world, const rg_debug_draw *draw);
+typedef void rg_task_fn(int32_t begin, int32_t end, int32_t worker, void *context);
+typedef struct rg_task_system {
+  int32_t workers;
+  void *(*enqueue)(rg_task_fn *fn, int32_t count, int32_t min_range, void *context, void *user);
+  void (*finish)(void *task, void *user);
+  void *user;
+} rg_task_system;
+rg_status rg_world_set_task_system(rg_world *world, const rg_task_system *tasks);
+typedef struct rg_thread_pool rg_thread_pool;
+rg_status rg_thread_pool_create(int32_t threads, rg_thread_pool **out_pool);
+void rg_thread_pool_destroy(rg_thread_pool *pool);
+rg_status rg_thread_pool_task_system(rg_thread_pool *pool, rg_task_system *out);
 static const int32_t RG_VERSION_MAJOR = 0;
 static const int32_t RG_VERSION_MINOR = 1;
 static const int32_t RG_VERSION_PATCH = 0;
@@ -197,6 +210,7 @@ static const uint32_t RG_COLOR_CONTACT = 0xDC2828FFu;
 static const uint32_t RG_COLOR_VELOCITY = 0x28A03CFFu;
 static const uint32_t RG_COLOR_BOUNDS = 0x32B4B4FFu;
 static const uint32_t RG_COLOR_SPRING = 0xB43CB4FFu;
+static const int32_t RG_MAX_WORKERS = 64;
 ]]
 
 local C

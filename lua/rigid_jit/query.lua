@@ -1,6 +1,6 @@
 -- rigid_jit/query.lua: what the LuaJIT binding reads out of a world after a step, as
 -- lua/lquery.c does: contact events (world:events) and the queries (world:raycast,
--- raycast_all, query_aabb, query_point, cast_circle, cast_box).  rigid_jit.lua calls the
+-- raycast_all, query_aabb, query_point, cast_circle, cast_box, stopped).  rigid_jit.lua calls the
 -- function this returns with its core (World, open_world, push_body); it returns
 -- { pushhit = f } for rigid_jit/contact.lua.
 local ffi = require "ffi"
@@ -26,7 +26,7 @@ return function(core)
   function World.events(w)
     local p = open_world(w)
     local n = C.rg_world_get_contact_events(p, nil, 0)
-    if n < 0 then status_error(n, "events") end
+    if n < 0 then status_error(p, n, "events") end
     events, events_cap = grow(events, events_cap, n, "rg_contact_event[?]")
     if n > 0 then n = C.rg_world_get_contact_events(p, events, n) end
     local out = {}
@@ -46,11 +46,11 @@ return function(core)
              nx = e.normal.x, ny = e.normal.y, fraction = e.fraction }
   end
 
-  -- The returns of world:raycast, cast_circle and cast_box: body, x, y, nx, ny, fraction, or
-  -- nil.
+  -- The returns of world:raycast, cast_circle and cast_box for a query that returned r:
+  -- body, x, y, nx, ny, fraction, or nil.  (Each checks r itself: an error raised here,
+  -- below a tail call, could not find the line that called it.)
   local hit = ffi.new("rg_ray_hit[1]")
-  local function returnhit(w, r, what, hint)
-    if r < 0 then status_error(r, what, hint) end
+  local function returnhit(w, r)
     if r == 0 then return nil end
     local e = hit[0]
     return push_body(w, e.body), e.point.x, e.point.y, e.normal.x, e.normal.y, e.fraction
@@ -59,17 +59,19 @@ return function(core)
   function World.raycast(w, ...)
     local p = open_world(w)
     local ox, oy, dx, dy = real4(2, ...)
-    return returnhit(w, V.rg_world_raycast(p, ox, oy, dx, dy, optmask(6, select(5, ...)), hit),
-                     "raycast")
+    local r = V.rg_world_raycast(p, ox, oy, dx, dy, optmask(6, select(5, ...)), hit)
+    if r < 0 then status_error(p, r, "raycast") end
+    return returnhit(w, r)
   end
 
   function World.cast_circle(w, ...)
     local p = open_world(w)
-    local r = real1(2, ...)
+    local radius = real1(2, ...)
     local ox, oy, dx, dy = real4(3, select(2, ...))
     local mask = optmask(7, select(6, ...))
-    return returnhit(w, V.rg_world_cast_shape(p, C.RG_SHAPE_CIRCLE, r, 0, ox, oy, dx, dy, mask, hit),
-                     "cast_circle", "radius must be > 0")
+    local r = V.rg_world_cast_shape(p, C.RG_SHAPE_CIRCLE, radius, 0, ox, oy, dx, dy, mask, hit)
+    if r < 0 then status_error(p, r, "cast_circle") end
+    return returnhit(w, r)
   end
 
   function World.cast_box(w, ...)
@@ -77,8 +79,9 @@ return function(core)
     local hw, hh = real2(2, ...)
     local ox, oy, dx, dy = real4(4, select(3, ...))
     local mask = optmask(8, select(7, ...))
-    return returnhit(w, V.rg_world_cast_shape(p, C.RG_SHAPE_AABB, hw, hh, ox, oy, dx, dy, mask, hit),
-                     "cast_box", "half sizes must be > 0")
+    local r = V.rg_world_cast_shape(p, C.RG_SHAPE_AABB, hw, hh, ox, oy, dx, dy, mask, hit)
+    if r < 0 then status_error(p, r, "cast_box") end
+    return returnhit(w, r)
   end
 
   local hits, hits_cap = nil, 0
@@ -88,7 +91,7 @@ return function(core)
     local ox, oy, dx, dy = real4(2, ...)
     local mask = optmask(6, select(5, ...))
     local n = V.rg_world_raycast_all(p, ox, oy, dx, dy, mask, nil, 0)
-    if n < 0 then status_error(n, "raycast_all") end
+    if n < 0 then status_error(p, n, "raycast_all") end
     hits, hits_cap = grow(hits, hits_cap, n, "rg_ray_hit[?]")
     if n > 0 then n = V.rg_world_raycast_all(p, ox, oy, dx, dy, mask, hits, n) end
     local out = {}
@@ -110,7 +113,7 @@ return function(core)
     local x0, y0, x1, y1 = real4(2, ...)
     local mask = optmask(6, select(5, ...))
     local n = V.rg_world_query_aabb(p, x0, y0, x1, y1, mask, nil, 0)
-    if n < 0 then status_error(n, "query_aabb", "lower must not exceed upper") end
+    if n < 0 then status_error(p, n, "query_aabb") end
     found, found_cap = grow(found, found_cap, n, "rg_body[?]")
     if n > 0 then n = V.rg_world_query_aabb(p, x0, y0, x1, y1, mask, found, n) end
     return found_list(w, n)
@@ -121,9 +124,18 @@ return function(core)
     local x, y = real2(2, ...)
     local mask = optmask(4, select(3, ...))
     local n = V.rg_world_query_point(p, x, y, mask, nil, 0)
-    if n < 0 then status_error(n, "query_point") end
+    if n < 0 then status_error(p, n, "query_point") end
     found, found_cap = grow(found, found_cap, n, "rg_body[?]")
     if n > 0 then n = V.rg_world_query_point(p, x, y, mask, found, n) end
+    return found_list(w, n)
+  end
+
+  function World.stopped(w)
+    local p = open_world(w)
+    local n = C.rg_world_get_stopped(p, nil, 0)
+    if n < 0 then status_error(p, n, "stopped") end
+    found, found_cap = grow(found, found_cap, n, "rg_body[?]")
+    if n > 0 then n = C.rg_world_get_stopped(p, found, n) end
     return found_list(w, n)
   end
 

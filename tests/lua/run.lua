@@ -1,13 +1,14 @@
 -- run.lua: every Lua test of rigid, run by `make test` with stock lua5.4.
---   1. tests/lua/test_rigid.lua and test_gameplay.lua in the sandboxed host and in stock
---      lua5.4 (build/rigid.so);
+--   1. tests/lua/test_rigid.lua, test_gameplay.lua, test_snapshot.lua and test_errors.lua in
+--      the sandboxed host and in stock lua5.4 (build/rigid.so);
 --   2. tests/lua/pattern_fuzz.lua: the host's metered matcher against stock Lua's;
 --   3. tests/lua/hostile/*.lua: each must fail in the host with a clear error (its
 --      "-- expect:" lines), file:line and a traceback, exit status 1 (not a crash), and
 --      leave the canary file it attacks untouched;
 --   4. tests/lua/ok/*.lua: scripts that must run in the host and exit 0;
---   5. lua/examples/*.lua: each runs in the host and draws its picture;
---   6. with --library: both API tests again in LuaJIT through lua/rigid_jit.lua
+--   5. lua/examples/*.lua: each runs in the host and draws its picture (and a pile at 1 and
+--      3 threads gives one hash);
+--   6. with --library: the API tests again in LuaJIT through lua/rigid_jit.lua
 --      (with its scalar declarations of the vector calls, and with the header's own), and
 --      the LOVE game lua/examples/love headless, whose screenshot must show the player
 --      where the physics put it.  What is not installed is skipped, with a line saying so.
@@ -94,8 +95,10 @@ local function suite(name, cmd, as_one)
   end
 end
 
--- The API tests: the core API and the gameplay collision API, one script each.
-local API_TESTS = { "tests/lua/test_rigid.lua", "tests/lua/test_gameplay.lua" }
+-- The API tests: the core API, the gameplay collision API, snapshots and the error messages,
+-- one script each.
+local API_TESTS = { "tests/lua/test_rigid.lua", "tests/lua/test_gameplay.lua",
+                    "tests/lua/test_snapshot.lua", "tests/lua/test_errors.lua" }
 
 print("-- API tests in the sandboxed host")
 for _, t in ipairs(API_TESTS) do suite("host " .. t, q(opts.host) .. " " .. t) end
@@ -152,6 +155,19 @@ print("-- scripts that must run cleanly in the host")
 for _, path in ipairs(list("tests/lua/ok/*.lua")) do
   local out, how, code = run(limit .. q(opts.host) .. " " .. q(path) .. " --steps 30")
   result(how == "exit" and code == 0, "runs " .. path, out:sub(1, 1500))
+end
+
+print("-- the host's --threads: the same bits as one thread")
+do
+  local path = "tests/lua/threads/pile.lua"
+  local one, how1, code1 = run(q(opts.host) .. " " .. q(path) .. " --threads 1")
+  local three, how3, code3 = run(q(opts.host) .. " " .. q(path) .. " --threads 3")
+  local h1, h3 = one:match("hash (%x+)"), three:match("hash (%x+)")
+  result(how1 == "exit" and code1 == 0 and how3 == "exit" and code3 == 0 and h1 ~= nil and h1 == h3,
+         path .. " at 1 and 3 threads: hash " .. tostring(h1) .. " and " .. tostring(h3),
+         "--- 1 thread:\n" .. one:sub(1, 800) .. "\n--- 3 threads:\n" .. three:sub(1, 800))
+  local bad = run(q(opts.host) .. " " .. q(path) .. " --threads 65")
+  result(bad:find("--threads wants a whole number in [1, 64]", 1, true) ~= nil, "--threads 65 is refused", bad)
 end
 
 print("-- examples in the host, each drawing its picture")

@@ -1,5 +1,5 @@
 -- Physics memory counts against the cap too: bodies without end.
--- expect: not enough memory
+-- expect: world:body: out of memory (body storage)
 -- args: --memory 16
 local rigid = require "rigid"
 local w = rigid.world()

@@ -1,0 +1,87 @@
+/* lcount.c: library functions charged by the values they move and the strings they read.
+ *
+ * Each runs a loop in C that no instruction counts: select and string.char walk their
+ * arguments (a call may pass a million, from table.unpack), table.unpack and string.byte push
+ * as many results as asked, table.sort without a comparator runs n log n comparisons, and
+ * tonumber or arithmetic on a string (the string metatable's __add and the rest) reads the
+ * whole string, and print writes it.  Each wrapper calls the stock function and charges the meter by that count:
+ * a value moved, a comparison or a byte read is a unit. */
+#include <lauxlib.h>
+#include <lua.h>
+#include <lualib.h>
+
+#include "lcount.h"
+
+enum { BY_ARGS, BY_RESULTS, BY_SORT, BY_STRINGS };
+
+static void lcount_charge(lua_State *L, double units)
+{
+    const lpattern_meter *m = (const lpattern_meter *)lua_touserdata(L, lua_upvalueindex(2));
+    if (units >= 1) m->charge(L, m->ud, (size_t)units);
+}
+
+static int lcount_call(lua_State *L)
+{
+    int mode = (int)lua_tointeger(L, lua_upvalueindex(3));
+    int nargs = lua_gettop(L), nres;
+    double units = 0;
+    if (mode == BY_ARGS) units = nargs;
+    if (mode == BY_SORT && lua_type(L, 1) == LUA_TTABLE) {
+        double n = (double)lua_rawlen(L, 1), lg = 1;
+        for (double k = n; k > 1; k /= 2) lg++;
+        units = n * lg;
+    }
+    if (mode == BY_STRINGS)
+        for (int i = 1; i <= nargs; i++)
+            if (lua_type(L, i) == LUA_TSTRING) units += (double)lua_rawlen(L, i);
+    /* charged before the call: the stock function may raise, and its work is done by then */
+    lcount_charge(L, units);
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, nargs, LUA_MULTRET);
+    nres = lua_gettop(L);
+    if (mode == BY_RESULTS) lcount_charge(L, nres);
+    return nres;
+}
+
+static void lcount_wrap(lua_State *L, int table, const char *name, int mode,
+                        const lpattern_meter *meter)
+{
+    union { const lpattern_meter *c; void *p; } u;   /* stored, never written through */
+    u.c = meter;
+    lua_getfield(L, table, name);
+    if (lua_type(L, -1) != LUA_TFUNCTION) {
+        lua_pop(L, 1);
+        return;
+    }
+    lua_pushlightuserdata(L, u.p);
+    lua_pushinteger(L, mode);
+    lua_pushcclosure(L, lcount_call, 3);
+    lua_setfield(L, table, name);
+}
+
+void lcount_open(lua_State *L, const lpattern_meter *meter)
+{
+    static const char *const arith[] = { "__add", "__sub", "__mul", "__div", "__mod",
+                                         "__pow", "__unm", "__idiv", NULL };
+    int top = lua_gettop(L);
+    lua_pushglobaltable(L);
+    lcount_wrap(L, top + 1, "select", BY_ARGS, meter);
+    lcount_wrap(L, top + 1, "tonumber", BY_STRINGS, meter);
+    lcount_wrap(L, top + 1, "print", BY_STRINGS, meter);   /* writes each string out */
+    lua_getglobal(L, LUA_TABLIBNAME);
+    lcount_wrap(L, top + 2, "unpack", BY_RESULTS, meter);
+    lcount_wrap(L, top + 2, "sort", BY_SORT, meter);
+    lua_getglobal(L, LUA_STRLIBNAME);
+    lcount_wrap(L, top + 3, "byte", BY_RESULTS, meter);
+    lcount_wrap(L, top + 3, "char", BY_ARGS, meter);
+    lua_getglobal(L, LUA_UTF8LIBNAME);
+    lcount_wrap(L, top + 4, "char", BY_ARGS, meter);
+    lua_settop(L, top);
+    lua_pushliteral(L, "");
+    if (lua_getmetatable(L, -1)) {
+        int mt = lua_gettop(L);
+        for (int i = 0; arith[i] != NULL; i++) lcount_wrap(L, mt, arith[i], BY_STRINGS, meter);
+    }
+    lua_settop(L, top);
+}

@@ -1,0 +1,62 @@
+/* bounds.c: the range guard of the step, and the list of the bodies it stopped.
+ *
+ * The accepted ranges keep one step's arithmetic finite from any state in range (forces up
+ * to RG_MAX_FORCE on RG_MIN_MASS over RG_MAX_DT give speeds near 1e25 m/s, far inside the
+ * float range), but nothing keeps a scene with forces far beyond its scale inside them over
+ * many steps: a stiff spring on a light body gains speed every step, and RK4's stages can
+ * overflow a damping term (1e9 N s/m times 1e25 m/s) within one.  The guard ends such a
+ * body's run at the edge of the range, so the next step starts in range again, and says
+ * which body it stopped; the collide stage then sees positions and speeds in range only. */
+#include "bounds.h"
+#include "error.h"
+#include "arg.h"
+#include "query.h"
+#include "state.h"
+#include "vec2.h"
+
+static rg_real bounds_clamp(rg_real v, rg_real start, rg_real lim)
+{
+    if (v - v != 0) return start; /* inf or NaN */
+    return v > lim ? lim : v < -lim ? -lim : v;
+}
+
+void bounds_begin(rg_world *w)
+{
+    body_store *b = &w->b;
+    if (!w->stopped_any) return;
+    for (int32_t i = 0; i < b->count; i++) b->flags[i] &= ~BODY_F_STOPPED;
+    w->stopped_any = 0;
+}
+
+void bounds_guard(rg_world *w, const rg_real *x0, const rg_real *y0)
+{
+    body_store *b = &w->b;
+    int32_t n = b->n_active;
+    const rg_real c = (rg_real)RG_MAX_COORD;
+    for (int32_t i = 0; i < n; i++) {
+        if (!bounds_out(b->x[i], b->y[i], b->vx[i], b->vy[i])) continue;
+        /* From a start in range Euler cannot overflow (see above), so a non-finite
+         * coordinate without a kept start is out of reach; 0 keeps it defined. */
+        b->x[i] = bounds_clamp(b->x[i], x0 != NULL ? x0[i] : 0, c);
+        b->y[i] = bounds_clamp(b->y[i], y0 != NULL ? y0[i] : 0, c);
+        b->vx[i] = b->vy[i] = 0;
+        b->ax[i] = b->ay[i] = 0;
+        b->flags[i] |= BODY_F_STOPPED;
+        w->stopped_any = 1;
+    }
+}
+
+RG_API int32_t rg_world_get_stopped(const rg_world *world, rg_body *out, int32_t capacity)
+{
+    ERROR_BEGIN(world);
+    ARG_BUFFER(world, out, capacity);
+    query_handles q;
+    q.out = out;
+    q.cap = capacity;
+    q.count = 0;
+    const body_store *b = &world->b;
+    if (world->stopped_any)
+        for (int32_t i = 0; i < b->n_moving; i++)
+            if (b->flags[i] & BODY_F_STOPPED) query_keep(&q, pool_handle(&world->body_pool, b->slot[i]));
+    return query_sorted(&q);
+}

@@ -1,0 +1,218 @@
+/* thread_pool.c: rg_thread_pool, a ready task system for games without one (POSIX threads).
+ *
+ * One task at a time.  enqueue publishes it in `state`, the task's generation (high 32 bits)
+ * and the start of the next range to hand out (low 32 bits), takes ranges itself, and returns
+ * when every item is done: it never waits for a thread that is asleep or descheduled, which
+ * simply finds no range left when it comes.  A thread claims a range by a compare-and-swap of
+ * the state, so it runs a range of the current task only (a stale generation fails), and the
+ * task cannot end, nor the next one be written, before that range is done.  An idle thread
+ * spins a while on the state (the stages of a step follow each other within microseconds),
+ * then sleeps on a condition variable until the next task. */
+#define _POSIX_C_SOURCE 200809L
+#include <pthread.h>
+#include <sched.h>
+#include <stdlib.h>
+
+#include "rigid.h"
+
+#if !defined(__GNUC__) && !defined(__clang__)
+#error "thread_pool.c needs the __atomic builtins of GCC or Clang"
+#endif
+
+#define POOL_LOAD(p) __atomic_load_n((p), __ATOMIC_ACQUIRE)
+#define POOL_RELAXED(p) __atomic_load_n((p), __ATOMIC_RELAXED)
+#define POOL_STORE(p, v) __atomic_store_n((p), (v), __ATOMIC_RELEASE)
+#define POOL_SET(p, v) __atomic_store_n((p), (v), __ATOMIC_RELAXED)
+#define POOL_ADD(p, v) __atomic_fetch_add((p), (v), __ATOMIC_ACQ_REL)
+
+/* Spins of an idle thread before it sleeps (a pause each: some 0.1-1 ms). */
+#define POOL_SPINS 20000
+
+static inline void pool_relax(void)
+{
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#elif defined(__aarch64__)
+    __asm__ __volatile__("yield");
+#endif
+}
+
+typedef struct pool_thread {
+    struct rg_thread_pool *pool;
+    int32_t worker;
+} pool_thread;
+
+struct rg_thread_pool {
+    int32_t threads;             /* in all, the caller's included */
+    pthread_t *th;               /* threads - 1 */
+    pool_thread *pt;
+    pthread_mutex_t task_lock;   /* one task at a time */
+    pthread_mutex_t lock;        /* sleepers and stop, with wake */
+    pthread_cond_t wake;
+    int32_t sleepers;
+    int32_t stop;                /* atomic */
+    /* the current task (atomics: a late thread may read them while the next is written,
+     * and then fails its claim) */
+    rg_task_fn *fn;
+    void *context;
+    int32_t count, chunk;
+    uint64_t state;              /* atomic: generation << 32 | next range's start */
+    int32_t done;                /* atomic: items done */
+};
+
+/* Claims and runs ranges of the task of generation gen until none is left. */
+static void pool_work(rg_thread_pool *p, uint32_t gen, int32_t worker)
+{
+    for (;;) {
+        uint64_t st = POOL_LOAD(&p->state);
+        if ((uint32_t)(st >> 32) != gen) return;
+        int32_t begin = (int32_t)(uint32_t)st, count = POOL_RELAXED(&p->count), chunk = POOL_RELAXED(&p->chunk);
+        if (begin >= count) return;
+        int32_t end = count - begin > chunk ? begin + chunk : count;
+        uint64_t claimed = ((uint64_t)gen << 32) | (uint32_t)end;
+        if (!__atomic_compare_exchange_n(&p->state, &st, claimed, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE))
+            continue;
+        /* the claim holds the task: it cannot end before this range is counted done */
+        rg_task_fn *fn = POOL_RELAXED(&p->fn);
+        fn(begin, end, worker, POOL_RELAXED(&p->context));
+        POOL_ADD(&p->done, end - begin);
+    }
+}
+
+static void *pool_main(void *arg)
+{
+    pool_thread *t = arg;
+    rg_thread_pool *p = t->pool;
+    uint32_t seen = 0;
+    for (;;) {
+        uint32_t g;
+        int spins = 0;
+        while ((g = (uint32_t)(POOL_LOAD(&p->state) >> 32)) == seen) {
+            if (POOL_LOAD(&p->stop)) return NULL;
+            if (++spins < POOL_SPINS) {
+                pool_relax();
+                continue;
+            }
+            pthread_mutex_lock(&p->lock);
+            p->sleepers++;
+            while ((uint32_t)(POOL_LOAD(&p->state) >> 32) == seen && !POOL_LOAD(&p->stop))
+                pthread_cond_wait(&p->wake, &p->lock);
+            p->sleepers--;
+            pthread_mutex_unlock(&p->lock);
+            spins = 0;
+        }
+        seen = g;
+        pool_work(p, g, t->worker);
+    }
+}
+
+static void *pool_enqueue(rg_task_fn *fn, int32_t count, int32_t min_range, void *context, void *user)
+{
+    rg_thread_pool *p = user;
+    if (count <= 0) return NULL;
+    if (p->threads < 2) {
+        fn(0, count, 0, context);
+        return NULL;
+    }
+    pthread_mutex_lock(&p->task_lock);
+    /* about four ranges per thread, for balance, and none below min_range */
+    int32_t per = p->threads * 4;
+    int32_t chunk = count / per + (count % per != 0);
+    if (chunk < min_range) chunk = min_range;
+    if (chunk < 1) chunk = 1;
+    POOL_SET(&p->fn, fn);
+    POOL_SET(&p->context, context);
+    POOL_SET(&p->count, count);
+    POOL_SET(&p->chunk, chunk);
+    POOL_SET(&p->done, 0);
+    uint32_t gen = (uint32_t)(POOL_RELAXED(&p->state) >> 32) + 1u;
+    POOL_STORE(&p->state, (uint64_t)gen << 32); /* publishes the fields above */
+    pthread_mutex_lock(&p->lock);
+    if (p->sleepers > 0) pthread_cond_broadcast(&p->wake);
+    pthread_mutex_unlock(&p->lock);
+    pool_work(p, gen, 0);
+    for (int spins = 0; POOL_LOAD(&p->done) < count; spins++) {
+        if (spins < POOL_SPINS) pool_relax();
+        else sched_yield();
+    }
+    pthread_mutex_unlock(&p->task_lock);
+    return NULL;
+}
+
+static void pool_finish(void *task, void *user)
+{
+    (void)task;
+    (void)user;
+}
+
+static void pool_stop(rg_thread_pool *p, int32_t started)
+{
+    pthread_mutex_lock(&p->lock);
+    POOL_STORE(&p->stop, 1);
+    pthread_cond_broadcast(&p->wake);
+    pthread_mutex_unlock(&p->lock);
+    for (int32_t k = 0; k < started; k++) pthread_join(p->th[k], NULL);
+}
+
+RG_API rg_status rg_thread_pool_create(int32_t threads, rg_thread_pool **out_pool)
+{
+    if (out_pool == NULL || threads < 1 || threads > RG_MAX_WORKERS) {
+        if (out_pool != NULL) *out_pool = NULL;
+        return RG_ERR_INVALID_ARGUMENT;
+    }
+    *out_pool = NULL;
+    rg_thread_pool *p = calloc(1, sizeof *p);
+    if (p == NULL) return RG_ERR_OUT_OF_MEMORY;
+    p->threads = threads;
+    if (threads > 1) {
+        p->th = calloc((size_t)(threads - 1), sizeof *p->th);
+        p->pt = calloc((size_t)(threads - 1), sizeof *p->pt);
+        if (p->th == NULL || p->pt == NULL) {
+            free(p->th);
+            free(p->pt);
+            free(p);
+            return RG_ERR_OUT_OF_MEMORY;
+        }
+    }
+    pthread_mutex_init(&p->task_lock, NULL);
+    pthread_mutex_init(&p->lock, NULL);
+    pthread_cond_init(&p->wake, NULL);
+    for (int32_t k = 0; k < threads - 1; k++) {
+        p->pt[k].pool = p;
+        p->pt[k].worker = k + 1;
+        if (pthread_create(&p->th[k], NULL, pool_main, &p->pt[k]) != 0) {
+            pool_stop(p, k);
+            pthread_cond_destroy(&p->wake);
+            pthread_mutex_destroy(&p->lock);
+            pthread_mutex_destroy(&p->task_lock);
+            free(p->th);
+            free(p->pt);
+            free(p);
+            return RG_ERR_CAPACITY;
+        }
+    }
+    *out_pool = p;
+    return RG_OK;
+}
+
+RG_API void rg_thread_pool_destroy(rg_thread_pool *pool)
+{
+    if (pool == NULL) return;
+    pool_stop(pool, pool->threads - 1);
+    pthread_cond_destroy(&pool->wake);
+    pthread_mutex_destroy(&pool->lock);
+    pthread_mutex_destroy(&pool->task_lock);
+    free(pool->th);
+    free(pool->pt);
+    free(pool);
+}
+
+RG_API rg_status rg_thread_pool_task_system(rg_thread_pool *pool, rg_task_system *out)
+{
+    if (pool == NULL || out == NULL) return RG_ERR_INVALID_ARGUMENT;
+    out->workers = pool->threads;
+    out->enqueue = pool_enqueue;
+    out->finish = pool_finish;
+    out->user = pool;
+    return RG_OK;
+}

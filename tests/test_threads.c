@@ -1,0 +1,331 @@
+/* test_threads.c: the step spread over a task system gives bit-identical results at any
+ * number of workers, and the same as the step on one thread: a scene large enough that every
+ * stage splits (3000 bodies: circles and boxes in a container, springs, drag, a kinematic
+ * platform, a sensor, a one-way ledge, bullets, sleeping), hashed every 20 steps and
+ * compared across
+ *   - no task system (one thread),
+ *   - the shuffler: a task system of 1 to 4 workers that splits each task into ranges of
+ *     random lengths (at least min_range), runs them in a random order with random worker
+ *     indices, and defers them to finish (it exercises what threads would do to the split
+ *     and the order, deterministically),
+ *   - rg_thread_pool with 1 to 4 threads (real threads; this machine may have fewer cores).
+ * And the pool's and the task system's bad input. */
+#include "testutil.h"
+
+/* ---------------------------------------------------------------- the shuffler */
+
+typedef struct shuffler {
+    uint64_t seed;
+    int32_t workers;
+    /* the deferred task */
+    rg_task_fn *fn;
+    int32_t count, min_range;
+    void *context;
+    long tasks, ranges;
+} shuffler;
+
+static uint32_t shuffler_next(shuffler *s)
+{
+    s->seed = s->seed * 6364136223846793005ull + 1442695040888963407ull;
+    return (uint32_t)(s->seed >> 33);
+}
+
+static void *shuffler_enqueue(rg_task_fn *fn, int32_t count, int32_t min_range, void *context, void *user)
+{
+    shuffler *s = user;
+    assert_true(count > 0 && min_range >= 1 && s->fn == NULL);
+    s->fn = fn;
+    s->count = count;
+    s->min_range = min_range;
+    s->context = context;
+    s->tasks++;
+    return s;
+}
+
+static void shuffler_finish(void *task, void *user)
+{
+    shuffler *s = user;
+    assert_true(task == s && s->fn != NULL);
+    enum { MAXR = 4096 };
+    static int32_t begin[MAXR], end[MAXR];
+    int32_t n = 0;
+    for (int32_t at = 0; at < s->count;) {
+        int32_t len = s->min_range + (int32_t)(shuffler_next(s) % (uint32_t)(2 * s->min_range + 1));
+        if (n == MAXR - 1 || len > s->count - at) len = s->count - at;
+        begin[n] = at;
+        end[n++] = at + len;
+        at += len;
+    }
+    for (int32_t k = n - 1; k > 0; k--) { /* Fisher-Yates */
+        int32_t j = (int32_t)(shuffler_next(s) % (uint32_t)(k + 1));
+        int32_t tb = begin[k], te = end[k];
+        begin[k] = begin[j];
+        end[k] = end[j];
+        begin[j] = tb;
+        end[j] = te;
+    }
+    rg_task_fn *fn = s->fn;
+    s->fn = NULL;
+    for (int32_t k = 0; k < n; k++)
+        fn(begin[k], end[k], (int32_t)(shuffler_next(s) % (uint32_t)s->workers), s->context);
+    s->ranges += n;
+}
+
+/* ---------------------------------------------------------------- the scene */
+
+enum { N_BODIES = 3000, STEPS = 120 };
+
+typedef struct big_scene {
+    rg_world *w;
+    rg_body b[N_BODIES + 64];
+    int n;
+} big_scene;
+
+static rg_body big_add(big_scene *s, int32_t type, double m, double x, double y)
+{
+    rg_body b;
+    assert_true(s->n < N_BODIES + 64);
+    assert_ok(rg_body_create(s->w, type, (rg_real)m, v2(x, y), &b));
+    s->b[s->n++] = b;
+    return b;
+}
+
+static uint64_t fnv(uint64_t h, const void *p, size_t n)
+{
+    const unsigned char *c = p;
+    for (size_t k = 0; k < n; k++) h = (h ^ c[k]) * 1099511628211ull;
+    return h;
+}
+
+/* Every body's position, velocity, grounded and awake flags, the step's events and the
+ * counts; rg_world_hash on top (the whole state, contacts and accumulated impulses included). */
+static uint64_t big_hash(const big_scene *s, uint64_t h)
+{
+    for (int i = 0; i < s->n; i++) {
+        rg_vec2 pv[2] = { pos_of(s->w, s->b[i]), vel_of(s->w, s->b[i]) };
+        int32_t flags[2];
+        assert_ok(rg_body_is_grounded(s->w, s->b[i], &flags[0]));
+        assert_ok(rg_body_is_awake(s->w, s->b[i], &flags[1]));
+        h = fnv(h, pv, sizeof pv);
+        h = fnv(h, flags, sizeof flags);
+    }
+    static rg_contact_event ev[65536];
+    int32_t n = rg_world_get_contact_events(s->w, ev, 65536);
+    assert_true(n >= 0 && n <= 65536);
+    /* field by field (no padding), handles without their world's random tag (the top bits) */
+    const uint64_t untagged = (1ull << 44) - 1;
+    for (int32_t k = 0; k < n; k++) {
+        uint64_t who[2] = { ev[k].a & untagged, ev[k].b & untagged };
+        int32_t kind[2] = { ev[k].kind, ev[k].sensor };
+        rg_real r[6] = { ev[k].normal.x, ev[k].normal.y, ev[k].point.x, ev[k].point.y, ev[k].depth, ev[k].speed };
+        h = fnv(h, who, sizeof who);
+        h = fnv(h, kind, sizeof kind);
+        h = fnv(h, r, sizeof r);
+    }
+    int32_t counts[3] = { n, rg_world_touching_count(s->w), rg_world_awake_body_count(s->w) };
+    h = fnv(h, counts, sizeof counts);
+    uint64_t whole;
+    assert_ok(rg_world_hash(s->w, &whole));
+    return fnv(h, &whole, sizeof whole);
+}
+
+static uint64_t run_big(int32_t integrator, const rg_task_system *tasks)
+{
+    big_scene *s = calloc(1, sizeof *s);
+    assert_non_null(s);
+    assert_ok(rg_world_create(&s->w));
+    assert_ok(rg_world_set_task_system(s->w, tasks));
+    assert_ok(rg_world_set_gravity(s->w, v2(0, -9.81)));
+    assert_ok(rg_world_set_integrator(s->w, integrator));
+    rg_body floor = big_add(s, RG_BODY_STATIC, 0, 0, -0.5);
+    assert_ok(rg_body_set_aabb(s->w, floor, 40, 0.5));
+    for (int side = -1; side <= 1; side += 2) {
+        rg_body wall = big_add(s, RG_BODY_STATIC, 0, side * 40.5, 20);
+        assert_ok(rg_body_set_aabb(s->w, wall, 0.5, 21));
+    }
+    rg_body ledge = big_add(s, RG_BODY_STATIC, 0, 20, 6);
+    assert_ok(rg_body_set_aabb(s->w, ledge, 6, 0.2));
+    assert_ok(rg_body_set_one_way(s->w, ledge, v2(0, 1)));
+    rg_body plat = big_add(s, RG_BODY_KINEMATIC, 0, -30, 4);
+    assert_ok(rg_body_set_aabb(s->w, plat, 3, 0.2));
+    assert_ok(rg_body_set_velocity(s->w, plat, v2(2, 0)));
+    rg_body coin = big_add(s, RG_BODY_STATIC, 0, 0, 3);
+    assert_ok(rg_body_set_circle(s->w, coin, 2));
+    assert_ok(rg_body_set_sensor(s->w, coin, 1));
+    for (int i = 0; i < N_BODIES; i++) {
+        double x = -39 + (i % 100) * 0.78 + 0.011 * (i % 7), y = 1 + (i / 100) * 0.9;
+        rg_body b = big_add(s, RG_BODY_DYNAMIC, 0.5 + 0.25 * (i % 5), x, y);
+        double size = 0.25 + 0.03 * (i % 4);
+        if (i % 3 == 0)
+            assert_ok(rg_body_set_aabb(s->w, b, (rg_real)size, (rg_real)(size * 0.8)));
+        else
+            assert_ok(rg_body_set_circle(s->w, b, (rg_real)size));
+        if (i % 4 == 1) assert_ok(rg_body_set_restitution(s->w, b, 0.4f));
+        if (i % 5 == 2) assert_ok(rg_body_set_friction(s->w, b, 0.2f));
+        if (i % 7 == 3) assert_ok(rg_body_set_drag(s->w, b, 0.1f, 0.02f));
+        if (i % 11 == 5) assert_ok(rg_body_set_surface_friction(s->w, b, 0.2f, 1));
+        assert_ok(rg_body_set_velocity(s->w, b, v2((i % 5) - 2, -(i % 3))));
+        if (i % 50 == 49) {
+            uint64_t sp;
+            assert_ok(rg_spring_create(s->w, b, s->b[s->n - 2], v2(0, 0), 0.8f, 30, 0.5f, &sp));
+        }
+        if (i % 400 == 7) assert_ok(rg_body_set_velocity(s->w, b, v2(120, -40))); /* bullets */
+    }
+    uint64_t h = 1469598103934665603ull;
+    for (int k = 1; k <= STEPS; k++) {
+        if (k == 120) assert_ok(rg_body_set_velocity(s->w, plat, v2(-2, 0)));
+        assert_ok(rg_world_step(s->w, (rg_real)(1.0 / 60)));
+        if (k % 20 == 0) h = big_hash(s, h);
+    }
+    rg_world_destroy(s->w);
+    free(s);
+    return h;
+}
+
+/* ---------------------------------------------------------------- tests */
+
+static int compare(const char *name, uint64_t got, uint64_t want)
+{
+    printf("  %-34s 0x%016llxull%s\n", name, (unsigned long long)got, got == want ? "" : "  MISMATCH");
+    return got != want;
+}
+
+/* workers_max 0: 2 and 3 workers only (the shuffler at 3, the pool at 2). */
+static void check_integrator(int32_t integrator, int workers_max)
+{
+    uint64_t one = run_big(integrator, NULL);
+    printf("  integrator %d, one thread         0x%016llxull\n", (int)integrator, (unsigned long long)one);
+    int bad = 0;
+    char name[64];
+    for (int k = workers_max > 0 ? 1 : 2; k <= (workers_max > 0 ? workers_max : 3); k++) {
+        shuffler sh = { 0x9E3779B97F4A7C15ull * (uint64_t)k, k, NULL, 0, 0, NULL, 0, 0 };
+        rg_task_system ts = { k, shuffler_enqueue, shuffler_finish, &sh };
+        if (workers_max > 0 || k == 3) {
+            snprintf(name, sizeof name, "shuffler, %d workers", k);
+            bad += compare(name, run_big(integrator, &ts), one);
+            /* the scene is large enough that stages do split */
+            if (k > 1) assert_true(sh.ranges > sh.tasks);
+        }
+        if (workers_max == 0 && k != 2) continue;
+        rg_thread_pool *pool;
+        assert_ok(rg_thread_pool_create(k, &pool));
+        assert_ok(rg_thread_pool_task_system(pool, &ts));
+        snprintf(name, sizeof name, "thread pool, %d threads", k);
+        bad += compare(name, run_big(integrator, &ts), one);
+        rg_thread_pool_destroy(pool);
+    }
+    assert_int_equal(bad, 0);
+}
+
+static void test_the_default_integrator_is_identical_at_1_to_4_workers(void **state)
+{
+    (void)state;
+    check_integrator(RG_INTEGRATOR_SEMI_IMPLICIT_EULER, 4);
+}
+
+static void test_the_other_integrators_are_identical_with_more_workers(void **state)
+{
+    (void)state;
+    check_integrator(RG_INTEGRATOR_EXPLICIT_EULER, 0);
+    check_integrator(RG_INTEGRATOR_VELOCITY_VERLET, 0);
+    check_integrator(RG_INTEGRATOR_RK4, 0);
+}
+
+static void *never(rg_task_fn *fn, int32_t count, int32_t min_range, void *context, void *user)
+{
+    (void)fn;
+    (void)count;
+    (void)min_range;
+    (void)context;
+    (void)user;
+    fail_msg("a refused task system was called");
+    return NULL;
+}
+
+static void never_finish(void *task, void *user)
+{
+    (void)task;
+    (void)user;
+}
+
+static void test_bad_task_systems_and_pools_are_refused(void **state)
+{
+    (void)state;
+    rg_world *w;
+    assert_ok(rg_world_create(&w));
+    rg_task_system ts = { 0, never, never_finish, NULL };
+    assert_status(rg_world_set_task_system(w, &ts), RG_ERR_INVALID_ARGUMENT);
+    assert_non_null(strstr(rg_world_last_error(w), "workers 0"));
+    ts.workers = RG_MAX_WORKERS + 1;
+    assert_status(rg_world_set_task_system(w, &ts), RG_ERR_INVALID_ARGUMENT);
+    ts.workers = 2;
+    ts.enqueue = NULL;
+    assert_status(rg_world_set_task_system(w, &ts), RG_ERR_INVALID_ARGUMENT);
+    ts.enqueue = never;
+    ts.finish = NULL;
+    assert_status(rg_world_set_task_system(w, &ts), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_world_set_task_system(NULL, NULL), RG_ERR_INVALID_ARGUMENT);
+    /* none took: the world steps on one thread (never would fail) */
+    for (int i = 0; i < 3000; i++) circle_body(w, RG_BODY_DYNAMIC, 1, i % 60, i / 60, 0.4);
+    step_n(w, 3, DT);
+    assert_ok(rg_world_set_task_system(w, NULL));
+    rg_world_destroy(w);
+
+    rg_thread_pool *pool = (rg_thread_pool *)&ts;
+    assert_status(rg_thread_pool_create(0, &pool), RG_ERR_INVALID_ARGUMENT);
+    assert_null(pool);
+    assert_status(rg_thread_pool_create(RG_MAX_WORKERS + 1, &pool), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_thread_pool_create(2, NULL), RG_ERR_INVALID_ARGUMENT);
+    assert_status(rg_thread_pool_task_system(NULL, &ts), RG_ERR_INVALID_ARGUMENT);
+    assert_ok(rg_thread_pool_create(3, &pool));
+    assert_status(rg_thread_pool_task_system(pool, NULL), RG_ERR_INVALID_ARGUMENT);
+    assert_ok(rg_thread_pool_task_system(pool, &ts));
+    assert_int_equal(ts.workers, 3);
+    rg_thread_pool_destroy(pool);
+    rg_thread_pool_destroy(NULL);
+}
+
+/* Two worlds stepped at once from two threads share one pool: their tasks take turns, and
+ * each world's results are its one-thread results. */
+#include <pthread.h>
+
+typedef struct twin {
+    const rg_task_system *ts;
+    uint64_t h;
+} twin;
+
+static void *twin_main(void *p)
+{
+    twin *t = p;
+    t->h = run_big(RG_INTEGRATOR_SEMI_IMPLICIT_EULER, t->ts);
+    return NULL;
+}
+
+static void test_two_worlds_on_two_threads_share_a_pool(void **state)
+{
+    (void)state;
+    uint64_t one = run_big(RG_INTEGRATOR_SEMI_IMPLICIT_EULER, NULL);
+    rg_thread_pool *pool;
+    rg_task_system ts;
+    assert_ok(rg_thread_pool_create(3, &pool));
+    assert_ok(rg_thread_pool_task_system(pool, &ts));
+    twin a = { &ts, 0 }, b = { &ts, 0 };
+    pthread_t ta, tb;
+    assert_int_equal(pthread_create(&ta, NULL, twin_main, &a), 0);
+    assert_int_equal(pthread_create(&tb, NULL, twin_main, &b), 0);
+    pthread_join(ta, NULL);
+    pthread_join(tb, NULL);
+    rg_thread_pool_destroy(pool);
+    assert_true(a.h == one && b.h == one);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_the_default_integrator_is_identical_at_1_to_4_workers),
+        cmocka_unit_test(test_the_other_integrators_are_identical_with_more_workers),
+        cmocka_unit_test(test_bad_task_systems_and_pools_are_refused),
+        cmocka_unit_test(test_two_worlds_on_two_threads_share_a_pool),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
