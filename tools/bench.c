@@ -155,11 +155,13 @@ static bench_run run_once(const bench_entrant *who, const bench_scene *s0, const
     size_t heap1 = heap_in_use();
     r.bytes = own > 0 ? own : (heap1 > heap0 ? heap1 - heap0 : 0);
     bench_quality_measure(&s, st->x, st->y, st->vx, st->vy, &r.q);
+    if (e->hash != NULL) r.hash = e->hash(ctx);
     r.q.rest = (double)NAN;
     if (d->settles) {
         double end = r.q.overlap > r.q.wall ? r.q.overlap : r.q.wall;
         r.q.peak = deepest > end ? deepest : end;
-        r.q.rest = last_moving >= r.steps * BENCH_DT - 1e-9 ? -1 : last_moving;
+        int32_t last_sample = r.steps / BENCH_SAMPLE_EVERY * BENCH_SAMPLE_EVERY; /* moving then: never */
+        r.q.rest = last_moving >= last_sample * BENCH_DT - 1e-9 ? -1 : last_moving;
     }
     e->destroy(ctx);
     r.mean = spent / r.steps;
@@ -200,6 +202,8 @@ static void combine(bench_result *res, const bench_run *runs, int32_t nruns)
         res->bytes_body = (double)runs[i].bytes / (res->nbodies > 0 ? res->nbodies : 1);
         res->peak_body = (double)runs[i].peak / (res->nbodies > 0 ? res->nbodies : 1);
         if (runs[i].steps < res->steps) res->steps = runs[i].steps;
+        if (k > 0 && runs[i].hash != res->hash) res->hash_varies = 1;
+        res->hash = runs[i].hash;
         k++;
     }
     res->steady_allocs = -1;
@@ -265,6 +269,7 @@ int bench_run_scene(const bench_scene *s, const bench_scene_def *d, const bench_
         r->solver[0] = s->solver[0];
         r->solver[1] = s->solver[1];
         combine(r, &runs[e * reps], reps);
+        r->has_hash = r->ok && who[e]->engine->hash != NULL;
     }
     for (int e = 0; e < nwho; e++) {
         bench_result *r = &out[e];

@@ -160,6 +160,7 @@ static int cell_overlap(const bench_result *r, const bench_result *rg, char *buf
                  r->q.overlap / rg->q.overlap);
     else
         snprintf(buf, size, "%.2f/%.2f", 1e3 * r->q.overlap, 1e3 * r->q.mean_overlap);
+    if (capped(r)) strncat(buf, "*", size - strlen(buf) - 1);
     return 1;
 }
 
@@ -167,6 +168,7 @@ static int cell_rest(const bench_result *r, const bench_result *rigid, char *buf
 {
     (void)rigid;
     fmt_rest(buf, size, r->q.rest);
+    if (capped(r)) strncat(buf, "*", size - strlen(buf) - 1);
     return r->q.rest == r->q.rest;
 }
 
@@ -232,7 +234,36 @@ static void print_capped(const bench_result *rs, int32_t nr)
         printf(" %s %s %d (sleep %s): %d of %d steps;", rs[i].who->label, rs[i].scene, (int)rs[i].n,
                rs[i].sleep ? "on" : "off", (int)rs[i].steps, (int)rs[i].steps_asked);
     }
-    if (any) printf("\n   its figures are over those steps, and so are rigid's in its ratio\n");
+    if (any) printf("\n   its figures are over those steps, and so are rigid's in its ratio; its quality is "
+                    "the state where it stopped\n");
+}
+
+/* What more workers buy, and whether they change the result: each threaded run against the
+ * same engine's one-worker run of the scene (time, and the final state's hash). */
+static void print_threads(const bench_result *rs, int32_t nr)
+{
+    int any = 0, differ = 0, varies = 0;
+    for (int32_t i = 0; i < nr; i++) {
+        const bench_result *r = &rs[i], *one = NULL;
+        varies |= r->ok && r->hash_varies;
+        if (!r->ok || r->who->workers == 1) continue;
+        for (int32_t j = 0; j < nr && one == NULL; j++)
+            if (rs[j].ok && rs[j].who->engine == r->who->engine && rs[j].who->workers == 1 && rs[j].n == r->n &&
+                rs[j].sleep == r->sleep && strcmp(rs[j].scene, r->scene) == 0)
+                one = &rs[j];
+        if (one == NULL) continue;
+        if (!any) printf("\nthreads: one worker's time over N workers' (median, sleeping on: mean), and the final "
+                         "state (hash) against one worker's:\n");
+        any = 1;
+        int same = !r->has_hash || (r->hash == one->hash && r->steps == one->steps);
+        differ |= !same;
+        printf("  %-13s %-7s %7d sleep %-3s %5.2fx%s\n", r->who->label, r->scene, (int)r->n, r->sleep ? "on" : "off",
+               r->sleep ? one->mean / r->mean : one->median / r->median,
+               !r->has_hash ? "" : r->steps != one->steps ? "  (capped: not compared)" : same ? "  same state"
+                                                                                             : "  STATE DIFFERS");
+    }
+    if (any && !differ) printf("  every threaded run that hashes ended in its one-worker run's state\n");
+    if (varies) printf("\nSOME ENGINE ENDED IN DIFFERENT STATES IN RUNS OF THE SAME SCENE (see the hashes in the CSV)\n");
 }
 
 /* No allocation in a steady-state step: allocator calls in the second half, for the engines
@@ -332,6 +363,7 @@ void bench_report_summary(const bench_result *rs, int32_t nr, const bench_entran
                 "x: against rigid's",
           rs, nr, who, nwho, ROWS_FREE, 0, 0, cell_ns, 13);
     print_capped(rs, nr);
+    print_threads(rs, nr);
     print_stage_costs(rs, nr);
     print_gameplay(rs, nr);
     print_allocs(rs, nr);

@@ -43,6 +43,7 @@ typedef struct bench_run {
     int64_t steady_allocs;     /* allocator calls in the second half of the steps; -1 unknown */
     bench_quality q;
     bench_contacts contacts;   /* mean per step over all steps */
+    uint64_t hash;             /* of the final state, when the engine has a hash */
 } bench_run;
 
 /* A scene at one size and sleeping setting, one entrant, over its runs (medians). */
@@ -61,6 +62,9 @@ typedef struct bench_result {
     int64_t steady_allocs;             /* most over the runs; -1 unknown */
     bench_quality q;                   /* of the last run */
     bench_contacts contacts;           /* medians over the runs of the means per step */
+    int has_hash;                      /* hash: the final state's, the same in every run */
+    uint64_t hash;
+    int hash_varies;                   /* 1: runs ended in different states */
     int32_t solver_set, solver[2];     /* the solver setting it ran with (bench_sweep.c) */
     /* rigid with as many workers (else one) over the same steps, for the ratios; NaN when
      * rigid did not run */
