@@ -363,7 +363,7 @@ static void usage(FILE *f)
                "  --sleep     the piles with sleeping off, on or both (default both; the other\n"
                "              scenes as they are defined)\n"
                "  --workers   the worker count of the threaded runs (default: the machine's cores)\n"
-               "  --budget    seconds of stepping a run may take before its steps are capped (60)\n"
+               "  --budget    seconds of stepping a run may take before its steps are capped (120)\n"
                "  --sweep     quality against cost: every engine at several solver settings on the\n"
                "              scenes given (default boxes:4000 and rain:4000)\n"
                "  --v3        where the Box2D v3 engines are (default: bench-v3/ beside this program)\n"
@@ -407,7 +407,7 @@ static int parse_scene(const char *arg, bench_job *jobs, int32_t *njobs, int32_t
 int main(int argc, char **argv)
 {
     int quick = 0, sweep = 0, sleep_mode = -1; /* -1 both for the piles */
-    bench_options o = { 0, 0, 60.0, NULL };
+    bench_options o = { 0, 0, 120.0, NULL };
     long nproc = sysconf(_SC_NPROCESSORS_ONLN);
     int32_t workers = nproc > 1 ? (int32_t)nproc : 1;
     const char *csv = NULL, *engines_arg = NULL, *v3_dir = NULL;
