@@ -266,22 +266,31 @@ static void print_threads(const bench_result *rs, int32_t nr)
     if (varies) printf("\nSOME ENGINE ENDED IN DIFFERENT STATES IN RUNS OF THE SAME SCENE (see the hashes in the CSV)\n");
 }
 
-/* No allocation in a steady-state step: allocator calls in the second half, for the engines
- * that count them. */
-static void print_allocs(const bench_result *rs, int32_t nr)
+/* No allocation in a steady-state step: allocator calls in the second half of each run, for
+ * the engines that count them, per engine: in how many of its scenes any, and the most. */
+static void print_allocs(const bench_result *rs, int32_t nr, const bench_entrant *who, int nwho)
 {
-    int any = 0, nonzero = 0;
-    for (int32_t i = 0; i < nr; i++) {
-        if (!rs[i].ok || rs[i].steady_allocs < 0) continue;
-        if (!any) printf("\nallocator calls in the second half of each run (steady state; rigid and v3 count them):");
-        any = 1;
-        if (rs[i].steady_allocs > 0) {
-            printf(" %s %s %d sleep %s: %lld;", rs[i].who->label, rs[i].scene, (int)rs[i].n,
-                   rs[i].sleep ? "on" : "off", (long long)rs[i].steady_allocs);
-            nonzero = 1;
+    int any = 0;
+    for (int e = 0; e < nwho; e++) {
+        int32_t scenes = 0, with = 0;
+        const bench_result *most = NULL;
+        for (int32_t i = 0; i < nr; i++) {
+            const bench_result *r = &rs[i];
+            if (!r->ok || r->steady_allocs < 0 || strcmp(r->who->label, who[e].label) != 0) continue;
+            scenes++;
+            if (r->steady_allocs > 0) with++;
+            if (r->steady_allocs > 0 && (most == NULL || r->steady_allocs > most->steady_allocs)) most = r;
         }
+        if (scenes == 0) continue;
+        if (!any) printf("\nallocator calls in the second half of each run (the steady state; engines that count them):\n");
+        any = 1;
+        if (most == NULL)
+            printf("  %-13s none in any of its %d scene runs\n", who[e].label, (int)scenes);
+        else
+            printf("  %-13s some in %d of its %d scene runs, the most %lld (%s %d, sleeping %s)\n", who[e].label,
+                   (int)with, (int)scenes, (long long)most->steady_allocs, most->scene, (int)most->n,
+                   most->sleep ? "on" : "off");
     }
-    if (any) printf("%s\n", nonzero ? "" : " none in any scene");
 }
 
 /* What the step costs for stages a scene does not use: should be (about) nothing. */
@@ -366,5 +375,5 @@ void bench_report_summary(const bench_result *rs, int32_t nr, const bench_entran
     print_threads(rs, nr);
     print_stage_costs(rs, nr);
     print_gameplay(rs, nr);
-    print_allocs(rs, nr);
+    print_allocs(rs, nr, who, nwho);
 }
