@@ -1,4 +1,5 @@
-/* bench.h: what the benchmark harness shares with its engines (rigid, Box2D 2.4, Chipmunk 7).
+/* bench.h: what the benchmark harness shares with its engines (rigid, Box2D 2.4, Chipmunk 7,
+ * Box2D v3 loaded from its own build, the floor loop) and its parts (scenes, quality, report).
  *
  * A scene is engine-neutral data: world settings and a list of bodies.  Each engine builds
  * the same list in the same order, steps it, and hands back the state of its dynamic bodies
@@ -56,6 +57,12 @@ typedef struct bench_scene {
      * off BENCH_AWAKE, BENCH_ONE_WAY (bodies[].nx, ny set) or BENCH_PRE_SOLVE (a hook that
      * keeps every pair). */
     int32_t variant;
+    /* Run settings, set by the harness before each create: the same for every engine. */
+    int32_t sleep;       /* 1: sleeping on, with the engine's own thresholds; 0: off */
+    int32_t workers;     /* threads the engine may use, >= 1 (only engines with threaded) */
+    int32_t solver_set;  /* 1: use solver[], 0: the engine's default setting */
+    int32_t solver[2];   /* rigid and Box2D 2.4: velocity, position iterations; Box2D v3:
+                            substeps; Chipmunk: iterations (solver[1] unused) */
 } bench_scene;
 
 enum { BENCH_PLAIN = 0, BENCH_AWAKE = 1, BENCH_ONE_WAY = 2, BENCH_PRE_SOLVE = 3 };
@@ -66,9 +73,11 @@ typedef struct bench_contacts {
     double touching, one_way, pre_solve_calls;
 } bench_contacts;
 
-/* One engine.  create returns NULL when the scene needs what the engine lacks. */
+/* One engine.  create returns NULL when the scene needs what the engine lacks.  Every
+ * pointer after destroy may be NULL (the engine cannot tell or do it). */
 typedef struct bench_engine {
     const char *name;
+    int32_t threaded;   /* 1: create honours s->workers > 1 */
     void *(*create)(const bench_scene *s);
     void (*step)(void *ctx, double dt);
     void (*force)(void *ctx, int32_t k, double fx, double fy);
@@ -86,6 +95,13 @@ typedef struct bench_engine {
     const char *(*version)(void);
     /* The contacts of the last step, or NULL when the engine cannot tell. */
     void (*contacts)(void *ctx, bench_contacts *out);
+    /* Snapshots (tools/bench_snapshot.c): save writes the world into buf (cap bytes) and
+     * returns the bytes it needs (writing nothing when that is more than cap, or when buf is
+     * NULL), 0 on failure; restore loads an image into the world of ctx, 1 on success; hash
+     * digests the simulation state. */
+    size_t (*save)(void *ctx, void *buf, size_t cap);
+    int (*restore)(void *ctx, const void *buf, size_t size);
+    uint64_t (*hash)(void *ctx);
 } bench_engine;
 
 /* tools/bench_gameplay.c: the scenes that measure what one-way shapes and a pre-solve hook
@@ -105,10 +121,67 @@ typedef struct bench_gameplay_row {
 void bench_gameplay_report(const bench_gameplay_row *rows, int32_t nrows);
 
 extern const bench_engine bench_rigid_engine;
+extern const bench_engine bench_floor_engine;   /* tools/bench_floor.c */
 #ifdef RG_BENCH_PEERS
 extern const bench_engine bench_box2d_engine;
 extern const bench_engine bench_chipmunk_engine;
 #endif
+
+/* tools/bench_v3_load.c: the Box2D v3 engines tools/bench_v3.mk builds into shared libraries
+ * (one per SIMD build, each with its own copy of v3), loaded at run time from dir (NULL: the
+ * directory bench-v3/ beside the running program; "none": not at all).  out[0] gets the SSE2
+ * build, out[1] the AVX2 build, NULL where one is missing or the CPU cannot run it; why gets
+ * a sentence for each one missing.  Returns how many were loaded. */
+int bench_v3_load(const char *dir, const bench_engine *out[2], char *why, size_t why_size);
+/* 1 when the CPU runs AVX2 and FMA (what v3's AVX2 build needs and rigid's dispatch picks). */
+int bench_cpu_has_avx2(void);
+
+/* ---------------------------------------------------------------- scenes (bench_scenes.c) */
+
+typedef struct bench_scene_def {
+    const char *name;
+    const char *what;
+    int32_t default_sizes[4];
+    int32_t quick_size;
+    int shaped;         /* needs collision */
+    int settles;        /* a pile that should come to rest */
+    int sleep_both;     /* by default run with sleeping off and on (else as sleep_default) */
+    int sleep_default;  /* the sleeping setting it runs with when not both */
+    const char *base;   /* a gameplay variant (rigid only, tools/bench_gameplay.c): the scene
+                           it builds; NULL for the others */
+    int32_t variant;    /* BENCH_PLAIN, BENCH_AWAKE, BENCH_ONE_WAY, BENCH_PRE_SOLVE */
+} bench_scene_def;
+
+extern const bench_scene_def bench_scenes[];
+extern const int bench_nscenes;
+const bench_scene_def *bench_scene_find(const char *name);
+/* Builds the scene (bodies malloc'ed: free(s->bodies)); run settings: sleeping as the
+ * definition says, one worker, default solver.  0 when out of memory. */
+int bench_scene_build(bench_scene *s, const bench_scene_def *d, int32_t n);
+
+/* ---------------------------------------------------------------- quality (bench_quality.c) */
+
+typedef struct bench_quality {
+    double overlap;      /* deepest overlap between two moving bodies, m */
+    double wall;         /* deepest overlap of a moving body with a static shape, m */
+    double mean_overlap; /* mean depth over the overlapping pairs (moving-moving and
+                            moving-static), m; 0 when none overlaps */
+    double peak;         /* deepest overlap (bodies or statics) over the run, sampled every
+                            few steps with the rest time; NaN when not sampled */
+    double vmax;         /* largest speed at the end, m/s */
+    double rest;         /* s until the fastest shaped body stays below BENCH_REST_SPEED; <0 never */
+    int32_t lost;        /* bodies that left the container */
+} bench_quality;
+
+#define BENCH_REST_SPEED 0.1  /* m/s: a pile whose fastest body is slower than this is at rest */
+
+/* Overlaps (shaped scenes), vmax and lost from the dynamic bodies' state in list order. */
+void bench_quality_measure(const bench_scene *s, const float *x, const float *y, const float *vx,
+                           const float *vy, bench_quality *q);
+/* The deepest overlap now, between two moving bodies or a moving body and a static shape. */
+double bench_deepest_overlap(const bench_scene *s, const float *x, const float *y);
+/* Largest speed of the dynamic bodies (of those with a shape when shaped_only). */
+double bench_max_speed(const bench_scene *s, const float *vx, const float *vy, int shaped_only);
 
 #ifdef __cplusplus
 }

@@ -1,7 +1,8 @@
 // bench_box2d.cpp: the benchmark's Box2D 2.4 engine, through Debian's libbox2d-dev only.
 //
 // Bodies have fixed rotation (rigid does not rotate); the solver runs Box2D's default 8
-// velocity and 3 position iterations, sleeping on (the default).  Damping per unit mass is
+// velocity and 3 position iterations unless the run sets others; sleeping as the run says
+// (Box2D's thresholds: 0.01 m/s for 0.5 s).  Damping per unit mass is
 // Box2D's linearDamping, which is mass-independent: v *= 1 / (1 + h * c).  A body without
 // fixtures is given its mass with SetMassData (2.4 leaves it at 0, which gravity skips).
 #include <box2d/box2d.h>
@@ -18,6 +19,7 @@ namespace {
 struct Box2dCtx {
     b2World world;
     std::vector<b2Body *> dyn;
+    int32 velocity_iterations = 8, position_iterations = 3;
     explicit Box2dCtx(const b2Vec2 &g) : world(g) {}
 };
 
@@ -27,6 +29,15 @@ void *box2d_create(const bench_scene *s)
 {
     Box2dCtx *c = new (std::nothrow) Box2dCtx(b2Vec2((float)s->gx, (float)s->gy));
     if (c == nullptr) return nullptr;
+    if (s->workers > 1) {
+        delete c;
+        return nullptr;
+    }
+    c->world.SetAllowSleeping(s->sleep != 0);
+    if (s->solver_set) {
+        c->velocity_iterations = s->solver[0];
+        c->position_iterations = s->solver[1];
+    }
     c->dyn.reserve((size_t)s->ndynamic);
     for (int32_t i = 0; i < s->nbodies; i++) {
         const bench_body &bb = s->bodies[i];
@@ -76,7 +87,7 @@ void *box2d_create(const bench_scene *s)
 void box2d_step(void *p, double dt)
 {
     Box2dCtx *c = static_cast<Box2dCtx *>(p);
-    c->world.Step((float)dt, 8, 3);
+    c->world.Step((float)dt, c->velocity_iterations, c->position_iterations);
 }
 
 void box2d_force(void *p, int32_t k, double fx, double fy)
@@ -123,6 +134,7 @@ const char *box2d_version_string(void)
 } // namespace
 
 extern "C" const bench_engine bench_box2d_engine = {
-    "box2d", box2d_create, box2d_step, box2d_force, box2d_impulse, box2d_read, box2d_bytes,
-    box2d_destroy, nullptr, box2d_version_string,
+    .name = "box2d", .threaded = 0, .create = box2d_create, .step = box2d_step,
+    .force = box2d_force, .impulse = box2d_impulse, .read = box2d_read, .bytes = box2d_bytes,
+    .destroy = box2d_destroy, .alloc_calls = nullptr, .version = box2d_version_string,
 };

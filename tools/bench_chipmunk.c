@@ -1,8 +1,9 @@
 /* bench_chipmunk.c: the benchmark's Chipmunk 7 engine, through Debian's libchipmunk-dev only.
  *
- * Rotation is locked with an infinite moment of inertia; default iterations (10), default
- * spatial index (bounding-box tree), default collision slop and no sleeping (Chipmunk's
- * defaults).  Chipmunk multiplies the two shapes' frictions (and elasticities) of a pair,
+ * Rotation is locked with an infinite moment of inertia; default iterations (10) unless the
+ * run sets others, default spatial index (bounding-box tree), default collision slop.
+ * Sleeping as the run says: on, a body sleeps after 0.5 s below Chipmunk's idle speed (its
+ * default estimate from gravity); off is Chipmunk's default.  Chipmunk multiplies the two shapes' frictions (and elasticities) of a pair,
  * so each shape gets the square root of the pair's value.  Damping per unit mass is the
  * space's damping, the fraction of velocity kept per second: exp(-c).  Static shapes hang
  * on the space's static body, as Chipmunk's own demos build levels. */
@@ -35,6 +36,7 @@ static void chipmunk_destroy(void *p)
 
 static void *chipmunk_create(const bench_scene *s)
 {
+    if (s->workers > 1) return NULL;
     chipmunk_ctx *c = calloc(1, sizeof *c);
     if (c == NULL) return NULL;
     c->dyn = malloc((size_t)(s->ndynamic > 0 ? s->ndynamic : 1) * sizeof *c->dyn);
@@ -45,6 +47,8 @@ static void *chipmunk_create(const bench_scene *s)
         return NULL;
     }
     cpSpaceSetGravity(c->space, cpv(s->gx, s->gy));
+    if (s->sleep) cpSpaceSetSleepTimeThreshold(c->space, 0.5);
+    if (s->solver_set) cpSpaceSetIterations(c->space, s->solver[0]);
     if (s->damping > 0) cpSpaceSetDamping(c->space, exp(-s->damping));
     cpBody *ground = cpSpaceGetStaticBody(c->space);
     double mu = sqrt(s->friction), e = sqrt(s->restitution);
@@ -125,6 +129,7 @@ static const char *chipmunk_version(void)
 }
 
 const bench_engine bench_chipmunk_engine = {
-    "chipmunk", chipmunk_create, chipmunk_step, chipmunk_force, chipmunk_impulse, chipmunk_read,
-    chipmunk_bytes, chipmunk_destroy, NULL, chipmunk_version,
+    .name = "chipmunk", .create = chipmunk_create, .step = chipmunk_step, .force = chipmunk_force,
+    .impulse = chipmunk_impulse, .read = chipmunk_read, .bytes = chipmunk_bytes,
+    .destroy = chipmunk_destroy, .version = chipmunk_version,
 };

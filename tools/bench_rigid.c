@@ -2,7 +2,9 @@
  *
  * Scenes with shapes need the collision API (rg_body_set_circle ...); tools/bench.mk
  * defines RG_BENCH_COLLISION when include/rigid.h declares it, and without it such scenes
- * are reported as not available rather than run without collision. */
+ * are reported as not available rather than run without collision.  Likewise
+ * RG_BENCH_THREADS when the task system is there (rg_thread_pool_create): a run with
+ * workers > 1 then steps with rigid's own pool of that many threads. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -33,9 +35,19 @@ static void *count_alloc(void *user, void *ptr, size_t old_size, size_t new_size
     return p;
 }
 
+#ifdef RG_BENCH_THREADS
+#define RIGID_THREADED 1
+#else
+#define RIGID_THREADED 0
+#endif
+
 typedef struct rigid_ctx {
     counting_alloc mem;
     rg_world *w;
+#ifdef RG_BENCH_THREADS
+    rg_thread_pool *pool;   /* s->workers > 1 */
+    rg_task_system tasks;
+#endif
     rg_body *dyn;   /* handles of the dynamic bodies, in list order */
     int32_t ndyn;
     rg_body *one_way;      /* the one-way bodies (BENCH_ONE_WAY), whose pairs are counted */
@@ -56,6 +68,9 @@ static void rigid_destroy(void *p)
     rigid_ctx *c = p;
     if (c == NULL) return;
     rg_world_destroy(c->w);
+#ifdef RG_BENCH_THREADS
+    if (c->pool != NULL) rg_thread_pool_destroy(c->pool);
+#endif
     free(c->dyn);
     free(c->one_way);
     free(c);
@@ -113,8 +128,18 @@ static void *rigid_create(const bench_scene *s)
         return NULL;
     }
     rg_world_set_gravity(c->w, v2(s->gx, s->gy));
+    if (rg_world_set_sleeping(c->w, s->sleep) != RG_OK) goto fail;
+    if (s->solver_set && rg_world_set_solver_iterations(c->w, s->solver[0], s->solver[1]) != RG_OK)
+        goto fail;
+#ifdef RG_BENCH_THREADS
+    if (s->workers > 1 && (rg_thread_pool_create(s->workers, &c->pool) != RG_OK ||
+                           rg_thread_pool_task_system(c->pool, &c->tasks) != RG_OK ||
+                           rg_world_set_task_system(c->w, &c->tasks) != RG_OK))
+        goto fail;
+#else
+    if (s->workers > 1) goto fail;
+#endif
 #ifdef RG_BENCH_COLLISION
-    if (s->variant != BENCH_PLAIN && rg_world_set_sleeping(c->w, 0) != RG_OK) goto fail;
     if (s->variant == BENCH_PRE_SOLVE && rg_world_set_pre_solve(c->w, rigid_keep_pair, c) != RG_OK)
         goto fail;
 #else
@@ -209,6 +234,28 @@ static void rigid_contacts(void *p, bench_contacts *out)
     c->hook_calls = 0;
 }
 
+static size_t rigid_save(void *p, void *buf, size_t cap)
+{
+    rigid_ctx *c = p;
+    size_t size = 0;
+    if (rg_world_save(c->w, buf, buf != NULL ? cap : 0, &size) == RG_OK) return size;
+    return buf == NULL || size > cap ? size : 0; /* the size query refuses with the size */
+}
+
+static int rigid_restore(void *p, const void *buf, size_t size)
+{
+    rigid_ctx *c = p;
+    return rg_world_restore(c->w, buf, size) == RG_OK;
+}
+
+static uint64_t rigid_hash(void *p)
+{
+    rigid_ctx *c = p;
+    uint64_t h = 0;
+    rg_world_hash(c->w, &h);
+    return h;
+}
+
 static const char *rigid_version(void)
 {
     static char text[48];
@@ -219,6 +266,8 @@ static const char *rigid_version(void)
 }
 
 const bench_engine bench_rigid_engine = {
-    "rigid", rigid_create, rigid_step, rigid_force, rigid_impulse, rigid_read, rigid_bytes,
-    rigid_destroy, rigid_alloc_calls, rigid_version, rigid_contacts,
+    .name = "rigid", .threaded = RIGID_THREADED, .create = rigid_create, .step = rigid_step,
+    .force = rigid_force, .impulse = rigid_impulse, .read = rigid_read, .bytes = rigid_bytes,
+    .destroy = rigid_destroy, .alloc_calls = rigid_alloc_calls, .version = rigid_version,
+    .contacts = rigid_contacts, .save = rigid_save, .restore = rigid_restore, .hash = rigid_hash,
 };

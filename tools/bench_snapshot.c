@@ -1,16 +1,18 @@
-/* bench_snapshot.c: what a snapshot costs: bytes per body, and microseconds to save, to
- * restore and to hash, for the bench's rain scene (circles r 0.5 dropped on a 1.1 m grid into
- * a container, as tools/bench.c builds it) at N = 1000 and 10000, taken while the pile is
- * still moving (step 60) and once it rests (step 600).  Medians of 31 timings each.
- *   build/bench-snapshot [N ...] */
-#define _POSIX_C_SOURCE 199309L
-#include <math.h>
+/* bench_snapshot.c: what a snapshot costs, rigid beside Box2D v3 (b2World_Snapshot,
+ * b2World_Restore, b2World_GetStateHash) in the same run: bytes per body, and microseconds
+ * to save, to restore and to hash, for the bench's rain scene (tools/bench_scenes.c, sleeping
+ * on) at N = 1000 and 10000, taken while the pile is still moving (step 60) and once it
+ * rests (step 600).  Each engine restores into a second world built from the same scene, and
+ * the restored world's hash must equal the saved one's.  Medians of 31 timings each.
+ *   build/bench-snapshot [--v3 DIR|none] [N ...] */
+#define _GNU_SOURCE 1 /* mallopt */
+#include <malloc.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
-#include "rigid.h"
+#include "bench.h"
 
 #define REPS 31
 
@@ -33,85 +35,94 @@ static double median(double *v, int n)
     return v[n / 2];
 }
 
-static rg_body make(rg_world *w, int32_t type, double x, double y, double hw, double hh, int circle)
+/* 0 when the engine cannot save or restore this world. */
+static int measure(const bench_engine *e, const bench_scene *s, int steps)
 {
-    rg_body b;
-    rg_body_create(w, type, 1, (rg_vec2){ (rg_real)x, (rg_real)y }, &b);
-    if (circle)
-        rg_body_set_circle(w, b, (rg_real)hw);
-    else
-        rg_body_set_aabb(w, b, (rg_real)hw, (rg_real)hh);
-    return b;
-}
-
-/* The bench's rain: a container as wide as a square grid of the bodies, 1.1 m apart. */
-static rg_world *rain(int n)
-{
-    rg_world *w;
-    rg_world_create(&w);
-    rg_world_set_gravity(w, (rg_vec2){ 0, -10 });
-    int cols = (int)ceil(sqrt((double)n));
-    double width = cols * 1.1 + 1;
-    make(w, RG_BODY_STATIC, 0, -0.5, width / 2 + 1, 0.5, 0);
-    make(w, RG_BODY_STATIC, -width / 2 - 0.5, 40, 0.5, 40, 0);
-    make(w, RG_BODY_STATIC, width / 2 + 0.5, 40, 0.5, 40, 0);
-    for (int i = 0; i < n; i++) {
-        double x = -width / 2 + 1 + (i % cols) * 1.1 + 0.01 * (i % 7);
-        double y = 1 + (i / cols) * 1.1;
-        make(w, RG_BODY_DYNAMIC, x, y, 0.5, 0.5, 1);
+    void *w = e->create(s), *target = e->create(s);
+    if (w == NULL || target == NULL) {
+        if (w != NULL) e->destroy(w);
+        if (target != NULL) e->destroy(target);
+        return 0;
     }
-    return w;
-}
-
-static void measure(int n, int steps)
-{
-    rg_world *w = rain(n), *target;
-    rg_world_create(&target);
-    for (int k = 0; k < steps; k++) rg_world_step(w, 1.0f / 60);
-    size_t size;
-    rg_world_save(w, NULL, 0, &size);
-    void *buf = malloc(size);
+    for (int k = 0; k < steps; k++) e->step(w, 1.0 / 60.0);
+    size_t size = e->save(w, NULL, 0);
+    void *buf = size > 0 ? malloc(size) : NULL;
     double ts[REPS], tr[REPS], th[REPS];
-    uint64_t h = 0, h2 = 0;
-    rg_world_restore(target, buf, 0); /* refused: nothing */
-    for (int r = 0; r < REPS; r++) {
+    uint64_t h = 0;
+    int ok = buf != NULL;
+    for (int r = 0; r < REPS && ok; r++) {
         double t0 = now();
-        rg_world_save(w, buf, size, &size);
+        ok = e->save(w, buf, size) == size;
         double t1 = now();
-        rg_status st = rg_world_restore(target, buf, size);
+        ok = ok && e->restore(target, buf, size);
         double t2 = now();
-        rg_world_hash(w, &h);
+        h = e->hash(w);
         double t3 = now();
-        if (st != RG_OK) {
-            fprintf(stderr, "bench-snapshot: restore: %s\n", rg_status_string(st));
-            exit(1);
-        }
         ts[r] = t1 - t0;
         tr[r] = t2 - t1;
         th[r] = t3 - t2;
     }
-    rg_world_hash(target, &h2);
-    printf("rain %6d  step %3d  %8.1f KB  %6.0f B/body  save %7.1f us  restore %7.1f us  hash %7.1f us  "
-           "save+restore %7.1f us%s\n",
-           n, steps, (double)size / 1024, (double)size / (n + 3), median(ts, REPS) * 1e6, median(tr, REPS) * 1e6,
-           median(th, REPS) * 1e6, (median(ts, REPS) + median(tr, REPS)) * 1e6, h == h2 ? "" : "  HASH DIFFERS");
+    if (ok) {
+        int same = e->hash(target) == h;
+        double save = median(ts, REPS), restore = median(tr, REPS);
+        printf("%-10s rain %6d  step %3d  %8.1f KB  %6.0f B/body  save %7.1f us  restore %7.1f us  "
+               "hash %7.1f us  save+restore %7.1f us%s\n",
+               e->name, (int)s->size, steps, (double)size / 1024, (double)size / s->nbodies, save * 1e6,
+               restore * 1e6, median(th, REPS) * 1e6, (save + restore) * 1e6, same ? "" : "  HASH DIFFERS");
+    } else {
+        printf("%-10s rain %6d  step %3d  the snapshot failed\n", e->name, (int)s->size, steps);
+    }
     free(buf);
-    rg_world_destroy(target);
-    rg_world_destroy(w);
+    e->destroy(target);
+    e->destroy(w);
+    return ok;
 }
 
 int main(int argc, char **argv)
 {
-    int sizes[8] = { 1000, 10000 }, ns = 2;
-    if (argc > 1) {
-        ns = 0;
-        for (int i = 1; i < argc && ns < 8; i++) sizes[ns++] = atoi(argv[i]);
+    int sizes[8] = { 1000, 10000 }, ns = 2, given = 0;
+    const char *v3_dir = NULL;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--v3") == 0 && i + 1 < argc) {
+            v3_dir = argv[++i];
+        } else {
+            int n = atoi(argv[i]);
+            if (n < 1 || n > 1000000) {
+                fprintf(stderr, "usage: bench-snapshot [--v3 DIR|none] [N ...]\n");
+                return 2;
+            }
+            if (!given) ns = 0;
+            given = 1;
+            if (ns < 8) sizes[ns++] = n;
+        }
     }
-    printf("rigid snapshots (rg_real of %d bytes): medians of %d timings; B/body counts every body\n",
-           (int)rg_real_size(), REPS);
+    /* glibc's adaptive mmap threshold otherwise makes a v3 save (which grows a buffer of its
+     * own to the image's size each time) cost 4x more in one engine than in another,
+     * depending on what ran before: large blocks come from the heap for everyone. */
+    mallopt(M_MMAP_THRESHOLD, 256 << 20);
+    mallopt(M_TRIM_THRESHOLD, 512 << 20);
+    const bench_engine *v3[2], *engines[3] = { &bench_rigid_engine, NULL, NULL };
+    char why[1024];
+    bench_v3_load(v3_dir, v3, why, sizeof why);
+    int ne = 1;
+    for (int b = 0; b < 2; b++)
+        if (v3[b] != NULL) engines[ne++] = v3[b];
+    printf("snapshots: the bench's rain (sleeping on); medians of %d timings; B/body counts every body "
+           "(static too); restore: into a second world of the scene\nengines:", REPS);
+    for (int k = 0; k < ne; k++) printf(" [%s]", engines[k]->version());
+    printf("\n");
+    if (why[0] != 0) printf("(%s)\n", why);
+    const bench_scene_def *d = bench_scene_find("rain");
+    int failed = 0;
     for (int i = 0; i < ns; i++) {
-        measure(sizes[i], 60);
-        measure(sizes[i], 600);
+        bench_scene s;
+        if (d == NULL || !bench_scene_build(&s, d, sizes[i])) return 1;
+        s.sleep = 1;
+        for (int k = 0; k < ne; k++) {
+            failed |= !measure(engines[k], &s, 60);
+            failed |= !measure(engines[k], &s, 600);
+        }
+        free(s.bodies);
     }
-    return 0;
+    return failed;
 }

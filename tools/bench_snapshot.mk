@@ -1,13 +1,20 @@
-# make bench: what snapshots cost (tools/bench_snapshot.c).
+# make bench: what snapshots cost (tools/bench_snapshot.c), rigid and Box2D v3 side by side.
 BENCH_SNAPSHOT := $(B)/bench-snapshot
 ALL_TARGETS += $(BENCH_SNAPSHOT)
 .PHONY: bench-snapshot
 bench: bench-snapshot
 
-$(BENCH_SNAPSHOT): tools/bench_snapshot.c $(LIB_A)
+$(B)/bench_obj/bench_snapshot.o: tools/bench_snapshot.c tools/bench.h
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $< $(LIB_A) $(LDLIBS)
+	$(CC) $(BENCH_CFLAGS) -c $< -o $@
 
-bench-snapshot: $(BENCH_SNAPSHOT)
-	@echo "== snapshots: bytes, save, restore, hash"
-	@$(BENCH_SNAPSHOT)
+$(BENCH_SNAPSHOT): $(B)/bench_obj/bench_snapshot.o $(BENCH_COMMON_OBJ) $(LIB_A)
+	$(CC) $(LDFLAGS) -o $@ $^ $(BENCH_LIBS)
+
+# After bench-main when both run (v3 is built by then; it builds it too when run alone);
+# rain 1000 alone when BENCH_ARGS has --quick.
+BENCH_SNAPSHOT_SIZES = $(if $(filter --quick,$(BENCH_ARGS)),1000)
+bench-snapshot: $(BENCH_SNAPSHOT) $(if $(filter bench,$(MAKECMDGOALS)),bench-main)
+	@v3=$$($(MAKE) --no-print-directory bench-v3 | tail -n 1); \
+	 echo "== snapshots: bytes, save, restore, hash ($(BENCH_SNAPSHOT) --v3 $$v3 $(BENCH_SNAPSHOT_SIZES))"; \
+	 $(BENCH_SNAPSHOT) --v3 $$v3 $(BENCH_SNAPSHOT_SIZES)
