@@ -113,13 +113,6 @@ typedef struct hook_log {
     int getters_ok;
 } hook_log;
 
-static uint64_t fnv(uint64_t h, const void *p, size_t n)
-{
-    const unsigned char *c = p;
-    for (size_t k = 0; k < n; k++) h = (h ^ c[k]) * 1099511628211ull;
-    return h;
-}
-
 static int32_t index_in(const hook_log *l, rg_body h)
 {
     for (int i = 0; i < l->n; i++)

@@ -14,13 +14,6 @@ typedef struct scene {
     int n;
 } scene;
 
-static uint64_t fnv(uint64_t h, const void *p, size_t n)
-{
-    const unsigned char *c = p;
-    for (size_t k = 0; k < n; k++) h = (h ^ c[k]) * 1099511628211ull;
-    return h;
-}
-
 static int index_of(const scene *s, rg_body h)
 {
     for (int i = 0; i < s->n; i++)
@@ -32,17 +25,7 @@ static int index_of(const scene *s, rg_body h)
  * the touching and awake counts. */
 static uint64_t scene_hash(const scene *s, uint64_t h)
 {
-    for (int i = 0; i < s->n; i++) {
-        int32_t valid = rg_body_is_valid(s->w, s->b[i]);
-        h = fnv(h, &valid, sizeof valid);
-        if (!valid) continue;
-        rg_vec2 pv[2] = { pos_of(s->w, s->b[i]), vel_of(s->w, s->b[i]) };
-        int32_t flags[2];
-        assert_ok(rg_body_is_grounded(s->w, s->b[i], &flags[0]));
-        assert_ok(rg_body_is_awake(s->w, s->b[i], &flags[1]));
-        h = fnv(h, pv, sizeof pv);
-        h = fnv(h, flags, sizeof flags);
-    }
+    h = hash_bodies(s->w, s->b, s->n, h);
     rg_contact_event ev[512];
     int32_t n = rg_world_get_contact_events(s->w, ev, 512);
     assert_true(n >= 0 && n <= 512);

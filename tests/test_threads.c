@@ -32,25 +32,11 @@ static rg_body big_add(big_scene *s, int32_t type, double m, double x, double y)
     return b;
 }
 
-static uint64_t fnv(uint64_t h, const void *p, size_t n)
-{
-    const unsigned char *c = p;
-    for (size_t k = 0; k < n; k++) h = (h ^ c[k]) * 1099511628211ull;
-    return h;
-}
-
 /* Every body's position, velocity, grounded and awake flags, the step's events and the
  * counts; rg_world_hash on top (the whole state, contacts and accumulated impulses included). */
 static uint64_t big_hash(const big_scene *s, uint64_t h)
 {
-    for (int i = 0; i < s->n; i++) {
-        rg_vec2 pv[2] = { pos_of(s->w, s->b[i]), vel_of(s->w, s->b[i]) };
-        int32_t flags[2];
-        assert_ok(rg_body_is_grounded(s->w, s->b[i], &flags[0]));
-        assert_ok(rg_body_is_awake(s->w, s->b[i], &flags[1]));
-        h = fnv(h, pv, sizeof pv);
-        h = fnv(h, flags, sizeof flags);
-    }
+    h = hash_bodies(s->w, s->b, s->n, h);
     static rg_contact_event ev[65536];
     int32_t n = rg_world_get_contact_events(s->w, ev, 65536);
     assert_true(n >= 0 && n <= 65536);

@@ -126,6 +126,32 @@ static inline int32_t get_events(rg_world *w, rg_contact_event *ev, int32_t cap)
     return n;
 }
 
+/* ---- hashing a run: FNV-1a over n bytes, continuing from h */
+static inline uint64_t fnv(uint64_t h, const void *p, size_t n)
+{
+    const unsigned char *c = p;
+    for (size_t k = 0; k < n; k++) h = (h ^ c[k]) * 1099511628211ull;
+    return h;
+}
+
+/* Every body's validity and, for live ones, position, velocity, grounded and awake flags,
+ * in the order given, hashed onto h. */
+static inline uint64_t hash_bodies(rg_world *w, const rg_body *b, int n, uint64_t h)
+{
+    for (int i = 0; i < n; i++) {
+        int32_t valid = rg_body_is_valid(w, b[i]);
+        h = fnv(h, &valid, sizeof valid);
+        if (!valid) continue;
+        rg_vec2 pv[2] = { pos_of(w, b[i]), vel_of(w, b[i]) };
+        int32_t flags[2];
+        assert_ok(rg_body_is_grounded(w, b[i], &flags[0]));
+        assert_ok(rg_body_is_awake(w, b[i], &flags[1]));
+        h = fnv(h, pv, sizeof pv);
+        h = fnv(h, flags, sizeof flags);
+    }
+    return h;
+}
+
 /* ---- an allocator that counts, checks sizes, and fails from its Nth allocation on */
 typedef struct test_alloc {
     long calls;        /* allocations attempted */
