@@ -1,0 +1,128 @@
+/* restore_check.h: a snapshot (snapshot.h) read where it lies, and the checks rg_world_restore
+ * makes of it before anything of the world changes (restore_check.c); restore.c loads it. */
+#ifndef RG_RESTORE_CHECK_H
+#define RG_RESTORE_CHECK_H
+
+#include "mem.h"
+#include "snapshot.h"
+#include "state.h"
+
+typedef struct snap_in {
+    const uint8_t *p;
+    size_t size;
+    snap_scalars s;
+    snap_layout l;
+} snap_in;
+
+/* ---------------------------------------------------------------- reading */
+
+static inline int32_t rd_i32(const snap_in *in, size_t off, int32_t i)
+{
+    return (int32_t)snap_get32(in->p + off + 4 * (size_t)i);
+}
+
+static inline uint32_t rd_u32(const snap_in *in, size_t off, int32_t i)
+{
+    return snap_get32(in->p + off + 4 * (size_t)i);
+}
+
+/* Body field f of body i. */
+#define BF_AT(in, f, i) ((in)->p + (in)->l.field[SNAP_F_##f] + (in)->l.stride[SNAP_F_##f] * (size_t)(i))
+#define BF_I(in, f, i) ((int32_t)snap_get32(BF_AT(in, f, i)))
+#define BF_U(in, f, i) (snap_get32(BF_AT(in, f, i)))
+#define BF_R(in, f, i) (snap_get_real(BF_AT(in, f, i)))
+
+static inline const uint8_t *rec(const snap_in *in, size_t off, size_t size, int32_t k)
+{
+    return in->p + off + size * (size_t)k;
+}
+
+typedef struct snap_cursor {
+    const uint8_t *p;
+} snap_cursor;
+
+static inline int32_t cur_i32(snap_cursor *c)
+{
+    int32_t v = (int32_t)snap_get32(c->p);
+    c->p += 4;
+    return v;
+}
+
+static inline uint32_t cur_u32(snap_cursor *c)
+{
+    uint32_t v = snap_get32(c->p);
+    c->p += 4;
+    return v;
+}
+
+static inline rg_real cur_real(snap_cursor *c)
+{
+    rg_real v = snap_get_real(c->p);
+    c->p += SNAP_REAL;
+    return v;
+}
+
+static inline double cur_f64(snap_cursor *c)
+{
+    uint64_t u = snap_get64(c->p);
+    double v;
+    memcpy(&v, &u, 8);
+    c->p += 8;
+    return v;
+}
+
+/* A member record: slot, box, next, prev, lnext, lprev, moved, apos. */
+typedef struct snap_member {
+    int32_t slot;
+    rg_real lx, ly, ux, uy;
+    int32_t next, prev, lnext, lprev, moved, apos;
+} snap_member;
+
+static inline void restore_member(const snap_in *in, int32_t k, snap_member *m)
+{
+    snap_cursor c = { rec(in, in->l.members, SNAP_MEMBER, k) };
+    m->slot = cur_i32(&c);
+    m->lx = cur_real(&c);
+    m->ly = cur_real(&c);
+    m->ux = cur_real(&c);
+    m->uy = cur_real(&c);
+    m->next = cur_i32(&c);
+    m->prev = cur_i32(&c);
+    m->lnext = cur_i32(&c);
+    m->lprev = cur_i32(&c);
+    m->moved = cur_i32(&c);
+    m->apos = cur_i32(&c);
+}
+
+/* What the contact and broadphase checks work with, kept for the load: per contact id its
+ * record + 1 (live) or -1 (free); per slot its member index + 1; per member its level and
+ * key (computed once); marks for the bucket heads, huge indices and active places. */
+typedef struct restore_scratch {
+    int32_t *rec_of;        /* [ccap] */
+    int32_t *member_of;     /* [bslots] */
+    uint64_t *key;          /* [members] */
+    int16_t *level;         /* [members] */
+    uint8_t *bucket_head;   /* [2^bucket_bits] */
+    uint8_t *huge_used;     /* [n_huge] */
+    uint8_t *active_used;   /* [n_bp_active] */
+    const snap_scalars *s;
+} restore_scratch;
+
+/* Each check returns 1, or 0 for a snapshot that breaks what it checks. */
+/* The header (magic, version, rg_real, size, checksum), with the reason set on failure; it
+ * reads the scalars and the layout into in. */
+int restore_check_header(const rg_world *w, snap_in *in, const void *data, size_t size);
+/* The settings and counts, each within the range of the setter it enters by. */
+int restore_check_scalars(snap_in *in);
+/* A pool's slots against the dense places that name them (slot_of, slot_stride). */
+int restore_check_pool(const snap_in *in, size_t gen, size_t index, int32_t slots, uint32_t max_gen,
+                      int32_t head, int32_t live, const uint8_t *slot_of, size_t slot_stride);
+int restore_check_bodies(const snap_in *in);
+int restore_check_springs(const snap_in *in);
+int restore_check_events(const snap_in *in, size_t off, int32_t n);
+/* The scratch the two checks below fill (sized from r->s) and the load reads. */
+void restore_check_scratch_layout(mem_layout *l, void *ctx);
+int restore_check_contacts(const snap_in *in, restore_scratch *r);
+int restore_check_broadphase(const snap_in *in, restore_scratch *r);
+
+#endif
