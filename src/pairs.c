@@ -163,6 +163,7 @@ static int pairs_collect_all(rg_world *w)
         total += c;
     }
     ps->count[n] = (int32_t)total;
+    if (total == 0) return 1; /* nothing to fill (and maybe no buffer yet) */
     if (total > ps->cand_cap) {
         if (total > INT32_MAX / 2) return 0;
         int32_t cap = (int32_t)(total + total / 2 + 64);

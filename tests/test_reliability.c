@@ -8,6 +8,7 @@
  * function). */
 #include "testutil.h"
 
+#include "shuffler.h"
 #include "snapshot.h"
 
 #ifdef RG_DOUBLE
@@ -589,6 +590,45 @@ static void test_a_step_out_of_memory_gives_up_growing_at_once(void **state)
     rg_world_destroy(w);
 }
 
+/* ---------------------------------------------------------------- undefined behaviour */
+
+/* Found by fuzz_api (clang's UBSan: "applying zero offset to null pointer", src/pairs.c,
+ * pairs_find_range): with a task system of two or more workers and at least 128 moved bodies,
+ * the pair search counts every moved body's candidates in parallel, then fills them into a
+ * buffer sized by the total; when no moved body has a candidate the buffer was never
+ * allocated and the fill pass computed NULL + 0.  Fixed in pairs_collect_all: a total of 0
+ * skips the fill pass (there is nothing to fill).  gcc's UBSan does not see it: this test
+ * fails before the fix under make sanitize CC=clang. */
+static void test_a_threaded_pair_search_that_finds_no_pair_is_defined(void **state)
+{
+    (void)state;
+    enum { N = 200 };
+    shuffler sh;
+    rg_task_system ts;
+    shuffler_init(&sh, 7, 2, 0);
+    shuffler_tasks(&sh, &ts);
+    rg_world *w[2];
+    rg_body b[2][N];
+    for (int k = 0; k < 2; k++) {
+        assert_ok(rg_world_create(&w[k]));
+        if (k == 1) assert_ok(rg_world_set_task_system(w[k], &ts));
+        for (int i = 0; i < N; i++) {
+            b[k][i] = circle_body(w[k], RG_BODY_DYNAMIC, 1, i * 10.0, 0, 0.5);
+            assert_ok(rg_body_set_velocity(w[k], b[k][i], v2(1, (rg_real)(i % 3))));
+        }
+        step_n(w[k], 3, DT);
+        assert_int_equal(rg_world_touching_count(w[k]), 0);
+    }
+    assert_true(sh.ranges > sh.tasks);   /* the search did split */
+    assert_int_equal(sh.misuse, 0);
+    for (int i = 0; i < N; i++) {
+        rg_vec2 p0 = pos_of(w[0], b[0][i]), p1 = pos_of(w[1], b[1][i]);
+        assert_true(p0.x == p1.x && p0.y == p1.y);
+    }
+    rg_world_destroy(w[0]);
+    rg_world_destroy(w[1]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -605,6 +645,7 @@ int main(void)
         cmocka_unit_test(test_handles_of_a_destroyed_world_are_rejected_by_the_next),
         cmocka_unit_test(test_worlds_16_mib_apart_reject_each_others_handles),
         cmocka_unit_test(test_a_step_out_of_memory_gives_up_growing_at_once),
+        cmocka_unit_test(test_a_threaded_pair_search_that_finds_no_pair_is_defined),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
