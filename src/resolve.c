@@ -190,8 +190,8 @@ static void resolve_range(int32_t begin, int32_t end, int32_t worker, void *cont
     case RESOLVE_KEEP:
         for (int32_t k = b0; k < b1; k++) {
             contact *c = &t->w->coll.contacts.c[t->con[k].cid];
-            c->pn = t->con[k].pn;
-            c->pt = t->con[k].pt;
+            c->pn = rg_min(t->con[k].pn, CONTACT_MAX_IMPULSE);
+            c->pt = rg_max(rg_min(t->con[k].pt, CONTACT_MAX_IMPULSE), -CONTACT_MAX_IMPULSE);
         }
         break;
     default: resolve_bodies(t, b0, b1); break;

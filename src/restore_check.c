@@ -406,8 +406,12 @@ int restore_check_contacts(const snap_in *in, restore_scratch *r)
         for (int f = CT_NA; f <= CT_PB; f++)
             if (ct_i(in, k, f) < -1 || ct_i(in, k, f) >= s->ccap) return BAD;
         const uint8_t *reals = rec(in, in->l.contacts, SNAP_CONTACT, k) + 32;
-        for (int q = 0; q < 10; q++)
+        for (int q = 0; q < 8; q++)
             if (!fin(snap_get_real(reals + SNAP_REAL * (size_t)q))) return BAD;
+        /* the warm start's impulses: within what the solve keeps (state.h) */
+        if (!within(snap_get_real(reals + SNAP_REAL * 8), 0, (double)CONTACT_MAX_IMPULSE) ||
+            !within(snap_get_real(reals + SNAP_REAL * 9), -(double)CONTACT_MAX_IMPULSE, (double)CONTACT_MAX_IMPULSE))
+            return BAD;
         touching += (flags & CT_TOUCHING) != 0;
         should_wake += ia < s->n_active || ib < s->n_active;
     }

@@ -128,6 +128,15 @@ typedef struct spring_store {
 #define CT_PASS    32u  /* passing: neither solved nor touching until a step ends apart */
 #define CT_ACTIVE  64u  /* scratch within the narrowphase: the pair meets within the step (narrow.c) */
 
+/* The accumulated impulses a contact keeps for the next step's warm start stay within
+ * [0, CONTACT_MAX_IMPULSE] (normal) and +-CONTACT_MAX_IMPULSE (friction), N*s: the solve
+ * stores them clamped (resolve.c), and a snapshot beyond them is refused (restore_check.c).
+ * The bound is far above any impulse of a scene within the ranges of rigid.h (the heaviest
+ * body stopped from the highest speed takes 2e15 N*s), and low enough that the warm start
+ * of the lightest body and the solve's products stay finite in float (1e20 N*s on 1e-6 kg
+ * is 1e26 m/s, times the largest effective mass 1e9 kg is 1e35). */
+#define CONTACT_MAX_IMPULSE RG_R(1e20)
+
 typedef struct contact {
     int32_t sa, sb;           /* body slots; a has the lower handle; -1 when the id is free */
     int32_t na, pa, nb, pb;   /* next/prev contact ids in a's and b's lists (-1 ends) */

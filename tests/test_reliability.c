@@ -382,6 +382,75 @@ static void test_a_snapshot_with_a_value_out_of_range_is_refused(void **state)
     rg_world_destroy(w);
 }
 
+/* Found by tests/fuzz/fuzz_snapshot.c (a pile whose snapshot had a contact's friction
+ * impulse changed to -3.4e38 N s and the checksum resealed: accepted, and the first step's
+ * warm start made both bodies of the pair NaN).  Root cause: src/restore_check.c,
+ * restore_check_contacts, checked a contact's accumulated impulses (what the next step's
+ * warm start applies) for being finite only; and no bound held them in a live world either.
+ * Fixed: the solve keeps them within CONTACT_MAX_IMPULSE (src/state.h: normal in [0, 1e20],
+ * friction within +-1e20 N s, far above any scene within the ranges, low enough that the
+ * warm start stays finite), src/resolve.c's RESOLVE_KEEP clamps to it, and the restore
+ * refuses what lies outside. */
+static void test_a_snapshot_with_a_huge_warm_start_impulse_is_refused(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-10);
+    floor_of(w);
+    rg_body box = box_body(w, RG_BODY_DYNAMIC, 2, 0, 0.5, 0.5, 0.5);
+    assert_ok(rg_world_set_sleeping(w, 0));
+    for (int k = 0; k < 30; k++) {
+        assert_ok(rg_body_apply_force(w, box, v2(5, 0)));   /* sliding: a friction impulse */
+        assert_ok(rg_world_step(w, (rg_real)DT));
+    }
+    rg_contact c;
+    assert_int_equal(rg_body_get_contacts(w, box, &c, 1), 1);
+    /* the impulses as the snapshot stores them: the box is the contact's body b (the floor
+     * was made first, so it has the lower handle), and friction opposes the sliding */
+    assert_true(c.normal_impulse > 0 && c.tangent_impulse != 0);
+    size_t n = 0;
+    assert_ok(rg_world_save(w, NULL, 0, &n));
+    uint8_t *snap = malloc(n), *bad = malloc(n), *after = malloc(n);
+    assert_true(snap != NULL && bad != NULL && after != NULL);
+    assert_ok(rg_world_save(w, snap, n, &n));
+    uint64_t h0;
+    assert_ok(rg_world_hash(w, &h0));
+    const double forged[] = { -REAL_MAX, REAL_MAX, 1e30, -1e30, -1 };
+    for (int which = 0; which < 2; which++) {
+        rg_real was = which == 0 ? c.normal_impulse : c.tangent_impulse;
+        uint8_t wb[8], nb[8];
+        size_t len = encode(wb, (double)was, 0), count;
+        size_t at0 = find_bytes(snap, n, wb, len, &count);
+        if (count == 0) {   /* the stored sign of the friction impulse is the other one */
+            len = encode(wb, -(double)was, 0);
+            at0 = find_bytes(snap, n, wb, len, &count);
+        }
+        assert_int_equal(count, 1);
+        for (size_t k = 0; k < sizeof forged / sizeof forged[0]; k++) {
+            if (which == 1 && forged[k] == -1) continue;   /* a negative friction impulse is valid */
+            memcpy(bad, snap, n);
+            encode(nb, forged[k], 0);
+            memcpy(bad + at0, nb, len);
+            snap_put64(bad + 24, snap_hash(bad + SNAP_HEADER, n - SNAP_HEADER));
+            rg_status st = rg_world_restore(w, bad, n);
+            if (st != RG_ERR_INVALID_ARGUMENT)
+                fail_msg("a snapshot with the %s impulse %g was accepted (%d)", which ? "friction" : "normal", forged[k], st);
+            uint64_t h;
+            size_t m = 0;
+            assert_ok(rg_world_hash(w, &h));
+            assert_ok(rg_world_save(w, after, n, &m));
+            assert_true(h == h0 && m == n && memcmp(after, snap, n) == 0);
+        }
+    }
+    /* the unforged one restores and steps on */
+    assert_ok(rg_world_restore(w, snap, n));
+    assert_ok(rg_world_step(w, (rg_real)DT));
+    assert_body_finite(w, box);
+    free(snap);
+    free(bad);
+    free(after);
+    rg_world_destroy(w);
+}
+
 /* ---------------------------------------------------------------- dissipation */
 
 /* Root cause: src/integrator.c, free_velocity / dissipation_explicit decide explicit or
@@ -641,6 +710,7 @@ int main(void)
         cmocka_unit_test(test_a_saved_world_always_restores),
         cmocka_unit_test(test_a_restored_clone_hashes_like_its_original),
         cmocka_unit_test(test_a_snapshot_with_a_value_out_of_range_is_refused),
+        cmocka_unit_test(test_a_snapshot_with_a_huge_warm_start_impulse_is_refused),
         cmocka_unit_test(test_rk4_with_strong_drag_never_grows_a_velocity),
         cmocka_unit_test(test_handles_of_a_destroyed_world_are_rejected_by_the_next),
         cmocka_unit_test(test_worlds_16_mib_apart_reject_each_others_handles),
