@@ -115,12 +115,9 @@ typedef struct narrow_task {
  * (narrow_run) before the rest runs in order.  A pair far apart is left to narrow_one, which
  * finds it so again.  Otherwise: CT_ACTIVE when the pair meets within the step, with its
  * normal, point and start separation in nx, ny, px, py, s0. */
-static void narrow_measure(const rg_world *w, contact *c, const collide_step *x)
+static void narrow_measure(const rg_world *w, contact *c, const cbody *A, const cbody *B)
 {
     const collide_world *cw = &w->coll;
-    int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
-    cbody rest_a, rest_b;
-    const cbody *A = views_of(w, ia, x->n, &rest_a), *B = views_of(w, ib, x->n, &rest_b);
     int32_t ka = A->kind, kb = B->kind;
     rg_vec2 ha = rg_v2(A->hx, A->hy), hb = rg_v2(B->hx, B->hy);
     rg_vec2 r = rg_v2(B->dx - A->dx, B->dy - A->dy); /* b's motion relative to a over the step */
@@ -170,14 +167,6 @@ static void narrow_measure(const rg_world *w, contact *c, const collide_step *x)
         c->py = m.point.y;
         c->s0 = s0;
     }
-}
-
-static void narrow_measure_range(int32_t begin, int32_t end, int32_t worker, void *context)
-{
-    const narrow_task *t = context;
-    contact_store *cs = &t->w->coll.contacts;
-    (void)worker;
-    for (int32_t k = begin; k < end; k++) narrow_measure(t->w, &cs->c[cs->awake[k]], t->x);
 }
 
 /* What narrow_decide found for a contact, for narrow_commit (contact.decided). */
@@ -267,20 +256,23 @@ static uint32_t narrow_decide(rg_world *w, contact *c, int32_t ia, int32_t ib, c
     return bits | (now ? ND_NOW : 0) | (was ? ND_WAS : 0);
 }
 
-static void narrow_decide_range(int32_t begin, int32_t end, int32_t worker, void *context)
+/* Measures the awake contacts [begin, end) and decides those that need no order, each in
+ * one visit (a contact's decision reads only its own measurement and its bodies' views). */
+static void narrow_measure_decide_range(int32_t begin, int32_t end, int32_t worker, void *context)
 {
     narrow_task *t = context;
     rg_world *w = t->w;
     contact_store *cs = &w->coll.contacts;
     for (int32_t k = begin; k < end; k++) {
         contact *c = &cs->c[cs->awake[k]];
+        int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
+        cbody rest_a, rest_b;
+        const cbody *A = views_of(w, ia, t->x->n, &rest_a), *B = views_of(w, ib, t->x->n, &rest_b);
+        narrow_measure(w, c, A, B);
         if (narrow_in_order(w, c)) {
             t->in_order[worker] = 1;
             continue;
         }
-        int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
-        cbody rest_a, rest_b;
-        const cbody *A = views_of(w, ia, t->x->n, &rest_a), *B = views_of(w, ib, t->x->n, &rest_b);
         c->decided = narrow_decide(w, c, ia, ib, A, B, 0);
     }
 }
@@ -330,12 +322,13 @@ static void narrow_commit(rg_world *w, int32_t id, collide_step *x, uint32_t bit
 }
 
 /* A contact decided on the stepping thread: those in order, and those waking appended. */
-static uint32_t narrow_decide_here(rg_world *w, int32_t id, const collide_step *x)
+static uint32_t narrow_decide_here(rg_world *w, int32_t id, const collide_step *x, int measure)
 {
     contact *c = &w->coll.contacts.c[id];
     int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
     cbody rest_a, rest_b;
     const cbody *A = views_of(w, ia, x->n, &rest_a), *B = views_of(w, ib, x->n, &rest_b);
+    if (measure) narrow_measure(w, c, A, B);
     return narrow_decide(w, c, ia, ib, A, B, 1);
 }
 
@@ -421,20 +414,19 @@ void narrow_run(rg_world *w, collide_step *x)
     t.x = x;
     int32_t measured = cs->n_awake, workers = task_workers(w), in_order = 0;
     for (int32_t k = 0; k < workers; k++) t.in_order[k] = 0;
-    task_for(w, narrow_measure_range, measured, NARROW_RANGE, &t);
-    task_for(w, narrow_decide_range, measured, NARROW_RANGE, &t);
+    task_for(w, narrow_measure_decide_range, measured, NARROW_RANGE, &t);
     for (int32_t k = 0; k < workers; k++) in_order |= t.in_order[k];
-    /* without a contact decided in order, the rows are staged in parallel (the same rows in
-     * the same order as the walk below would stage) */
-    if (!in_order) narrow_stage(w, &t, measured);
+    /* with workers and without a contact decided in order, the rows are staged in parallel
+     * (the same rows in the same order as the walk below stages them on one thread) */
+    int serial = in_order || workers < 2;
+    if (!serial) narrow_stage(w, &t, measured);
     /* waking appends the contacts of the bodies it wakes: they are measured, decided and
      * staged as they come */
     for (int32_t k = 0; k < cs->n_awake; k++) {
         int32_t id = cs->awake[k];
         contact *c = &cs->c[id];
-        if (k >= measured) narrow_measure(w, c, x);
         int here = k >= measured || narrow_in_order(w, c);
-        uint32_t bits = here ? narrow_decide_here(w, id, x) : c->decided;
-        narrow_commit(w, id, x, bits, in_order || k >= measured);
+        uint32_t bits = here ? narrow_decide_here(w, id, x, k >= measured) : c->decided;
+        narrow_commit(w, id, x, bits, serial || k >= measured);
     }
 }
