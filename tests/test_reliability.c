@@ -306,6 +306,47 @@ static size_t encode(uint8_t *out, double v, int is_double)
     return sizeof(rg_real);
 }
 
+/* A world's snapshot, a buffer to forge it in and one to save the world after a refusal. */
+typedef struct saved {
+    uint8_t *snap, *bad, *after;
+    size_t n;
+    uint64_t h0;
+} saved;
+
+static saved save_world(rg_world *w)
+{
+    saved s;
+    s.n = 0;
+    assert_ok(rg_world_save(w, NULL, 0, &s.n));
+    s.snap = malloc(s.n);
+    s.bad = malloc(s.n);
+    s.after = malloc(s.n);
+    assert_true(s.snap != NULL && s.bad != NULL && s.after != NULL);
+    assert_ok(rg_world_save(w, s.snap, s.n, &s.n));
+    assert_ok(rg_world_hash(w, &s.h0));
+    return s;
+}
+
+/* s.bad, resealed, is refused, and the world is what it was: the same hash, the same bytes. */
+static void assert_forgery_refused(rg_world *w, saved *s, const char *what, double forged)
+{
+    snap_put64(s->bad + 24, snap_hash(s->bad + SNAP_HEADER, s->n - SNAP_HEADER));
+    rg_status st = rg_world_restore(w, s->bad, s->n);
+    if (st != RG_ERR_INVALID_ARGUMENT) fail_msg("a snapshot with the %s %g was accepted (%d)", what, forged, st);
+    uint64_t h;
+    size_t m = 0;
+    assert_ok(rg_world_hash(w, &h));
+    assert_ok(rg_world_save(w, s->after, s->n, &m));
+    assert_true(h == s->h0 && m == s->n && memcmp(s->after, s->snap, s->n) == 0);
+}
+
+static void saved_free(saved *s)
+{
+    free(s->snap);
+    free(s->bad);
+    free(s->after);
+}
+
 /* Found by tests/fuzz/fuzz_snapshot.c (a pile whose snapshot had one body's mass changed to
  * 5.8e-39 kg and the checksum resealed: accepted, and three steps later the body was NaN).
  * Root cause: src/restore.c, restore_check_scalars, restore_check_bodies and
@@ -347,38 +388,23 @@ static void test_a_snapshot_with_a_value_out_of_range_is_refused(void **state)
     assert_ok(rg_body_apply_force(w, b, v2((rg_real)12.5, 0)));
     assert_ok(rg_spring_create(w, b, c, v2(0, 0), (rg_real)1.75, (rg_real)33.5, (rg_real)0.5625, &sp));
     assert_ok(rg_spring_create(w, c, 0, v2((rg_real)4.4375, 0), 0, 1, 0, &sp));
-    size_t n = 0;
-    assert_ok(rg_world_save(w, NULL, 0, &n));
-    uint8_t *snap = malloc(n), *bad = malloc(n), *after = malloc(n);
-    assert_true(snap != NULL && bad != NULL && after != NULL);
-    assert_ok(rg_world_save(w, snap, n, &n));
-    uint64_t h0;
-    assert_ok(rg_world_hash(w, &h0));
+    saved sv = save_world(w);
     for (size_t k = 0; k < sizeof values / sizeof values[0]; k++) {
         const forged_value *f = &values[k];
         uint8_t was[8], now[8];
         size_t len = encode(was, f->value, f->is_double), count;
         encode(now, f->forged, f->is_double);
-        memcpy(bad, snap, n);
-        size_t at = find_bytes(bad, n, was, len, &count);
+        memcpy(sv.bad, sv.snap, sv.n);
+        size_t at = find_bytes(sv.bad, sv.n, was, len, &count);
         /* a circle stores its radius twice (both half extents) */
         if (count != (strcmp(f->what, "circle radius") == 0 ? 2u : 1u)) fail_msg("%s found %zu times", f->what, count);
         for (size_t i = 0; i < count; i++) {
-            memcpy(bad + at, now, len);
-            at = find_bytes(bad, n, was, len, &count);
+            memcpy(sv.bad + at, now, len);
+            at = find_bytes(sv.bad, sv.n, was, len, &count);
         }
-        snap_put64(bad + 24, snap_hash(bad + SNAP_HEADER, n - SNAP_HEADER));
-        rg_status st = rg_world_restore(w, bad, n);
-        if (st != RG_ERR_INVALID_ARGUMENT) fail_msg("a snapshot with the %s %g was accepted (%d)", f->what, f->forged, st);
-        uint64_t h;
-        size_t m = 0;
-        assert_ok(rg_world_hash(w, &h));
-        assert_ok(rg_world_save(w, after, n, &m));
-        assert_true(h == h0 && m == n && memcmp(after, snap, n) == 0);
+        assert_forgery_refused(w, &sv, f->what, f->forged);
     }
-    free(snap);
-    free(bad);
-    free(after);
+    saved_free(&sv);
     rg_world_destroy(w);
 }
 
@@ -404,50 +430,32 @@ static void test_a_snapshot_with_a_huge_warm_start_impulse_is_refused(void **sta
     }
     rg_contact c;
     assert_int_equal(rg_body_get_contacts(w, box, &c, 1), 1);
-    /* the impulses as the snapshot stores them: the box is the contact's body b (the floor
-     * was made first, so it has the lower handle), and friction opposes the sliding */
     assert_true(c.normal_impulse > 0 && c.tangent_impulse != 0);
-    size_t n = 0;
-    assert_ok(rg_world_save(w, NULL, 0, &n));
-    uint8_t *snap = malloc(n), *bad = malloc(n), *after = malloc(n);
-    assert_true(snap != NULL && bad != NULL && after != NULL);
-    assert_ok(rg_world_save(w, snap, n, &n));
-    uint64_t h0;
-    assert_ok(rg_world_hash(w, &h0));
-    const double forged[] = { -REAL_MAX, REAL_MAX, 1e30, -1e30, -1 };
+    saved sv = save_world(w);
+    const double forged[] = { -(double)REAL_MAX, (double)REAL_MAX, 1e30, -1e30, -1 };
     for (int which = 0; which < 2; which++) {
         rg_real was = which == 0 ? c.normal_impulse : c.tangent_impulse;
         uint8_t wb[8], nb[8];
         size_t len = encode(wb, (double)was, 0), count;
-        size_t at0 = find_bytes(snap, n, wb, len, &count);
-        if (count == 0) {   /* the stored sign of the friction impulse is the other one */
+        size_t at = find_bytes(sv.snap, sv.n, wb, len, &count);
+        if (count == 0) {   /* the contact stores friction along its own tangent: the other sign */
             len = encode(wb, -(double)was, 0);
-            at0 = find_bytes(snap, n, wb, len, &count);
+            at = find_bytes(sv.snap, sv.n, wb, len, &count);
         }
         assert_int_equal(count, 1);
         for (size_t k = 0; k < sizeof forged / sizeof forged[0]; k++) {
             if (which == 1 && forged[k] == -1) continue;   /* a negative friction impulse is valid */
-            memcpy(bad, snap, n);
+            memcpy(sv.bad, sv.snap, sv.n);
             encode(nb, forged[k], 0);
-            memcpy(bad + at0, nb, len);
-            snap_put64(bad + 24, snap_hash(bad + SNAP_HEADER, n - SNAP_HEADER));
-            rg_status st = rg_world_restore(w, bad, n);
-            if (st != RG_ERR_INVALID_ARGUMENT)
-                fail_msg("a snapshot with the %s impulse %g was accepted (%d)", which ? "friction" : "normal", forged[k], st);
-            uint64_t h;
-            size_t m = 0;
-            assert_ok(rg_world_hash(w, &h));
-            assert_ok(rg_world_save(w, after, n, &m));
-            assert_true(h == h0 && m == n && memcmp(after, snap, n) == 0);
+            memcpy(sv.bad + at, nb, len);
+            assert_forgery_refused(w, &sv, which ? "friction impulse" : "normal impulse", forged[k]);
         }
     }
     /* the unforged one restores and steps on */
-    assert_ok(rg_world_restore(w, snap, n));
+    assert_ok(rg_world_restore(w, sv.snap, sv.n));
     assert_ok(rg_world_step(w, (rg_real)DT));
     assert_body_finite(w, box);
-    free(snap);
-    free(bad);
-    free(after);
+    saved_free(&sv);
     rg_world_destroy(w);
 }
 
