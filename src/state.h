@@ -131,10 +131,12 @@ typedef struct spring_store {
 /* The accumulated impulses a contact keeps for the next step's warm start stay within
  * [0, CONTACT_MAX_IMPULSE] (normal) and +-CONTACT_MAX_IMPULSE (friction), N*s: the solve
  * stores them clamped (resolve.c), and a snapshot beyond them is refused (restore_check.c).
- * The bound is far above any impulse of a scene within the ranges of rigid.h (the heaviest
- * body stopped from the highest speed takes 2e15 N*s), and low enough that the warm start
- * of the lightest body and the solve's products stay finite in float (1e20 N*s on 1e-6 kg
- * is 1e26 m/s, times the largest effective mass 1e9 kg is 1e35). */
+ * The bound is far above the impulses of game scenes (the heaviest body stopped from the
+ * highest speed takes 2e15 N*s; only a tall stack of the heaviest bodies under the strongest
+ * gravity could need more, and there the clamp weakens the warm start, never the step's
+ * finiteness), and low enough that the warm start of the lightest body and the solve's
+ * products stay finite in float (1e20 N*s on 1e-6 kg is 1e26 m/s, times the largest
+ * effective mass 1e9 kg is 1e35). */
 #define CONTACT_MAX_IMPULSE RG_R(1e20)
 
 typedef struct contact {
