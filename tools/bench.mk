@@ -34,7 +34,7 @@ BENCH_LIBS := -ldl -lm
 BENCH_ARGS ?=
 BENCH_SWEEP_ARGS ?= --repeats 1
 BENCH_CHART_ARGS ?= --repeats 1 --sleep off --engine rigid,rigid-$(BENCH_NPROC)w,b2v3-avx2,b2v3-avx2-$(BENCH_NPROC)w,box2d,chipmunk \
-                    --scene rain:1000,2000,4000,10000,20000 --scene boxes:1000,2000,4000,10000,20000 \
+                    --scene rain:1000,2000,4000,10000,20000 --scene boxes:1000,2000,4000,10000,20000,100000 \
                     --scene free0:1000,10000,100000,1000000
 BENCH_NPROC := $(shell nproc 2>/dev/null || echo 2)
 
