@@ -230,6 +230,7 @@ static int lbody_create(lua_State *L)
         return lua_error(L);
     }
     lbody_retire(L, 1, h);
+    lworld_charge_overlaps(L, w, h);
     return 1;
 }
 
@@ -446,7 +447,14 @@ LBODY_GET_VEC2(position, rg_body_get_position)
 LBODY_GET_VEC2(velocity, rg_body_get_velocity)
 LBODY_GET_VEC2(interpolated_position, rg_body_get_interpolated_position)
 LBODY_GET_VEC2(acceleration, rg_body_get_acceleration)
-LBODY_SET_VEC2(set_position, rg_body_set_position)
+static int lbody_set_position(lua_State *L)
+{
+    lbody *b;
+    lbody_set_vec2(L, rg_body_set_position, "set_position");
+    b = lbody_check(L, 1);
+    lworld_charge_overlaps(L, lbody_world_of(L, b), b->h);
+    return 0;
+}
 LBODY_SET_VEC2(set_velocity, rg_body_set_velocity)
 LBODY_SET_VEC2(apply_force, rg_body_apply_force)
 LBODY_SET_VEC2(apply_impulse, rg_body_apply_impulse)
@@ -520,6 +528,7 @@ static int lbody_set_circle(lua_State *L)
     rg_world *w = lbody_world_of(L, b);
     LCHECK(L, w, rg_body_set_circle(w, b->h, r), "set_circle");
     lbody_refresh(b);
+    lworld_charge_overlaps(L, w, b->h);
     return 0;
 }
 
@@ -530,6 +539,7 @@ static int lbody_set_aabb(lua_State *L)
     rg_world *w = lbody_world_of(L, b);
     LCHECK(L, w, rg_body_set_aabb(w, b->h, hw, hh), "set_aabb");
     lbody_refresh(b);
+    lworld_charge_overlaps(L, w, b->h);
     return 0;
 }
 

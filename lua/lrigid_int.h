@@ -103,6 +103,11 @@ lworld *lworld_check(lua_State *L, int i);      /* methods only: compares with u
 rg_world *lworld_checkopen(lua_State *L, int i);
 /* Reports work done in C for the script (see lrigid_hooks.charge). */
 void lworld_charge(lua_State *L, double units);
+/* Charges a shape put where it overlaps others for the pairs the next step makes of them
+ * (the step charges its pairs only once it has run: a crowd of huge shapes would make its
+ * first step cost what no budget allowed), LWORLD_UNITS_PAIR per other shape whose box meets
+ * the body's. */
+void lworld_charge_overlaps(lua_State *L, rg_world *w, rg_body h);
 void lworld_sethooks(lua_State *L, const lrigid_hooks *hooks);
 /* t[k] = v for (t, k, v) on the stack: called with lua_pcall, to insert into the world's
  * tables where a memory error must be caught and the library call undone. */

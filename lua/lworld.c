@@ -44,6 +44,19 @@ void lworld_charge(lua_State *L, double units)
 #define LWORLD_UNITS_BODY   64
 #define LWORLD_UNITS_SPRING 8
 
+void lworld_charge_overlaps(lua_State *L, rg_world *w, rg_body h)
+{
+    const lrigid_hooks *hooks = lworld_gethooks(L);
+    rg_vec2 p, half;
+    int32_t kind = RG_SHAPE_NONE;
+    if (hooks == NULL || hooks->charge == NULL) return;
+    if (rg_body_get_shape(w, h, &kind, &half) != RG_OK || kind == RG_SHAPE_NONE) return;
+    if (rg_body_get_position(w, h, &p) != RG_OK) return;
+    rg_vec2 lo = { p.x - half.x, p.y - half.y }, hi = { p.x + half.x, p.y + half.y };
+    int32_t n = rg_world_query_aabb(w, lo, hi, 0xFFFFFFFFu, NULL, 0);
+    if (n > 1) hooks->charge(L, hooks->ud, LWORLD_UNITS_PAIR * (double)(n - 1));
+}
+
 static double lworld_step_units(const rg_world *w)
 {
     return 1.0 + LWORLD_UNITS_PAIR * (double)rg_world_touching_count(w) +

@@ -19,7 +19,7 @@ static inline int32_t bounds_out(rg_real x, rg_real y, rg_real vx, rg_real vy)
 void bounds_begin(struct rg_world *w);
 
 /* After integration and the speed limits, before the collide stage, when the integrator
- * found a body out (integrator_step): every active body whose
+ * found a body out (integrator_step), and after the collide stage: every active body whose
  * position left +-RG_MAX_COORD, whose velocity left +-RG_MAX_SPEED, or whose state is not
  * finite is stopped: each coordinate clamped to the range (a non-finite one set back to x0,
  * y0, where the step began, or to 0 when the integrator kept no start), velocity and

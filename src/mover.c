@@ -157,7 +157,7 @@ RG_API rg_status rg_body_move(rg_world *world, rg_body body, rg_vec2 target, uin
     if (b->shape[i] == RG_SHAPE_NONE) return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "body has no shape");
     rg_vec2 start = rg_v2(b->x[i], b->y[i]), total = rg_v2_sub(target, start);
     rg_real length = rg_v2_len(total);
-    if (!rg_finite(length)) /* a body the steps carried far beyond RG_MAX_COORD */
+    if (!rg_finite(length)) /* defensive: within the ranges a path is always finite */
         return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "target: the path from the body at (%g, %g) is too long",
                        (double)start.x, (double)start.y);
     mover q;

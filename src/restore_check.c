@@ -279,10 +279,14 @@ int restore_check_bodies(const snap_in *in)
         int part = i < s->n_active ? BODY_PART_ACTIVE : i < s->n_moving ? BODY_PART_ASLEEP : BODY_PART_STATIC;
         if (type < RG_BODY_STATIC || type > RG_BODY_DYNAMIC) return BAD;
         if ((part == BODY_PART_STATIC) != (type == RG_BODY_STATIC)) return BAD;
-        /* the state the steps make (positions and velocities a collision may have carried a
-         * little past the ranges) only finite; what the setters put, in their ranges */
-        rg_real reals[] = { BF_R(in, x, i), BF_R(in, y, i), BF_R(in, vx, i), BF_R(in, vy, i), BF_R(in, ax, i),
-                            BF_R(in, ay, i), BF_R(in, px, i), BF_R(in, py, i) };
+        /* positions and velocities in their ranges, as every step leaves them (bounds.c;
+         * positions with room for the rounding of a move to the edge), the accelerations
+         * and the positions of the step before finite; what the setters put, in their ranges */
+        if (!within(BF_R(in, x, i), -2 * RG_MAX_COORD, 2 * RG_MAX_COORD) ||
+            !within(BF_R(in, y, i), -2 * RG_MAX_COORD, 2 * RG_MAX_COORD) ||
+            !within(BF_R(in, vx, i), -RG_MAX_SPEED, RG_MAX_SPEED) || !within(BF_R(in, vy, i), -RG_MAX_SPEED, RG_MAX_SPEED))
+            return BAD;
+        rg_real reals[] = { BF_R(in, ax, i), BF_R(in, ay, i), BF_R(in, px, i), BF_R(in, py, i) };
         for (size_t k = 0; k < sizeof reals / sizeof reals[0]; k++)
             if (!fin(reals[k])) return BAD;
         if (!within(BF_R(in, fx, i), -RG_MAX_FORCE, RG_MAX_FORCE) || !within(BF_R(in, fy, i), -RG_MAX_FORCE, RG_MAX_FORCE) ||

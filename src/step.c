@@ -62,7 +62,12 @@ static void step_run(rg_world *w, rg_real dt)
     }
     if (collide) {
         events_begin_step(&w->coll.events);
-        if (shapes) step_collide(w, dt);
+        if (shapes) {
+            step_collide(w, dt);
+            /* a collision may have pushed a body at the edge of the range past it: every
+             * step ends with every state in range (what a snapshot's restore checks) */
+            bounds_guard(w, NULL, NULL);
+        }
         events_end_step(&w->coll.events);
     }
     /* Applied forces last one step.  (An empty world has no arrays: memset(NULL, 0, 0) is

@@ -348,12 +348,16 @@ static void saved_free(saved *s)
 }
 
 /* Found by tests/fuzz/fuzz_snapshot.c (a pile whose snapshot had one body's mass changed to
- * 5.8e-39 kg and the checksum resealed: accepted, and three steps later the body was NaN).
+ * 5.8e-39 kg and the checksum resealed: accepted, and three steps later the body was NaN;
+ * later one whose circle was moved to y = 9.8e37 m: accepted, and the step made it -inf).
  * Root cause: src/restore.c, restore_check_scalars, restore_check_bodies and
  * restore_check_springs checked the reals of a snapshot for being finite (a mass for 1 / mass
  * being finite) but not for the ranges the setters accept, which are what keep a step's
  * arithmetic finite (src/bounds.c): a state no call could make was restored and stepped.
- * Fixed there: each value is checked against the range of the setter it enters by. */
+ * Fixed there: each value is checked against the range of the setter it enters by; and
+ * positions and velocities, which the steps make, against the ranges every step now ends in
+ * (src/step.c guards after the collide stage too; test_bounds.c), positions with room for a
+ * move's rounding (2 RG_MAX_COORD). */
 static void test_a_snapshot_with_a_value_out_of_range_is_refused(void **state)
 {
     (void)state;
@@ -369,6 +373,8 @@ static void test_a_snapshot_with_a_value_out_of_range_is_refused(void **state)
         { "sleep speed", 0.078125, 2e6, 0 },    { "slop", 0.0068359375, 2e7, 0 },
         { "max push", 2.34375, 2e6, 0 },        { "restitution threshold", 0.8671875, 2e6, 0 },
         { "fixed step", 1.0 / 64, 20, 1 },      { "circle radius", 0.3984375, 1e-7, 0 },
+        { "position", 5.171875, 9.79e37, 0 },   { "position", -7.34375, -3e9, 0 },
+        { "velocity", 3.28125, 2e6, 0 },        { "velocity", -2.15625, -1.5e6, 0 },
     };
     rg_world *w;
     uint64_t sp;
@@ -378,7 +384,8 @@ static void test_a_snapshot_with_a_value_out_of_range_is_refused(void **state)
     assert_ok(rg_world_set_sleep_thresholds(w, (rg_real)0.078125, 1));
     assert_ok(rg_world_set_contact_tuning(w, (rg_real)0.0068359375, 0.25f, (rg_real)2.34375, (rg_real)0.8671875));
     assert_ok(rg_world_set_fixed_step(w, (rg_real)(1.0 / 64), 4));
-    rg_body b = make_body(w, 1.25, 0, 3), c = make_body(w, 2, 1, 3);
+    rg_body b = make_body(w, 1.25, 0, 3), c = make_body(w, 2, 1, 3), d = make_body(w, 3.3125, 5.171875, -7.34375);
+    assert_ok(rg_body_set_velocity(w, d, v2((rg_real)3.28125, (rg_real)-2.15625)));
     assert_ok(rg_body_set_gravity_scale(w, b, (rg_real)0.625));
     assert_ok(rg_body_set_drag(w, b, (rg_real)0.375, (rg_real)0.1875));
     assert_ok(rg_body_set_surface_friction(w, b, 0.5f, 1.5f));   /* 0.75 N */
@@ -396,12 +403,15 @@ static void test_a_snapshot_with_a_value_out_of_range_is_refused(void **state)
         encode(now, f->forged, f->is_double);
         memcpy(sv.bad, sv.snap, sv.n);
         size_t at = find_bytes(sv.bad, sv.n, was, len, &count);
-        /* a circle stores its radius twice (both half extents) */
-        if (count != (strcmp(f->what, "circle radius") == 0 ? 2u : 1u)) fail_msg("%s found %zu times", f->what, count);
-        for (size_t i = 0; i < count; i++) {
+        /* a circle stores its radius twice (both half extents), a position is also the
+         * position of the step before (the interpolation's start) */
+        int twice = strcmp(f->what, "circle radius") == 0 || strcmp(f->what, "position") == 0;
+        if (count != (twice ? 2u : 1u)) fail_msg("%s found %zu times", f->what, count);
+        for (size_t i = 0, all = count; i < all; i++) {
             memcpy(sv.bad + at, now, len);
             at = find_bytes(sv.bad, sv.n, was, len, &count);
         }
+        assert_int_equal(count, 0);   /* every copy forged */
         assert_forgery_refused(w, &sv, f->what, f->forged);
     }
     saved_free(&sv);
