@@ -163,8 +163,9 @@ RG_API rg_status rg_world_get_integrator(const rg_world *world, int32_t *out_int
 #define RG_MAX_DT 10.0
 
 /* Exactly one step of length dt seconds (0 < dt <= RG_MAX_DT):
- * forces -> integrate -> speed limits -> range guard -> collide -> events -> clear applied
- * forces.  The range guard (see rg_world_get_stopped) keeps every body's state finite. */
+ * forces -> integrate -> speed limits -> range guard -> collide -> range guard -> events ->
+ * clear applied forces (the second guard when the world has shapes).  The range guard (see
+ * rg_world_get_stopped) keeps every body's state finite and ends every step in range. */
 RG_API rg_status rg_world_step(rg_world *world, rg_real dt);
 
 /* The step rg_world_advance takes (0 < dt <= RG_MAX_DT) and the most steps one advance may
@@ -194,13 +195,13 @@ RG_API rg_status rg_body_get_interpolated_position(const rg_world *world, rg_bod
 /* The bodies the last rg_world_step, or the steps of the last rg_world_advance, stopped at
  * the edge of the accepted range.  A scene whose forces are far beyond its scale (a stiff
  * spring on a light body, a huge force applied every step) can drive a body's state out of
- * +-RG_MAX_COORD or +-RG_MAX_SPEED, or, within one RK4 step, past the float range.  The step
- * then stops that body after the integration, before collision: each coordinate clamped to
+ * +-RG_MAX_COORD or +-RG_MAX_SPEED, or, within one RK4 step, past the float range, and an
+ * impact can throw a body past RG_MAX_SPEED.  The step then stops that body after the
+ * integration, before collision, and again after collision: each coordinate clamped to
  * +-RG_MAX_COORD (one that is no longer finite goes back to where the step began; Euler
  * cannot get there from a state in range), velocity and acceleration 0.  Nothing else
  * changes, the step succeeds, and the body is listed here until the next stepping call (a
- * restore clears the list).  A collision in the same step may still push it by up to its
- * shape's size.  Returns the count and copies min(count, capacity) handles in ascending
+ * restore clears the list).  Returns the count and copies min(count, capacity) handles in ascending
  * order; -1 (RG_ERR_INVALID_ARGUMENT) for NULL world, capacity < 0, or out NULL with
  * capacity > 0. */
 RG_API int32_t rg_world_get_stopped(const rg_world *world, rg_body *out, int32_t capacity);
