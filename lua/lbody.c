@@ -449,10 +449,11 @@ LBODY_GET_VEC2(interpolated_position, rg_body_get_interpolated_position)
 LBODY_GET_VEC2(acceleration, rg_body_get_acceleration)
 static int lbody_set_position(lua_State *L)
 {
-    lbody *b;
-    lbody_set_vec2(L, rg_body_set_position, "set_position");
-    b = lbody_check(L, 1);
-    lworld_charge_overlaps(L, lbody_world_of(L, b), b->h);
+    lbody *b = lbody_check(L, 1);
+    rg_vec2 v = lcheck_vec2(L, 2);
+    rg_world *w = lbody_world_of(L, b);
+    LCHECK(L, w, rg_body_set_position(w, b->h, v), "set_position");
+    lworld_charge_overlaps(L, w, b->h);
     return 0;
 }
 LBODY_SET_VEC2(set_velocity, rg_body_set_velocity)
