@@ -245,6 +245,11 @@ RG_API rg_status rg_body_get_position(const rg_world *world, rg_body body, rg_ve
 RG_API rg_status rg_body_set_position(rg_world *world, rg_body body, rg_vec2 position);
 RG_API rg_status rg_body_get_velocity(const rg_world *world, rg_body body, rg_vec2 *out);
 RG_API rg_status rg_body_set_velocity(rg_world *world, rg_body body, rg_vec2 velocity);
+/* The same position and velocity returned by value, for hosts where an out-pointer costs
+ * more than the call (a LuaJIT trace allocates one per call).  (NaN, NaN) when the world is
+ * NULL or the handle is not live (then rg_world_last_error says why): test x != x. */
+RG_API rg_vec2 rg_body_position(const rg_world *world, rg_body body);
+RG_API rg_vec2 rg_body_velocity(const rg_world *world, rg_body body);
 /* The acceleration (m/s^2) the last step started with: sum(forces)/mass + gravity*scale,
  * forces being wind, applied forces, drag, surface friction and springs at the start state.
  * 0 before the first step and for non-dynamic bodies. */

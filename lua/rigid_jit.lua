@@ -502,6 +502,17 @@ end
 
 get_vec2("position", C.rg_body_get_position)
 get_vec2("velocity", C.rg_body_get_velocity)
+-- Where the library's by-value getters compile (lib.R), position and velocity use them: no
+-- out-struct to allocate.  NaN means the call failed: the out-pointer getter says why.
+for name, by_value in pairs{ position = lib.R.rg_body_position, velocity = lib.R.rg_body_velocity } do
+  local slow = Body[name]
+  Body[name] = function(b)
+    local p, h = body_wh(b)
+    local x, y = by_value(p, h)
+    if x ~= x then return slow(b) end
+    return x, y
+  end
+end
 get_vec2("interpolated_position", C.rg_body_get_interpolated_position)
 get_vec2("acceleration", C.rg_body_get_acceleration)
 get_vec2("one_way", C.rg_body_get_one_way)

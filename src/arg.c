@@ -46,11 +46,6 @@ int arg_real(const rg_world *w, const char *func, const char *name, const char *
     return 1;
 }
 
-int arg_vec(const rg_world *w, const char *func, const char *name, rg_vec2 v, const arg_rule *r)
-{
-    return arg_real(w, func, name, ".x", v.x, r) && arg_real(w, func, name, ".y", v.y, r);
-}
-
 int arg_int(const rg_world *w, const char *func, const char *name, int32_t v, int32_t lo,
             int32_t hi, const char *what)
 {
@@ -80,10 +75,13 @@ int arg_buffer(const rg_world *w, const char *func, const char *name, const void
     return 1;
 }
 
-int32_t arg_handle(const rg_world *w, const char *func, const char *name, const pool *p, uint64_t h)
+int arg_vec(const rg_world *w, const char *func, const char *name, rg_vec2 v, const arg_rule *r)
 {
-    int32_t i = pool_lookup(p, h);
-    if (i >= 0) return i;
+    return arg_real(w, func, name, ".x", v.x, r) && arg_real(w, func, name, ".y", v.y, r);
+}
+
+int32_t arg_handle_error(const rg_world *w, const char *func, const char *name, uint64_t h)
+{
     if (h == 0)
         error_set(w, 0, func, "%s is 0 (never a handle)", name);
     else

@@ -75,13 +75,6 @@ void body_store_release(rg_world *w)
     pool_release_memory(&w->body_pool, &w->mem);
 }
 
-int body_partition(const rg_world *w, int32_t i)
-{
-    if (i < w->b.n_active) return BODY_PART_ACTIVE;
-    if (i < w->b.n_moving) return BODY_PART_ASLEEP;
-    return BODY_PART_STATIC;
-}
-
 /* Swaps dense places i and j, fields and slot map. */
 static void body_swap(rg_world *w, int32_t i, int32_t j)
 {

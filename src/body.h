@@ -46,8 +46,6 @@ void body_remove(struct rg_world *w, rg_body body);
 /* Ensures the integrator scratch covers the body capacity; all-or-nothing. */
 rg_status body_scratch_reserve(struct rg_world *w);
 void body_store_release(struct rg_world *w);
-/* Partition of dense index i. */
-int body_partition(const struct rg_world *w, int32_t i);
 /* Moves the body at dense index i into partition part; returns its new dense index. */
 int32_t body_move_to_partition(struct rg_world *w, int32_t i, int part);
 /* Recomputes BODY_F_* of dense index i and the world's counts. */

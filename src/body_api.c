@@ -93,6 +93,29 @@ RG_API rg_status rg_body_get_velocity(const rg_world *world, rg_body body, rg_ve
     return get_pair(world, __func__, body, world->b.vx, world->b.vy, out);
 }
 
+/* (xs[i], ys[i]) of body, or (NaN, NaN) and the error set, for the by-value getter func. */
+static rg_vec2 pair_value(const rg_world *world, const char *func, rg_body body,
+                          const rg_real *xs, const rg_real *ys)
+{
+    int32_t i = arg_handle(world, func, "body", &world->body_pool, body);
+    if (i < 0) return (rg_vec2){ (rg_real)NAN, (rg_real)NAN };
+    return (rg_vec2){ xs[i], ys[i] };
+}
+
+RG_API rg_vec2 rg_body_position(const rg_world *world, rg_body body)
+{
+    if (world == NULL) return (rg_vec2){ (rg_real)NAN, (rg_real)NAN };
+    ERROR_CLEAR(world);
+    return pair_value(world, __func__, body, world->b.x, world->b.y);
+}
+
+RG_API rg_vec2 rg_body_velocity(const rg_world *world, rg_body body)
+{
+    if (world == NULL) return (rg_vec2){ (rg_real)NAN, (rg_real)NAN };
+    ERROR_CLEAR(world);
+    return pair_value(world, __func__, body, world->b.vx, world->b.vy);
+}
+
 RG_API rg_status rg_body_get_acceleration(const rg_world *world, rg_body body, rg_vec2 *out)
 {
     ERROR_BEGIN(world);

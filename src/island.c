@@ -42,12 +42,6 @@ void island_wake(rg_world *w, int32_t slot)
     }
 }
 
-void island_touch(rg_world *w, int32_t slot)
-{
-    island_wake(w, slot);
-    w->b.sleep_t[body_dense(w, slot)] = 0;
-}
-
 void island_wake_all(rg_world *w)
 {
     while (w->b.n_moving > w->b.n_active) island_wake(w, w->b.slot[w->b.n_active]);

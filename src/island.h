@@ -19,8 +19,17 @@ struct rg_world;
 void island_layout(mem_layout *l, island_state *s, int32_t n);
 /* Wakes the island of the body in `slot` if it sleeps. */
 void island_wake(struct rg_world *w, int32_t slot);
-/* island_wake, and the body's rest timer starts again (it was pushed, moved or changed). */
-void island_touch(struct rg_world *w, int32_t slot);
+/* island_wake, and the body's rest timer starts again (it was pushed, moved or changed).
+ * Inline: most calls find the body awake. */
+static inline void island_touch(struct rg_world *w, int32_t slot)
+{
+    int32_t i = body_dense(w, slot);
+    if (body_partition(w, i) == BODY_PART_ASLEEP) {
+        island_wake(w, slot);
+        i = body_dense(w, slot);
+    }
+    w->b.sleep_t[i] = 0;
+}
 /* Wakes the sleeping bodies that touch slot's body (it moved, changed or goes away). */
 void island_wake_touching(struct rg_world *w, int32_t slot);
 void island_wake_all(struct rg_world *w);

@@ -104,16 +104,6 @@ void pool_free(pool *p, uint64_t handle)
     p->free_head = slot;
 }
 
-int32_t pool_lookup(const pool *p, uint64_t handle)
-{
-    uint32_t tag = (uint32_t)(handle >> (POOL_SLOT_BITS + POOL_GEN_BITS));
-    uint32_t gen = (uint32_t)(handle >> POOL_SLOT_BITS) & POOL_MAX_GEN;
-    int32_t slot = pool_slot(handle);
-    if (tag != p->tag || gen == 0 || slot >= p->slot_count) return -1;
-    if (p->gen[slot] != gen || p->index[slot] < 0) return -1;
-    return p->index[slot];
-}
-
 uint64_t pool_handle(const pool *p, int32_t slot)
 {
     return make_handle(p, slot);

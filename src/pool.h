@@ -38,10 +38,18 @@ rg_status pool_reserve_slots(pool *p, const rg_mem *m, int32_t slots);
 uint64_t pool_alloc(pool *p, int32_t dense);
 /* Frees the slot of a live handle; its generation moves on (or the slot retires). */
 void pool_free(pool *p, uint64_t handle);
-/* Dense index of a live handle of this pool, or -1. */
-int32_t pool_lookup(const pool *p, uint64_t handle);
 /* Slot of a handle (no check). */
 static inline int32_t pool_slot(uint64_t handle) { return (int32_t)(handle & ((1u << POOL_SLOT_BITS) - 1u)); }
+/* Dense index of a live handle of this pool, or -1 (inline: every entry point calls it). */
+static inline int32_t pool_lookup(const pool *p, uint64_t handle)
+{
+    uint32_t tag = (uint32_t)(handle >> (POOL_SLOT_BITS + POOL_GEN_BITS));
+    uint32_t gen = (uint32_t)(handle >> POOL_SLOT_BITS) & POOL_MAX_GEN;
+    int32_t slot = pool_slot(handle);
+    if (tag != p->tag || gen == 0 || slot >= p->slot_count) return -1;
+    if (p->gen[slot] != gen || p->index[slot] < 0) return -1;
+    return p->index[slot];
+}
 /* Dense index of a live slot. */
 static inline int32_t pool_dense(const pool *p, int32_t slot) { return p->index[slot]; }
 static inline void pool_set_dense(pool *p, int32_t slot, int32_t dense) { p->index[slot] = dense; }

@@ -312,6 +312,14 @@ struct rg_world {
     ERROR_BEGIN(world);       \
     if ((world)->locked) return RG_FAIL((world), RG_ERR_LOCKED, "locked: called from inside a step's callback")
 
+/* Partition (BODY_PART_*) of dense index i. */
+static inline int body_partition(const struct rg_world *w, int32_t i)
+{
+    if (i < w->b.n_active) return BODY_PART_ACTIVE;
+    if (i < w->b.n_moving) return BODY_PART_ASLEEP;
+    return BODY_PART_STATIC;
+}
+
 /* Dense index of the live body in pool slot `slot`.  Slots never move; dense indices move
  * whenever a body changes partition (falls asleep, wakes, is created or destroyed), so code
  * that keeps a body across such a change keeps its slot. */

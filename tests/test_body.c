@@ -146,6 +146,39 @@ static void test_a_million_cycles_never_resurrect_a_handle_and_leak_nothing(void
     assert_true(t.live_bytes == 0);
 }
 
+/* rg_body_position / rg_body_velocity return what the out-pointer getters store, bit for bit,
+ * and (NaN, NaN) with the reason in the last error for a stale handle or a NULL world. */
+static void test_by_value_getters_match_the_status_getters(void **state)
+{
+    (void)state;
+    rg_world *w = NULL;
+    rg_body b = 0, gone = 0;
+    rg_vec2 p, v;
+    assert_ok(rg_world_create(&w));
+    assert_ok(rg_body_create(w, RG_BODY_DYNAMIC, 2, v2(1.25f, -3.5f), &b));
+    assert_ok(rg_body_create(w, RG_BODY_DYNAMIC, 1, v2(0, 0), &gone));
+    assert_ok(rg_body_set_velocity(w, b, v2(0.1f, 7)));
+    for (int k = 0; k < 10; k++) assert_ok(rg_world_step(w, (rg_real)(1.0 / 60)));
+    assert_ok(rg_body_get_position(w, b, &p));
+    assert_ok(rg_body_get_velocity(w, b, &v));
+    rg_vec2 pv = rg_body_position(w, b), vv = rg_body_velocity(w, b);
+    assert_memory_equal(&pv, &p, sizeof p);
+    assert_memory_equal(&vv, &v, sizeof v);
+    assert_string_equal(rg_world_last_error(w), "");
+    assert_ok(rg_body_destroy(w, gone));
+    pv = rg_body_position(w, gone);
+    assert_true(pv.x != pv.x && pv.y != pv.y);
+    assert_non_null(strstr(rg_world_last_error(w), "rg_body_position: body"));
+    vv = rg_body_velocity(w, 0);
+    assert_true(vv.x != vv.x && vv.y != vv.y);
+    assert_non_null(strstr(rg_world_last_error(w), "rg_body_velocity: body"));
+    pv = rg_body_position(NULL, b);
+    assert_true(pv.x != pv.x && pv.y != pv.y);
+    pv = rg_body_position(w, b); /* a call that succeeds clears the reason */
+    assert_string_equal(rg_world_last_error(w), "");
+    rg_world_destroy(w);
+}
+
 static void test_body_calls_reject_bad_input_and_change_nothing(void **state)
 {
     (void)state;
@@ -305,6 +338,7 @@ int main(void)
         cmocka_unit_test(test_bodies_keep_their_state_while_others_come_and_go),
         cmocka_unit_test(test_destroyed_zero_foreign_and_forged_handles_are_rejected),
         cmocka_unit_test(test_a_million_cycles_never_resurrect_a_handle_and_leak_nothing),
+        cmocka_unit_test(test_by_value_getters_match_the_status_getters),
         cmocka_unit_test(test_body_calls_reject_bad_input_and_change_nothing),
         cmocka_unit_test(test_every_allocation_failure_is_reported_and_recoverable),
     };

@@ -80,6 +80,8 @@ rg_status rg_body_get_position(const rg_world *world, rg_body body, rg_vec2 *out
 rg_status rg_body_set_position(rg_world *world, rg_body body, rg_vec2 position);
 rg_status rg_body_get_velocity(const rg_world *world, rg_body body, rg_vec2 *out);
 rg_status rg_body_set_velocity(rg_world *world, rg_body body, rg_vec2 velocity);
+rg_vec2 rg_body_position(const rg_world *world, rg_body body);
+rg_vec2 rg_body_velocity(const rg_world *world, rg_body body);
 rg_status rg_body_get_acceleration(const rg_world *world, rg_body body, rg_vec2 *out);
 rg_status rg_body_apply_force(rg_world *world, rg_body body, rg_vec2 force);
 rg_status rg_body_apply_impulse(rg_world *world, rg_body body, rg_vec2 impulse);
@@ -239,6 +241,7 @@ else
     struct rigid_jit_world { rg_world *w; };
     union rigid_jit_f32 { float f; uint32_t u; };
     union rigid_jit_f64 { uint64_t u; double d; };
+    union rigid_jit_pair { double d; float f[2]; };
   ]])
 end
 
@@ -302,4 +305,24 @@ for ret, name, params in RIGID_H:gmatch("\n([%w_ ]-[%w_]%s*%**)%s*(rg_[%w_]+)%((
 end
 S = ffi.new("rg_vec2[?]", most)
 
-return { C = C, V = V, real_size = REAL, abi = abi }
+-- R.name(world, body) -> x, y for the header's getters that return an rg_vec2 by value
+-- (rg_body_position, rg_body_velocity): NaN, NaN when the call failed.  Packed, the float
+-- pair comes back in one SSE register; declared as a double, the call compiles, and the
+-- double's 8 bytes are read back as two floats through memory (a load of another type than
+-- the store, which LuaJIT does not forward).  Elsewhere LuaJIT would leave the aggregate
+-- return to the interpreter, so R is empty and the binding uses the out-pointer getters.
+local R = {}
+if abi == "packed" then
+  local D = ffi.new("union rigid_jit_pair[1]")
+  for name, params in RIGID_H:gmatch("\nrg_vec2 (rg_[%w_]+)%(([^)]*)%);") do
+    local fn = "rigid_jit_" .. name
+    ffi.cdef(("double %s(%s) __asm__(\"%s\");"):format(fn, params, name))
+    local call = C[fn]
+    R[name] = function(w, b)
+      D[0].d = call(w, b)
+      return D[0].f[0], D[0].f[1]
+    end
+  end
+end
+
+return { C = C, V = V, R = R, real_size = REAL, abi = abi }

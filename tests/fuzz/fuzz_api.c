@@ -53,7 +53,7 @@ enum {
     OP_SET_CONTINUOUS, OP_GET_CONTINUOUS, OP_EVENTS, OP_RAYCAST, OP_QUERY, OP_DRAW,
     OP_STEP_SMALL, OP_BODY_CREATE_SHAPED, OP_SET_ONE_WAY, OP_GET_ONE_WAY, OP_PASS_THROUGH,
     OP_PRE_SOLVE, OP_CONTACTS, OP_RAYCAST_ALL, OP_QUERY_POINT, OP_CAST_SHAPE, OP_MOVE, OP_SAVE,
-    OP_RESTORE, OP_HASH, OP_SET_TASKS, OP_POOL, OP_STOPPED, OP_CROWD, OP_COUNT
+    OP_RESTORE, OP_HASH, OP_SET_TASKS, OP_POOL, OP_STOPPED, OP_CROWD, OP_BY_VALUE, OP_COUNT
 };
 
 static const char *const op_names[OP_COUNT] = {
@@ -72,7 +72,8 @@ static const char *const op_names[OP_COUNT] = {
     "get_continuous", "contact_events", "raycast", "query_aabb", "draw", "step(1/60)",
     "body_create+shape", "set_one_way", "get_one_way", "pass_through", "set_pre_solve",
     "get_contacts", "raycast_all", "query_point", "cast_shape", "move", "save", "restore",
-    "hash", "set_task_system", "thread_pool", "get_stopped", "crowd"
+    "hash", "set_task_system", "thread_pool", "get_stopped", "crowd",
+    "position/velocity by value"
 };
 
 static void create_world(input *in, fworld *fw)
@@ -371,6 +372,17 @@ static int32_t run_op(input *in, int op, int *is_step, int *is_const)
     case OP_SET_POSITION: b = pick_body(in, fw); return rg_body_set_position(w, b, vec_arg(in));
     case OP_GET_VELOCITY: *is_const = 1; return rg_body_get_velocity(w, pick_body(in, fw), OUT(in, v));
     case OP_SET_VELOCITY: b = pick_body(in, fw); return rg_body_set_velocity(w, b, vec_arg(in));
+    case OP_BY_VALUE: { /* the by-value getters give what the out-pointer ones give, or NaN */
+        *is_const = 1;
+        b = pick_body(in, fw);
+        int vel = u8(in) & 1;
+        rg_vec2 got = vel ? rg_body_velocity(w, b) : rg_body_position(w, b), want;
+        rg_status st = vel ? rg_body_get_velocity(w, b, &want) : rg_body_get_position(w, b, &want);
+        if (st == RG_OK ? !(got.x == want.x && got.y == want.y) : !(got.x != got.x && got.y != got.y))
+            FAIL("by-value %s (%g, %g) against status %d (%g, %g)", vel ? "velocity" : "position",
+                 (double)got.x, (double)got.y, (int)st, (double)want.x, (double)want.y);
+        return st;
+    }
     case OP_GET_ACCEL: *is_const = 1; return rg_body_get_acceleration(w, pick_body(in, fw), OUT(in, v));
     case OP_APPLY_FORCE: b = pick_body(in, fw); return rg_body_apply_force(w, b, vec_arg(in));
     case OP_APPLY_IMPULSE: b = pick_body(in, fw); return rg_body_apply_impulse(w, b, vec_arg(in));
