@@ -377,7 +377,7 @@ static int32_t run_op(input *in, int op, int *is_step, int *is_const)
         b = pick_body(in, fw);
         int vel = u8(in) & 1;
         rg_vec2 got = vel ? rg_body_velocity(w, b) : rg_body_position(w, b), want;
-        rg_status st = vel ? rg_body_get_velocity(w, b, &want) : rg_body_get_position(w, b, &want);
+        st = vel ? rg_body_get_velocity(w, b, &want) : rg_body_get_position(w, b, &want);
         if (st == RG_OK ? !(got.x == want.x && got.y == want.y) : !(got.x != got.x && got.y != got.y))
             FAIL("by-value %s (%g, %g) against status %d (%g, %g)", vel ? "velocity" : "position",
                  (double)got.x, (double)got.y, (int)st, (double)want.x, (double)want.y);
