@@ -1,5 +1,6 @@
 -- rigid_jit/ffi.lua: loads the library for the LuaJIT binding and declares its C API.
--- Returns { C = the library namespace, V = the vector calls, real_size = 4 | 8 }.
+-- Returns { C = the library namespace, V = the vector calls, R = the by-value getters that
+-- compile (below), real_size = 4 | 8, abi }.
 --
 -- The library is the file named by the environment variable RIGID_LIBRARY, else librigid
 -- by the system's search (librigid.so, then librigid.so.0).  rg_real is declared float or
