@@ -41,8 +41,8 @@ static inline uint64_t snap_word(const uint8_t *p)
 typedef char snap_eight_lanes[SNAP_LANES == 8 ? 1 : -1]; /* snap_blocks has eight */
 
 /* Whole blocks: one word into each lane.  The eight lanes are eight scalars, so that they
- * stay in registers and each takes one 64-bit multiply (an array of them is vectorised
- * into SSE2's 32-bit multiplies, three a word, with the lanes through memory: 3x slower). */
+ * stay in registers and each takes one 64-bit multiply (GCC vectorised an array of them
+ * into SSE2's 32-bit multiplies, three a word, with the lanes going through the stack). */
 static void snap_blocks(snap_hasher *h, const uint8_t *p, size_t n)
 {
     uint64_t l0 = h->lane[0], l1 = h->lane[1], l2 = h->lane[2], l3 = h->lane[3];
