@@ -158,6 +158,24 @@ static void snap_emit(snap_out *o, const void *p, size_t n)
     o->nchunk += n;
 }
 
+/* Room for a record of n (at most SNAP_CHUNK) bytes, to be written in place: in the buffer
+ * (then hashed behind the writer as snap_emit does) or in the chunk. */
+static uint8_t *snap_record(snap_out *o, size_t n)
+{
+    if (o->buf != NULL) {
+        if (o->at - o->hashed >= SNAP_HASH_BEHIND) {
+            snap_hash_bytes(o->hash, o->buf + o->hashed, o->at - o->hashed);
+            o->hashed = o->at;
+        }
+        o->at += n;
+        return o->buf + o->at - n;
+    }
+    if (o->nchunk + n > SNAP_CHUNK) snap_flush(o);
+    o->at += n;
+    o->nchunk += n;
+    return o->chunk + o->nchunk - n;
+}
+
 static void snap_pad(snap_out *o)
 {
     static const uint8_t zero[8] = {0};
@@ -219,28 +237,12 @@ static void snap_array(snap_out *o, const void *p, int32_t n, size_t elem)
 #endif
 }
 
-/* Whether the n values of elem (4 or 8) bytes at p are all equal, bit for bit.  Runs of 64
- * (a branch-free inner loop), stopping at the first run with a difference. */
-#define SNAP_RUN 64
+/* Whether the n values of elem bytes at p are all equal, bit for bit: each equal to the
+ * next (memcmp stops at the first difference). */
 static int snap_uniform(const void *p, int32_t n, size_t elem)
 {
-    if (n <= 0) return 0;
-    if (elem == 8) {
-        const uint64_t *q = p;
-        for (int32_t i = 1; i < n; i += SNAP_RUN) {
-            uint64_t diff = 0;
-            for (int32_t j = i, end = n - i > SNAP_RUN ? i + SNAP_RUN : n; j < end; j++) diff |= q[j] ^ q[0];
-            if (diff != 0) return 0;
-        }
-        return 1;
-    }
-    const uint32_t *q = p;
-    for (int32_t i = 1; i < n; i += SNAP_RUN) {
-        uint32_t diff = 0;
-        for (int32_t j = i, end = n - i > SNAP_RUN ? i + SNAP_RUN : n; j < end; j++) diff |= q[j] ^ q[0];
-        if (diff != 0) return 0;
-    }
-    return 1;
+    const uint8_t *q = p;
+    return n > 0 && memcmp(q, q + elem, (size_t)(n - 1) * elem) == 0;
 }
 
 /* A body field: its uniformity word, then one element or all n. */
@@ -386,13 +388,12 @@ static void snap_write_contacts(snap_out *o, const contact_store *cs)
     for (int32_t k = 0; k < cs->cap; k++) {
         const contact *c = &cs->c[k];
         if (c->sa < 0) continue;
-        uint8_t r[SNAP_CONTACT], *q = r;
+        uint8_t *q = snap_record(o, SNAP_CONTACT);
         const int32_t ints[8] = { k, c->sa, c->sb, c->na, c->pa, c->nb, c->pb, (int32_t)c->flags };
         for (int f = 0; f < 8; f++) snap_put32(q + 4 * f, (uint32_t)ints[f]);
         q += 32;
         const rg_real reals[10] = { c->nx, c->ny, c->px, c->py, c->s0, c->vn0, c->depth, c->speed, c->pn, c->pt };
         for (int f = 0; f < 10; f++) snap_put_real(q + SNAP_REAL * (size_t)f, reals[f]);
-        snap_emit(o, r, SNAP_CONTACT);
     }
     snap_pad(o);
     for (int32_t id = cs->free_head; id >= 0; id = cs->c[id].na) snap_i32(o, id);
@@ -431,7 +432,7 @@ static void snap_write(const rg_world *w, snap_out *o, const snap_scalars *s)
     for (int32_t k = 0; k < s->members; k++) {
         int32_t slot = cw->bp.members[k];
         const bp_entry *e = &cw->bp.e[slot];
-        uint8_t r[SNAP_MEMBER], *q = r;
+        uint8_t *q = snap_record(o, SNAP_MEMBER);
         snap_put32(q, (uint32_t)slot);
         q += 4;
         snap_put_real(q, e->lx);
@@ -441,7 +442,6 @@ static void snap_write(const rg_world *w, snap_out *o, const snap_scalars *s)
         q += 4 * SNAP_REAL;
         const int32_t ints[6] = { e->next, e->prev, e->lnext, e->lprev, e->moved, e->apos };
         for (int f = 0; f < 6; f++) snap_put32(q + 4 * f, (uint32_t)ints[f]);
-        snap_emit(o, r, SNAP_MEMBER);
     }
     snap_array(o, cw->bp.moved, s->n_moved, 4);
     snap_pad(o);
