@@ -57,8 +57,20 @@ static int level_of(rg_real lx, rg_real ly, rg_real ux, rg_real uy)
     if (!(w <= top && h <= top)) return BP_HUGE; /* also NaN */
     rg_real ext = rg_max(w, h);
     if (!(ext > 0)) return 0;
-    int e;
-    frexp((double)ext, &e); /* ext < 2^e */
+    /* e with 2^(e-1) <= ext < 2^e (frexp's), from the exponent bits; a subnormal ext is
+     * below every level */
+#ifdef RG_DOUBLE
+    uint64_t bits;
+    memcpy(&bits, &ext, 8);
+    int biased = (int)(bits >> 52);
+    int e = biased - 1022;
+#else
+    uint32_t bits;
+    memcpy(&bits, &ext, 4);
+    int biased = (int)(bits >> 23);
+    int e = biased - 126;
+#endif
+    if (biased == 0) return 0;
     int li = e - BP_LEVEL_MIN;
     if (li < 0) return 0;
     if (!(ext <= level_cell(li) * RG_R(0.99609375))) li++;

@@ -81,6 +81,9 @@ static void restore_contacts(rg_world *w, const snap_in *in)
     contact_store *cs = &w->coll.contacts;
     const body_store *b = &w->b;
     const snap_scalars *s = &in->s;
+    /* the mixed materials once for all when every body has the same */
+    int same = in->l.stride[SNAP_F_mu] == 0 && in->l.stride[SNAP_F_rest] == 0 && b->count > 0;
+    rg_real mu = same ? rg_sqrt(b->mu[0] * b->mu[0]) : 0, e = same ? b->rest[0] : 0;
     for (int32_t k = 0; k < s->clive; k++) {
         snap_cursor q = { rec(in, in->l.contacts, SNAP_CONTACT, k) };
         contact *c = &cs->c[cur_i32(&q)];
@@ -103,6 +106,11 @@ static void restore_contacts(rg_world *w, const snap_in *in)
         c->pt = cur_real(&q);
         c->toi = 0;
         c->awake = -1;
+        if (same) {
+            c->mu = mu;
+            c->e = e;
+            continue;
+        }
         int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
         c->mu = rg_sqrt(b->mu[ia] * b->mu[ib]);
         c->e = rg_max(b->rest[ia], b->rest[ib]);
