@@ -273,23 +273,22 @@ rg_status broadphase_reserve_slots(broadphase *bp, const rg_mem *m, int32_t slot
     return bp_grow_slots(bp, m, bp_slot_cap(bp, slots));
 }
 
-void broadphase_clear(broadphase *bp, const rg_mem *m, int32_t *head, int bits)
+void broadphase_clear(broadphase *bp, const rg_mem *m, int32_t *head, int bits, const int32_t *rewritten,
+                     int32_t nrewritten)
 {
     int fresh = bits != bp->bucket_bits;
     if (fresh) {
         if (bp->head != NULL) mem_free(m, bp->head, ((size_t)1 << bp->bucket_bits) * sizeof *bp->head);
         bp->head = head;
         bp->bucket_bits = bits;
-    } else if (bp->head != NULL) {
-        /* the chains' heads are the members' buckets: reset those alone */
-        for (int32_t i = 0; i < bp->count; i++) {
-            const bp_entry *e = &bp->e[bp->members[i]];
-            if (e->level != BP_HUGE) bp->head[bucket_of(bp, e->key)] = -1;
-        }
     }
-    /* only members' entries differ from an empty slot's */
+    /* the chains' heads are the members' buckets: reset those alone; only members' entries
+     * differ from an empty slot's, and those the caller rewrites whole are left to it */
     for (int32_t i = 0; i < bp->count; i++) {
-        bp_entry *e = &bp->e[bp->members[i]];
+        int32_t s = bp->members[i];
+        bp_entry *e = &bp->e[s];
+        if (!fresh && bp->head != NULL && e->level != BP_HUGE) bp->head[bucket_of(bp, e->key)] = -1;
+        if (s < nrewritten && rewritten[s] != 0) continue;
         memset(e, 0, sizeof *e);
         e->member = -1;
         e->next = e->prev = -1;
@@ -304,27 +303,22 @@ void broadphase_clear(broadphase *bp, const rg_mem *m, int32_t *head, int bits)
     bp->levels = 0;
 }
 
-void broadphase_restore_finish(broadphase *bp)
+void broadphase_restore_member(broadphase *bp, int32_t s)
 {
-    for (int32_t i = 0; i < bp->count; i++) {
-        int32_t s = bp->members[i];
-        bp_entry *e = &bp->e[s];
-        level_count_add(bp, e->level, 1);
-        if (e->level == BP_HUGE) {
-            bp->huge[e->next] = s;
-            bp->n_huge++;
-            e->prev = e->lnext = e->lprev = -1;
-            continue;
-        }
-        if (e->prev < 0) bp->head[bucket_of(bp, e->key)] = s;
-        if (e->lprev < 0) bp->level_head[e->level] = s;
-    }
-    for (int32_t i = 0; i < bp->count; i++) {
-        int32_t s = bp->members[i];
-        if (bp->e[s].apos < 0) continue;
-        bp->active[bp->e[s].apos] = s;
+    bp_entry *e = &bp->e[s];
+    level_count_add(bp, e->level, 1);
+    if (e->apos >= 0) {
+        bp->active[e->apos] = s;
         bp->n_active++;
     }
+    if (e->level == BP_HUGE) {
+        bp->huge[e->next] = s;
+        bp->n_huge++;
+        e->prev = e->lnext = e->lprev = -1;
+        return;
+    }
+    if (e->prev < 0) bp->head[bucket_of(bp, e->key)] = s;
+    if (e->lprev < 0) bp->level_head[e->level] = s;
 }
 
 void broadphase_release(broadphase *bp, const rg_mem *m)

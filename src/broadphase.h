@@ -104,12 +104,14 @@ uint32_t broadphase_bucket(int bits, uint64_t key);
 rg_status broadphase_reserve_slots(broadphase *bp, const rg_mem *m, int32_t slots);
 /* Empties the broadphase; with bits != its own, the bucket table becomes head (2^bits
  * entries allocated by the caller, or NULL with bits 0: none, as in a world that never had
- * a shape) and the old one is freed. */
-void broadphase_clear(broadphase *bp, const rg_mem *m, int32_t *head, int bits);
-/* After members[0..count) and their entries (box, level, key, member, chain and level
- * links, huge index in next, moved, apos) are set: the bucket and level heads, the huge and
- * active lists, the level counts. */
-void broadphase_restore_finish(broadphase *bp);
+ * a shape) and the old one is freed.  The entries of slots below nrewritten with
+ * rewritten[slot] != 0 are left as they are, for the caller to set whole. */
+void broadphase_clear(broadphase *bp, const rg_mem *m, int32_t *head, int bits, const int32_t *rewritten,
+                      int32_t nrewritten);
+/* After member slot's entry is set whole (box, level, key, member, chain and level links,
+ * huge index in next, moved, apos, mark) and it is in members[]: its place in the bucket and
+ * level heads, the huge and active lists and the level counts. */
+void broadphase_restore_member(broadphase *bp, int32_t slot);
 
 /* Calls visit(ctx, slot) once for every member whose fat box overlaps [lx, ux] x [ly, uy]. */
 typedef void (*bp_visit_fn)(void *ctx, int32_t slot);

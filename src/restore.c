@@ -153,12 +153,12 @@ static void restore_broadphase(broadphase *bp, const snap_in *in, const restore_
         e->member = k;
         e->mark = 0;
         bp->members[k] = m.slot;
+        broadphase_restore_member(bp, m.slot);
     }
     bp->count = in->s.members;
     restore_array(bp->moved, in->p + in->l.moved, in->s.n_moved, 4, 4);
     bp->n_moved = in->s.n_moved;
     bp->mark = in->s.mark;
-    broadphase_restore_finish(bp);
 }
 
 static void restore_load(rg_world *w, const snap_in *in, const restore_scratch *r)
@@ -304,7 +304,7 @@ static rg_status restore_checked(rg_world *w, snap_in *in)
     if (st == RG_OK) {
         /* nothing can fail from here on */
         contact_block_adopt(w, &cb);
-        broadphase_clear(bp, m, head, s->bucket_bits);
+        broadphase_clear(bp, m, head, s->bucket_bits, r.member_of, s->bslots); /* members to come: rewritten */
         restore_load(w, in, &r);
     }
     mem_free(m, rblock, rsize);
