@@ -103,14 +103,26 @@ typedef struct snap_layout {
 /* The scalars' size in the file. */
 size_t snap_scalars_size(void);
 
-/* ---- little-endian encoding */
+/* ---- little-endian encoding (plain copies where the machine is little-endian) */
+
+/* Whether the machine stores integers and reals in the file's order, so that arrays copy
+ * as they are. */
+#if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define SNAP_NATIVE 1
+#else
+#define SNAP_NATIVE 0
+#endif
 
 static inline void snap_put32(uint8_t *p, uint32_t v)
 {
+#if SNAP_NATIVE
+    memcpy(p, &v, 4);
+#else
     p[0] = (uint8_t)v;
     p[1] = (uint8_t)(v >> 8);
     p[2] = (uint8_t)(v >> 16);
     p[3] = (uint8_t)(v >> 24);
+#endif
 }
 
 static inline void snap_put64(uint8_t *p, uint64_t v)
@@ -121,7 +133,13 @@ static inline void snap_put64(uint8_t *p, uint64_t v)
 
 static inline uint32_t snap_get32(const uint8_t *p)
 {
+#if SNAP_NATIVE
+    uint32_t v;
+    memcpy(&v, p, 4);
+    return v;
+#else
     return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+#endif
 }
 
 static inline uint64_t snap_get64(const uint8_t *p)
@@ -153,14 +171,6 @@ static inline rg_real snap_get_real(const uint8_t *p)
     memcpy(&v, &u, sizeof v);
     return v;
 }
-
-/* Whether the machine stores integers and reals in the file's order, so that arrays copy
- * as they are. */
-#if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-#define SNAP_NATIVE 1
-#else
-#define SNAP_NATIVE 0
-#endif
 
 /* ---- the hash: 64-bit words in eight lanes, each a multiply-xorshift chain (a bijection of
  * the lane for every word, so any change of any byte changes the result); tail bytes
