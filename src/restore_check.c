@@ -343,7 +343,8 @@ static int col_within(const snap_in *in, int f, int32_t b, int32_t e, rg_real lo
     int bad = 0;
     int32_t i = b;
     for (; e - i >= COL_BLOCK; i += COL_BLOCK)
-        for (int k = 0; k < COL_BLOCK; k++) bad |= real_out(real_get(p + SNAP_REAL * (size_t)(i + k)), pmin, plim, nlim);
+        for (int k = 0; k < COL_BLOCK; k++)
+            bad |= real_out(real_get(p + SNAP_REAL * (size_t)(i + k)), pmin, plim, nlim);
     for (; i < e; i++) bad |= real_out(real_get(p + SNAP_REAL * (size_t)i), pmin, plim, nlim);
     return !bad;
 }
