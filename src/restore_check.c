@@ -629,7 +629,9 @@ int restore_check_contacts(const snap_in *in, restore_scratch *r)
 int restore_check_events(const snap_in *in, size_t off, int32_t n)
 {
     for (int32_t k = 0; k < n; k++) {
-        const uint8_t *q = rec(in, off, SNAP_EVENT, k) + 16;
+        const uint8_t *q = rec(in, off, SNAP_EVENT, k);
+        if (!(snap_get64(q) < snap_get64(q + 8))) return BAD; /* a < b, as every contact's pair */
+        q += 16;
         for (int f = 0; f < 6; f++)
             if (!fin(snap_get_real(q + SNAP_REAL * (size_t)f))) return BAD;
         uint32_t kind = snap_get32(q + 6 * SNAP_REAL), sensor = snap_get32(q + 6 * SNAP_REAL + 4);

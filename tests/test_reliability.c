@@ -418,6 +418,46 @@ static void test_a_snapshot_with_a_value_out_of_range_is_refused(void **state)
     rg_world_destroy(w);
 }
 
+/* Found by tests/fuzz/fuzz_snapshot.c (a snapshot whose held contact event had its two
+ * handles in the wrong order, resealed: accepted, and the next call for the events returned
+ * an event whose a was not below its b, which every event's pair is).  Root cause:
+ * src/restore_check.c, restore_check_events, checked an event's reals, kind and sensor flag
+ * but not its pair.  Fixed there: an event's handles must be in the order of every
+ * contact's pair (a < b), in the events held and in those pending. */
+static void test_a_snapshot_with_an_event_pair_out_of_order_is_refused(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-10);
+    floor_of(w);
+    box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.6, 0.5, 0.5);
+    rg_contact_event ev[8];
+    int32_t n = 0;
+    for (int k = 0; k < 120 && n == 0; k++) {
+        assert_ok(rg_world_step(w, (rg_real)DT));
+        n = rg_world_get_contact_events(w, ev, 8);
+    }
+    assert_int_equal(n, 1); /* the box lands: one begin event, held until the next step */
+    assert_true(ev[0].a < ev[0].b);
+    saved sv = save_world(w);
+    uint8_t pair[16];
+    snap_put64(pair, ev[0].a);
+    snap_put64(pair + 8, ev[0].b);
+    size_t count, at = find_bytes(sv.snap, sv.n, pair, 16, &count);
+    assert_int_equal(count, 1);
+    const uint64_t forged[][2] = { { ev[0].b, ev[0].a }, { ev[0].a, ev[0].a }, { ev[0].b, ev[0].b } };
+    for (size_t k = 0; k < sizeof forged / sizeof forged[0]; k++) {
+        memcpy(sv.bad, sv.snap, sv.n);
+        snap_put64(sv.bad + at, forged[k][0]);
+        snap_put64(sv.bad + at + 8, forged[k][1]);
+        assert_forgery_refused(w, &sv, "event pair", (double)k);
+    }
+    /* the unforged one restores and gives the event back */
+    assert_ok(rg_world_restore(w, sv.snap, sv.n));
+    assert_int_equal(rg_world_get_contact_events(w, ev, 8), 1);
+    saved_free(&sv);
+    rg_world_destroy(w);
+}
+
 /* Found by tests/fuzz/fuzz_snapshot.c (a pile whose snapshot had a contact's friction
  * impulse changed to -3.4e38 N s and the checksum resealed: accepted, and the first step's
  * warm start made both bodies of the pair NaN).  Root cause: src/restore_check.c,
@@ -729,6 +769,7 @@ int main(void)
         cmocka_unit_test(test_a_restored_clone_hashes_like_its_original),
         cmocka_unit_test(test_a_snapshot_with_a_value_out_of_range_is_refused),
         cmocka_unit_test(test_a_snapshot_with_a_huge_warm_start_impulse_is_refused),
+        cmocka_unit_test(test_a_snapshot_with_an_event_pair_out_of_order_is_refused),
         cmocka_unit_test(test_rk4_with_strong_drag_never_grows_a_velocity),
         cmocka_unit_test(test_handles_of_a_destroyed_world_are_rejected_by_the_next),
         cmocka_unit_test(test_worlds_16_mib_apart_reject_each_others_handles),
