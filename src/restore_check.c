@@ -11,8 +11,6 @@
 #include "vec2.h"
 #include "restore_check.h"
 
-#include <float.h>
-
 #define BAD 0
 
 static void restore_read_scalars(snap_in *in)
@@ -264,218 +262,6 @@ static int32_t restore_dense(const snap_in *in, int32_t slot)
     return rd_i32(in, in->l.bindex, slot);
 }
 
-static int restore_unit_or_zero(rg_real x, rg_real y)
-{
-    if (x == 0 && y == 0) return 1;
-    rg_real len = rg_sqrt(x * x + y * y);
-    return fin(x) && fin(y) && rg_fabs(len - 1) <= RG_R(1e-3);
-}
-
-/* A body field where it lies: element i at p + stride * i (stride 0: uniform). */
-typedef struct snap_col {
-    const uint8_t *p;
-    size_t stride;
-} snap_col;
-
-static snap_col col(const snap_in *in, int f)
-{
-    snap_col c = { in->p + in->l.field[f], in->l.stride[f] };
-    return c;
-}
-
-static rg_real col_real(snap_col c, int32_t i) { return snap_get_real(c.p + c.stride * (size_t)i); }
-static int32_t col_i32(snap_col c, int32_t i) { return (int32_t)snap_get32(c.p + c.stride * (size_t)i); }
-
-/* Column checks: a rule over one field tests every element in a loop without branches (one
- * element when the field is uniform); rules over several fields run over rows, over one
- * row when every field they read is uniform. */
-static int32_t col_end(const snap_in *in, int f, int32_t b, int32_t e)
-{
-    return in->l.stride[f] == 0 && e > b ? b + 1 : e;
-}
-
-/* A real's bits: within [lo, hi] (finite bounds, hi >= 0) compared as integers, which the
- * compiler turns into vector code: the magnitude (sign cleared) orders non-negative reals as
- * their values, so a value is within when a positive one's magnitude is in [pmin, plim] and
- * a negative one's at most nlim (-1: none; 0: -0 alone).  NaN and the infinities have
- * magnitudes above every finite bound's. */
-#ifdef RG_DOUBLE
-typedef uint64_t real_bits;
-typedef int64_t real_sbits;
-#define REAL_SIGN 63
-#define real_get snap_get64
-#else
-typedef uint32_t real_bits;
-typedef int32_t real_sbits;
-#define REAL_SIGN 31
-#define real_get snap_get32
-#endif
-
-static real_sbits real_magnitude(rg_real v)
-{
-    real_bits u;
-    memcpy(&u, &v, sizeof u);
-    return (real_sbits)(u & ~((real_bits)1 << REAL_SIGN));
-}
-
-static inline int real_out(real_bits u, real_sbits pmin, real_sbits plim, real_sbits nlim)
-{
-    real_sbits mag = (real_sbits)(u & ~((real_bits)1 << REAL_SIGN)), neg = -(real_sbits)(u >> REAL_SIGN);
-    real_sbits lim = (nlim & neg) | (plim & ~neg), least = pmin & ~neg;
-    return (mag > lim) | (mag < least);
-}
-
-/* Elements are checked in blocks of COL_BLOCK (a loop of known length, which vectorises at
- * -O2), then one by one. */
-#define COL_BLOCK 16
-
-/* Elements [b, e) of real field f within [lo, hi] (finite, hi >= 0). */
-static int col_within(const snap_in *in, int f, int32_t b, int32_t e, rg_real lo, rg_real hi)
-{
-    const uint8_t *p = in->p + in->l.field[f];
-    if (b >= e) return 1;
-    if (in->l.stride[f] == 0) {
-        rg_real v = snap_get_real(p);
-        return v >= lo && v <= hi;
-    }
-    real_sbits pmin = lo > 0 ? real_magnitude(lo) : 0, plim = real_magnitude(hi);
-    real_sbits nlim = lo < 0 ? real_magnitude(-lo) : lo == 0 ? 0 : -1;
-    int bad = 0;
-    int32_t i = b;
-    for (; e - i >= COL_BLOCK; i += COL_BLOCK)
-        for (int k = 0; k < COL_BLOCK; k++)
-            bad |= real_out(real_get(p + SNAP_REAL * (size_t)(i + k)), pmin, plim, nlim);
-    for (; i < e; i++) bad |= real_out(real_get(p + SNAP_REAL * (size_t)i), pmin, plim, nlim);
-    return !bad;
-}
-
-/* Elements [b, e) of integer field f within [lo, hi]. */
-static int col_range(const snap_in *in, int f, int32_t b, int32_t e, int32_t lo, int32_t hi)
-{
-    const uint8_t *p = in->p + in->l.field[f];
-    if (b >= e) return 1;
-    if (in->l.stride[f] == 0) {
-        int32_t v = (int32_t)snap_get32(p);
-        return v >= lo && v <= hi;
-    }
-    int bad = 0;
-    int32_t i = b;
-    for (; e - i >= COL_BLOCK; i += COL_BLOCK)
-        for (int k = 0; k < COL_BLOCK; k++) {
-            int32_t v = (int32_t)snap_get32(p + 4 * (size_t)(i + k));
-            bad |= (v < lo) | (v > hi);
-        }
-    for (; i < e; i++) {
-        int32_t v = (int32_t)snap_get32(p + 4 * (size_t)i);
-        bad |= (v < lo) | (v > hi);
-    }
-    return !bad;
-}
-
-/* Elements [b, e) of integer field f with no bits outside `allowed`. */
-static int col_bits(const snap_in *in, int f, int32_t b, int32_t e, uint32_t allowed)
-{
-    const uint8_t *p = in->p + in->l.field[f];
-    int32_t end = col_end(in, f, b, e), i = b;
-    uint32_t bits = 0;
-    for (; end - i >= COL_BLOCK; i += COL_BLOCK)
-        for (int k = 0; k < COL_BLOCK; k++) bits |= snap_get32(p + 4 * (size_t)(i + k));
-    for (; i < end; i++) bits |= snap_get32(p + 4 * (size_t)i);
-    return (bits & ~allowed) == 0;
-}
-
-static int uniform(const snap_in *in, int f) { return in->l.stride[f] == 0; }
-
-/* The end of rows [b, e) of a rule over several fields: b + 1 when all are uniform. */
-static int32_t rows_end(int all_uniform, int32_t b, int32_t e) { return all_uniform && e > b ? b + 1 : e; }
-
-#ifdef RG_DOUBLE
-#define REAL_MAX DBL_MAX
-#else
-#define REAL_MAX FLT_MAX
-#endif
-
-/* Each rule as the setter it enters by checks it (rigid.h), over the partition it holds in
- * (active [0, n_active), asleep [n_active, n_moving), static [n_moving, count)). */
-static int restore_check_body_values(const snap_in *in)
-{
-    const snap_scalars *s = &in->s;
-    int32_t n = s->count, na = s->n_active, nm = s->n_moving;
-    const rg_real coord = (rg_real)(2 * RG_MAX_COORD), speed = (rg_real)RG_MAX_SPEED, force = (rg_real)RG_MAX_FORCE;
-    const rg_real gmax = (rg_real)RG_MAX_GRAVITY_SCALE, drag = (rg_real)RG_MAX_DRAG, big = (rg_real)REAL_MAX;
-    int ok = col_range(in, SNAP_F_type, 0, nm, RG_BODY_KINEMATIC, RG_BODY_DYNAMIC) &&
-             col_range(in, SNAP_F_type, nm, n, RG_BODY_STATIC, RG_BODY_STATIC);
-    /* positions and velocities in their ranges, as every step leaves them (bounds.c;
-     * positions with room for the rounding of a move to the edge), the accelerations and
-     * the positions of the step before finite; what the setters put, in their ranges */
-    ok = ok && col_within(in, SNAP_F_x, 0, n, -coord, coord) && col_within(in, SNAP_F_y, 0, n, -coord, coord) &&
-         col_within(in, SNAP_F_vx, 0, n, -speed, speed) && col_within(in, SNAP_F_vy, 0, n, -speed, speed) &&
-         col_within(in, SNAP_F_ax, 0, n, -big, big) && col_within(in, SNAP_F_ay, 0, n, -big, big) &&
-         col_within(in, SNAP_F_px, 0, n, -big, big) && col_within(in, SNAP_F_py, 0, n, -big, big) &&
-         col_within(in, SNAP_F_fx, 0, n, -force, force) && col_within(in, SNAP_F_fy, 0, n, -force, force) &&
-         col_within(in, SNAP_F_gscale, 0, n, -gmax, gmax);
-    ok = ok && col_within(in, SNAP_F_drag_lin, 0, n, 0, drag) && col_within(in, SNAP_F_drag_quad, 0, n, 0, drag) &&
-         col_within(in, SNAP_F_min_speed, 0, n, 0, speed) && col_within(in, SNAP_F_max_speed, 0, n, 0, speed) &&
-         col_within(in, SNAP_F_fric, 0, n, 0, (rg_real)RG_MAX_FRICTION * (rg_real)RG_MAX_FORCE) && /* mu * N */
-         col_within(in, SNAP_F_rest, 0, n, 0, 1) && col_within(in, SNAP_F_mu, 0, n, 0, (rg_real)RG_MAX_FRICTION) &&
-         col_within(in, SNAP_F_sleep_t, 0, n, 0, big);
-    ok = ok && col_range(in, SNAP_F_shape, 0, n, RG_SHAPE_NONE, RG_SHAPE_AABB) &&
-         col_range(in, SNAP_F_shape, na, nm, RG_SHAPE_CIRCLE, RG_SHAPE_AABB) && /* a sleeper has a shape */
-         col_range(in, SNAP_F_chead, 0, n, 0, s->ccap) &&
-         col_bits(in, SNAP_F_cflags, 0, n, CF_SENSOR | CF_GROUNDED | CF_TELEPORTED);
-    /* island links: on sleeping bodies only */
-    ok = ok && col_range(in, SNAP_F_isl_head, 0, na, 0, 0) && col_range(in, SNAP_F_isl_next, 0, na, 0, 0) &&
-         col_range(in, SNAP_F_isl_head, nm, n, 0, 0) && col_range(in, SNAP_F_isl_next, nm, n, 0, 0) &&
-         col_range(in, SNAP_F_isl_head, na, nm, 1, s->bslots) && col_range(in, SNAP_F_isl_next, na, nm, 0, s->bslots);
-    /* the static bodies have no mass and no gravity; a moving body has a mass when dynamic */
-    ok = ok && col_within(in, SNAP_F_mass, nm, n, 0, 0) && col_within(in, SNAP_F_gscale, nm, n, 0, 0);
-    if (!ok) return BAD;
-    int bad = 0;
-    {
-        snap_col type = col(in, SNAP_F_type), mass = col(in, SNAP_F_mass), gs = col(in, SNAP_F_gscale);
-        const rg_real lo = (rg_real)RG_MIN_MASS, hi = (rg_real)RG_MAX_MASS;
-        for (int32_t i = 0, end = rows_end(uniform(in, SNAP_F_type) && uniform(in, SNAP_F_mass) &&
-                                               uniform(in, SNAP_F_gscale), 0, nm);
-             i < end; i++) {
-            rg_real m = col_real(mass, i);
-            int dynamic = col_i32(type, i) == RG_BODY_DYNAMIC;
-            bad |= dynamic ? !(m >= lo) | !(m <= hi) : (m != 0) | (col_real(gs, i) != 0);
-        }
-    }
-    {
-        snap_col lo = col(in, SNAP_F_min_speed), hi = col(in, SNAP_F_max_speed);
-        for (int32_t i = 0, end = rows_end(uniform(in, SNAP_F_min_speed) && uniform(in, SNAP_F_max_speed), 0, n);
-             i < end; i++) {
-            rg_real l = col_real(lo, i), h = col_real(hi, i);
-            bad |= (h > 0) & (h < l);
-        }
-    }
-    {
-        snap_col ox = col(in, SNAP_F_owx), oy = col(in, SNAP_F_owy);
-        for (int32_t i = 0, end = rows_end(uniform(in, SNAP_F_owx) && uniform(in, SNAP_F_owy), 0, n); i < end; i++)
-            bad |= !restore_unit_or_zero(col_real(ox, i), col_real(oy, i));
-    }
-    /* a shape has sizes in range (a circle's two equal); no shape, no sizes and no contacts */
-    int32_t shaped = 0;
-    {
-        snap_col shape = col(in, SNAP_F_shape), hx = col(in, SNAP_F_hx), hy = col(in, SNAP_F_hy);
-        snap_col chead = col(in, SNAP_F_chead);
-        const rg_real lo = (rg_real)RG_MIN_SHAPE_SIZE, hi = (rg_real)RG_MAX_SHAPE_SIZE;
-        int all = uniform(in, SNAP_F_shape) && uniform(in, SNAP_F_hx) && uniform(in, SNAP_F_hy) &&
-                  uniform(in, SNAP_F_chead);
-        for (int32_t i = 0, end = rows_end(all, 0, n); i < end; i++) {
-            int32_t sh = col_i32(shape, i);
-            rg_real x = col_real(hx, i), y = col_real(hy, i);
-            int none = sh == RG_SHAPE_NONE;
-            bad |= none ? (x != 0) | (y != 0) | (col_i32(chead, i) != 0)
-                        : !(x >= lo) | !(x <= hi) | !(y >= lo) | !(y <= hi) | ((sh == RG_SHAPE_CIRCLE) & (x != y));
-            shaped += !none;
-        }
-        if (all && n > 0) shaped *= n;
-    }
-    return !bad && shaped == s->members;
-}
-
 int restore_check_bodies(const snap_in *in)
 {
     const snap_scalars *s = &in->s;
@@ -546,12 +332,12 @@ int restore_check_contacts(const snap_in *in, restore_scratch *r)
     const uint32_t valid = CT_TOUCHING | CT_SENSOR | CT_SOLVE | CT_CLOSING | CT_ONEWAY | CT_PASS;
     /* a contact's sensor and one-way flags follow from its bodies: once for all when the
      * fields they come from are uniform */
-    int fixed = uniform(in, SNAP_F_cflags) && uniform(in, SNAP_F_owx) && uniform(in, SNAP_F_owy);
+    int fixed = col_uniform(in, SNAP_F_cflags) && col_uniform(in, SNAP_F_owx) && col_uniform(in, SNAP_F_owy);
     uint32_t fixed_flags = 0;
     if (fixed && s->count > 0)
         fixed_flags = ((BF_U(in, cflags, 0) & CF_SENSOR) ? CT_SENSOR : 0) |
                       ((BF_R(in, owx, 0) != 0 || BF_R(in, owy, 0) != 0) ? CT_ONEWAY : 0);
-    snap_col shape = col(in, SNAP_F_shape);
+    snap_col shape = col_of(in, SNAP_F_shape);
     const real_sbits impulse = real_magnitude((rg_real)CONTACT_MAX_IMPULSE), big = real_magnitude((rg_real)REAL_MAX);
     int32_t last = -1;
     for (int32_t k = 0; k < s->clive; k++) {

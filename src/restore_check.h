@@ -3,6 +3,8 @@
 #ifndef RG_RESTORE_CHECK_H
 #define RG_RESTORE_CHECK_H
 
+#include <float.h>
+
 #include "mem.h"
 #include "snapshot.h"
 #include "state.h"
@@ -71,6 +73,63 @@ static inline double cur_f64(snap_cursor *c)
     return v;
 }
 
+/* ---------------------------------------------------------------- columns and reals */
+
+/* A body field where it lies: element i at p + stride * i (stride 0: uniform). */
+typedef struct snap_col {
+    const uint8_t *p;
+    size_t stride;
+} snap_col;
+
+static inline snap_col col_of(const snap_in *in, int f)
+{
+    snap_col c = { in->p + in->l.field[f], in->l.stride[f] };
+    return c;
+}
+
+static inline rg_real col_real(snap_col c, int32_t i) { return snap_get_real(c.p + c.stride * (size_t)i); }
+static inline int32_t col_i32(snap_col c, int32_t i) { return (int32_t)snap_get32(c.p + c.stride * (size_t)i); }
+
+static inline int col_uniform(const snap_in *in, int f) { return in->l.stride[f] == 0; }
+
+/* A real's bits: within [lo, hi] (finite bounds, hi >= 0) compared as integers, which the
+ * compiler turns into vector code: the magnitude (sign cleared) orders non-negative reals as
+ * their values, so a value is within when a positive one's magnitude is in [pmin, plim] and
+ * a negative one's at most nlim (-1: none; 0: -0 alone).  NaN and the infinities have
+ * magnitudes above every finite bound's. */
+#ifdef RG_DOUBLE
+typedef uint64_t real_bits;
+typedef int64_t real_sbits;
+#define REAL_SIGN 63
+#define real_get snap_get64
+#else
+typedef uint32_t real_bits;
+typedef int32_t real_sbits;
+#define REAL_SIGN 31
+#define real_get snap_get32
+#endif
+
+static inline real_sbits real_magnitude(rg_real v)
+{
+    real_bits u;
+    memcpy(&u, &v, sizeof u);
+    return (real_sbits)(u & ~((real_bits)1 << REAL_SIGN));
+}
+
+static inline int real_out(real_bits u, real_sbits pmin, real_sbits plim, real_sbits nlim)
+{
+    real_sbits mag = (real_sbits)(u & ~((real_bits)1 << REAL_SIGN)), neg = -(real_sbits)(u >> REAL_SIGN);
+    real_sbits lim = (nlim & neg) | (plim & ~neg), least = pmin & ~neg;
+    return (mag > lim) | (mag < least);
+}
+
+/* The largest finite rg_real. */
+#ifdef RG_DOUBLE
+#define REAL_MAX DBL_MAX
+#else
+#define REAL_MAX FLT_MAX
+#endif
+
 /* A member record: slot, box, next, prev, lnext, lprev, moved, apos. */
 typedef struct snap_member {
     int32_t slot;
@@ -117,7 +176,10 @@ int restore_check_scalars(snap_in *in);
 /* A pool's slots against the dense places that name them (slot_of, slot_stride). */
 int restore_check_pool(const snap_in *in, size_t gen, size_t index, int32_t slots, uint32_t max_gen,
                       int32_t head, int32_t live, const uint8_t *slot_of, size_t slot_stride);
+/* The bodies: each field's values in the ranges of the setters they enter by, over the
+ * partitions they hold in (restore_body.c), and the sleeping bodies' islands. */
 int restore_check_bodies(const snap_in *in);
+int restore_check_body_values(const snap_in *in);
 int restore_check_springs(const snap_in *in);
 int restore_check_events(const snap_in *in, size_t off, int32_t n);
 /* The scratch the two checks below fill (sized from r->s) and the load reads. */

@@ -1,0 +1,164 @@
+/* restore_body.c: the checks of a snapshot's body fields (restore_check.h), column by
+ * column: a rule over one field runs over the whole column in blocks the compiler
+ * vectorises (one element when the field is uniform), a rule over several fields over the
+ * rows (one row when all are uniform). */
+#include "snapshot.h"
+#include "vec2.h"
+#include "restore_check.h"
+
+static int restore_unit_or_zero(rg_real x, rg_real y)
+{
+    if (x == 0 && y == 0) return 1;
+    rg_real len = rg_sqrt(x * x + y * y);
+    return rg_finite(x) && rg_finite(y) && rg_fabs(len - 1) <= RG_R(1e-3);
+}
+
+/* The end of elements [b, e) of field f: b + 1 when it is uniform. */
+static int32_t col_end(const snap_in *in, int f, int32_t b, int32_t e)
+{
+    return in->l.stride[f] == 0 && e > b ? b + 1 : e;
+}
+
+/* Elements are checked in blocks of COL_BLOCK (a loop of known length, which vectorises at
+ * -O2), then one by one. */
+#define COL_BLOCK 16
+
+/* Elements [b, e) of real field f within [lo, hi] (finite, hi >= 0). */
+static int col_within(const snap_in *in, int f, int32_t b, int32_t e, rg_real lo, rg_real hi)
+{
+    const uint8_t *p = in->p + in->l.field[f];
+    if (b >= e) return 1;
+    if (in->l.stride[f] == 0) {
+        rg_real v = snap_get_real(p);
+        return v >= lo && v <= hi;
+    }
+    real_sbits pmin = lo > 0 ? real_magnitude(lo) : 0, plim = real_magnitude(hi);
+    real_sbits nlim = lo < 0 ? real_magnitude(-lo) : lo == 0 ? 0 : -1;
+    int bad = 0;
+    int32_t i = b;
+    for (; e - i >= COL_BLOCK; i += COL_BLOCK)
+        for (int k = 0; k < COL_BLOCK; k++)
+            bad |= real_out(real_get(p + SNAP_REAL * (size_t)(i + k)), pmin, plim, nlim);
+    for (; i < e; i++) bad |= real_out(real_get(p + SNAP_REAL * (size_t)i), pmin, plim, nlim);
+    return !bad;
+}
+
+/* Elements [b, e) of integer field f within [lo, hi]. */
+static int col_range(const snap_in *in, int f, int32_t b, int32_t e, int32_t lo, int32_t hi)
+{
+    const uint8_t *p = in->p + in->l.field[f];
+    if (b >= e) return 1;
+    if (in->l.stride[f] == 0) {
+        int32_t v = (int32_t)snap_get32(p);
+        return v >= lo && v <= hi;
+    }
+    int bad = 0;
+    int32_t i = b;
+    for (; e - i >= COL_BLOCK; i += COL_BLOCK)
+        for (int k = 0; k < COL_BLOCK; k++) {
+            int32_t v = (int32_t)snap_get32(p + 4 * (size_t)(i + k));
+            bad |= (v < lo) | (v > hi);
+        }
+    for (; i < e; i++) {
+        int32_t v = (int32_t)snap_get32(p + 4 * (size_t)i);
+        bad |= (v < lo) | (v > hi);
+    }
+    return !bad;
+}
+
+/* Elements [b, e) of integer field f with no bits outside `allowed`. */
+static int col_bits(const snap_in *in, int f, int32_t b, int32_t e, uint32_t allowed)
+{
+    const uint8_t *p = in->p + in->l.field[f];
+    int32_t end = col_end(in, f, b, e), i = b;
+    uint32_t bits = 0;
+    for (; end - i >= COL_BLOCK; i += COL_BLOCK)
+        for (int k = 0; k < COL_BLOCK; k++) bits |= snap_get32(p + 4 * (size_t)(i + k));
+    for (; i < end; i++) bits |= snap_get32(p + 4 * (size_t)i);
+    return (bits & ~allowed) == 0;
+}
+
+/* The end of rows [b, e) of a rule over several fields: b + 1 when all are uniform. */
+static int32_t rows_end(int all_uniform, int32_t b, int32_t e) { return all_uniform && e > b ? b + 1 : e; }
+
+/* Each rule as the setter it enters by checks it (rigid.h), over the partition it holds in
+ * (active [0, n_active), asleep [n_active, n_moving), static [n_moving, count)). */
+int restore_check_body_values(const snap_in *in)
+{
+    const snap_scalars *s = &in->s;
+    int32_t n = s->count, na = s->n_active, nm = s->n_moving;
+    const rg_real coord = (rg_real)(2 * RG_MAX_COORD), speed = (rg_real)RG_MAX_SPEED, force = (rg_real)RG_MAX_FORCE;
+    const rg_real gmax = (rg_real)RG_MAX_GRAVITY_SCALE, drag = (rg_real)RG_MAX_DRAG, big = (rg_real)REAL_MAX;
+    int ok = col_range(in, SNAP_F_type, 0, nm, RG_BODY_KINEMATIC, RG_BODY_DYNAMIC) &&
+             col_range(in, SNAP_F_type, nm, n, RG_BODY_STATIC, RG_BODY_STATIC);
+    /* positions and velocities in their ranges, as every step leaves them (bounds.c;
+     * positions with room for the rounding of a move to the edge), the accelerations and
+     * the positions of the step before finite; what the setters put, in their ranges */
+    ok = ok && col_within(in, SNAP_F_x, 0, n, -coord, coord) && col_within(in, SNAP_F_y, 0, n, -coord, coord) &&
+         col_within(in, SNAP_F_vx, 0, n, -speed, speed) && col_within(in, SNAP_F_vy, 0, n, -speed, speed) &&
+         col_within(in, SNAP_F_ax, 0, n, -big, big) && col_within(in, SNAP_F_ay, 0, n, -big, big) &&
+         col_within(in, SNAP_F_px, 0, n, -big, big) && col_within(in, SNAP_F_py, 0, n, -big, big) &&
+         col_within(in, SNAP_F_fx, 0, n, -force, force) && col_within(in, SNAP_F_fy, 0, n, -force, force) &&
+         col_within(in, SNAP_F_gscale, 0, n, -gmax, gmax);
+    ok = ok && col_within(in, SNAP_F_drag_lin, 0, n, 0, drag) && col_within(in, SNAP_F_drag_quad, 0, n, 0, drag) &&
+         col_within(in, SNAP_F_min_speed, 0, n, 0, speed) && col_within(in, SNAP_F_max_speed, 0, n, 0, speed) &&
+         col_within(in, SNAP_F_fric, 0, n, 0, (rg_real)RG_MAX_FRICTION * (rg_real)RG_MAX_FORCE) && /* mu * N */
+         col_within(in, SNAP_F_rest, 0, n, 0, 1) && col_within(in, SNAP_F_mu, 0, n, 0, (rg_real)RG_MAX_FRICTION) &&
+         col_within(in, SNAP_F_sleep_t, 0, n, 0, big);
+    ok = ok && col_range(in, SNAP_F_shape, 0, n, RG_SHAPE_NONE, RG_SHAPE_AABB) &&
+         col_range(in, SNAP_F_shape, na, nm, RG_SHAPE_CIRCLE, RG_SHAPE_AABB) && /* a sleeper has a shape */
+         col_range(in, SNAP_F_chead, 0, n, 0, s->ccap) &&
+         col_bits(in, SNAP_F_cflags, 0, n, CF_SENSOR | CF_GROUNDED | CF_TELEPORTED);
+    /* island links: on sleeping bodies only */
+    ok = ok && col_range(in, SNAP_F_isl_head, 0, na, 0, 0) && col_range(in, SNAP_F_isl_next, 0, na, 0, 0) &&
+         col_range(in, SNAP_F_isl_head, nm, n, 0, 0) && col_range(in, SNAP_F_isl_next, nm, n, 0, 0) &&
+         col_range(in, SNAP_F_isl_head, na, nm, 1, s->bslots) && col_range(in, SNAP_F_isl_next, na, nm, 0, s->bslots);
+    /* the static bodies have no mass and no gravity; a moving body has a mass when dynamic */
+    ok = ok && col_within(in, SNAP_F_mass, nm, n, 0, 0) && col_within(in, SNAP_F_gscale, nm, n, 0, 0);
+    if (!ok) return 0;
+    int bad = 0;
+    {
+        snap_col type = col_of(in, SNAP_F_type), mass = col_of(in, SNAP_F_mass), gs = col_of(in, SNAP_F_gscale);
+        const rg_real lo = (rg_real)RG_MIN_MASS, hi = (rg_real)RG_MAX_MASS;
+        for (int32_t i = 0, end = rows_end(col_uniform(in, SNAP_F_type) && col_uniform(in, SNAP_F_mass) &&
+                                               col_uniform(in, SNAP_F_gscale), 0, nm);
+             i < end; i++) {
+            rg_real m = col_real(mass, i);
+            int dynamic = col_i32(type, i) == RG_BODY_DYNAMIC;
+            bad |= dynamic ? !(m >= lo) | !(m <= hi) : (m != 0) | (col_real(gs, i) != 0);
+        }
+    }
+    {
+        snap_col lo = col_of(in, SNAP_F_min_speed), hi = col_of(in, SNAP_F_max_speed);
+        for (int32_t i = 0, end = rows_end(col_uniform(in, SNAP_F_min_speed) && col_uniform(in, SNAP_F_max_speed), 0, n);
+             i < end; i++) {
+            rg_real l = col_real(lo, i), h = col_real(hi, i);
+            bad |= (h > 0) & (h < l);
+        }
+    }
+    {
+        snap_col ox = col_of(in, SNAP_F_owx), oy = col_of(in, SNAP_F_owy);
+        for (int32_t i = 0, end = rows_end(col_uniform(in, SNAP_F_owx) && col_uniform(in, SNAP_F_owy), 0, n); i < end; i++)
+            bad |= !restore_unit_or_zero(col_real(ox, i), col_real(oy, i));
+    }
+    /* a shape has sizes in range (a circle's two equal); no shape, no sizes and no contacts */
+    int32_t shaped = 0;
+    {
+        snap_col shape = col_of(in, SNAP_F_shape), hx = col_of(in, SNAP_F_hx), hy = col_of(in, SNAP_F_hy);
+        snap_col chead = col_of(in, SNAP_F_chead);
+        const rg_real lo = (rg_real)RG_MIN_SHAPE_SIZE, hi = (rg_real)RG_MAX_SHAPE_SIZE;
+        int all = col_uniform(in, SNAP_F_shape) && col_uniform(in, SNAP_F_hx) && col_uniform(in, SNAP_F_hy) &&
+                  col_uniform(in, SNAP_F_chead);
+        for (int32_t i = 0, end = rows_end(all, 0, n); i < end; i++) {
+            int32_t sh = col_i32(shape, i);
+            rg_real x = col_real(hx, i), y = col_real(hy, i);
+            int none = sh == RG_SHAPE_NONE;
+            bad |= none ? (x != 0) | (y != 0) | (col_i32(chead, i) != 0)
+                        : !(x >= lo) | !(x <= hi) | !(y >= lo) | !(y <= hi) | ((sh == RG_SHAPE_CIRCLE) & (x != y));
+            shaped += !none;
+        }
+        if (all && n > 0) shaped *= n;
+    }
+    return !bad && shaped == s->members;
+}
+
