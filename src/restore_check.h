@@ -1,5 +1,6 @@
 /* restore_check.h: a snapshot (snapshot.h) read where it lies, and the checks rg_world_restore
- * makes of it before anything of the world changes (restore_check.c); restore.c loads it. */
+ * makes of it before anything of the world changes (restore_check.c, restore_body.c);
+ * restore.c loads it. */
 #ifndef RG_RESTORE_CHECK_H
 #define RG_RESTORE_CHECK_H
 
