@@ -13,12 +13,6 @@ static int restore_unit_or_zero(rg_real x, rg_real y)
     return rg_finite(x) && rg_finite(y) && rg_fabs(len - 1) <= RG_R(1e-3);
 }
 
-/* The end of elements [b, e) of field f: b + 1 when it is uniform. */
-static int32_t col_end(const snap_in *in, int f, int32_t b, int32_t e)
-{
-    return in->l.stride[f] == 0 && e > b ? b + 1 : e;
-}
-
 /* Elements are checked in blocks of COL_BLOCK (a loop of known length, which vectorises at
  * -O2), then one by one. */
 #define COL_BLOCK 16
@@ -70,11 +64,13 @@ static int col_range(const snap_in *in, int f, int32_t b, int32_t e, int32_t lo,
 static int col_bits(const snap_in *in, int f, int32_t b, int32_t e, uint32_t allowed)
 {
     const uint8_t *p = in->p + in->l.field[f];
-    int32_t end = col_end(in, f, b, e), i = b;
+    if (b >= e) return 1;
+    if (in->l.stride[f] == 0) return (snap_get32(p) & ~allowed) == 0;
     uint32_t bits = 0;
-    for (; end - i >= COL_BLOCK; i += COL_BLOCK)
+    int32_t i = b;
+    for (; e - i >= COL_BLOCK; i += COL_BLOCK)
         for (int k = 0; k < COL_BLOCK; k++) bits |= snap_get32(p + 4 * (size_t)(i + k));
-    for (; i < end; i++) bits |= snap_get32(p + 4 * (size_t)i);
+    for (; i < e; i++) bits |= snap_get32(p + 4 * (size_t)i);
     return (bits & ~allowed) == 0;
 }
 

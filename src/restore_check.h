@@ -110,16 +110,18 @@ typedef int32_t real_sbits;
 #define real_get snap_get32
 #endif
 
+static inline real_sbits real_bits_magnitude(real_bits u) { return (real_sbits)(u & ~((real_bits)1 << REAL_SIGN)); }
+
 static inline real_sbits real_magnitude(rg_real v)
 {
     real_bits u;
     memcpy(&u, &v, sizeof u);
-    return (real_sbits)(u & ~((real_bits)1 << REAL_SIGN));
+    return real_bits_magnitude(u);
 }
 
 static inline int real_out(real_bits u, real_sbits pmin, real_sbits plim, real_sbits nlim)
 {
-    real_sbits mag = (real_sbits)(u & ~((real_bits)1 << REAL_SIGN)), neg = -(real_sbits)(u >> REAL_SIGN);
+    real_sbits mag = real_bits_magnitude(u), neg = -(real_sbits)(u >> REAL_SIGN);
     real_sbits lim = (nlim & neg) | (plim & ~neg), least = pmin & ~neg;
     return (mag > lim) | (mag < least);
 }
