@@ -37,7 +37,9 @@ static rg_body big_add(big_scene *s, int32_t type, double m, double x, double y)
 static uint64_t big_hash(const big_scene *s, uint64_t h)
 {
     h = hash_bodies(s->w, s->b, s->n, h);
-    static rg_contact_event ev[65536];
+    /* each call its own buffer: two worlds may be hashed at once from two threads */
+    rg_contact_event *ev = malloc(65536 * sizeof *ev);
+    assert_non_null(ev);
     int32_t n = rg_world_get_contact_events(s->w, ev, 65536);
     assert_true(n >= 0 && n <= 65536);
     /* field by field (no padding), handles without their world's random tag (the top bits) */
@@ -50,6 +52,7 @@ static uint64_t big_hash(const big_scene *s, uint64_t h)
         h = fnv(h, kind, sizeof kind);
         h = fnv(h, r, sizeof r);
     }
+    free(ev);
     int32_t counts[3] = { n, rg_world_touching_count(s->w), rg_world_awake_body_count(s->w) };
     h = fnv(h, counts, sizeof counts);
     uint64_t whole;
