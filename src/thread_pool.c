@@ -5,7 +5,12 @@
  * when every item is done: it never waits for a thread that is asleep or descheduled, which
  * simply finds no range left when it comes.  A thread claims a range by a compare-and-swap of
  * the state, so it runs a range of the current task only (a stale generation fails), and the
- * task cannot end, nor the next one be written, before that range is done.  An idle thread
+ * task cannot end, nor the next one be written, before that range is done.  Before it writes
+ * the next task, enqueue closes the last one's generation: a thread late from the last task,
+ * holding its spent state, may read the next task's count (larger than where the last one's
+ * ranges ran out), and its claim must then fail rather than run a range of the next task
+ * under the last one's generation (those items would run twice, and the task could end
+ * before they were done).  An idle thread
  * spins a while on the state (the stages of a step follow each other within microseconds),
  * then sleeps on a condition variable until the next task. */
 #undef _POSIX_C_SOURCE /* whatever the build set: this file needs threads */
@@ -25,6 +30,9 @@
 #define POOL_STORE(p, v) __atomic_store_n((p), (v), __ATOMIC_RELEASE)
 #define POOL_SET(p, v) __atomic_store_n((p), (v), __ATOMIC_RELAXED)
 #define POOL_ADD(p, v) __atomic_fetch_add((p), (v), __ATOMIC_ACQ_REL)
+
+/* The start of a closed generation's next range: past any count, so nothing is claimed. */
+#define POOL_CLOSED 0x7FFFFFFFu
 
 /* Spins of an idle thread before it sleeps (a pause each: some 0.1-1 ms). */
 #define POOL_SPINS 20000
@@ -67,7 +75,9 @@ static void pool_work(rg_thread_pool *p, uint32_t gen, int32_t worker)
     for (;;) {
         uint64_t st = POOL_LOAD(&p->state);
         if ((uint32_t)(st >> 32) != gen) return;
-        int32_t begin = (int32_t)(uint32_t)st, count = POOL_RELAXED(&p->count), chunk = POOL_RELAXED(&p->chunk);
+        /* acquire: a count written after the close of this generation makes the claim below
+         * see the close, and fail */
+        int32_t begin = (int32_t)(uint32_t)st, count = POOL_LOAD(&p->count), chunk = POOL_LOAD(&p->chunk);
         if (begin >= count) return;
         int32_t end = count - begin > chunk ? begin + chunk : count;
         uint64_t claimed = ((uint64_t)gen << 32) | (uint32_t)end;
@@ -121,12 +131,16 @@ static void *pool_enqueue(rg_task_fn *fn, int32_t count, int32_t min_range, void
     int32_t chunk = count / per + (count % per != 0);
     if (chunk < min_range) chunk = min_range;
     if (chunk < 1) chunk = 1;
+    /* the last task's generation closed first (the file's opening comment), then the fields,
+     * then the task under a generation of its own */
+    uint32_t gen = (uint32_t)(POOL_RELAXED(&p->state) >> 32) + 1u;
+    POOL_STORE(&p->state, ((uint64_t)gen << 32) | POOL_CLOSED);
+    gen++;
     POOL_SET(&p->fn, fn);
     POOL_SET(&p->context, context);
-    POOL_SET(&p->count, count);
-    POOL_SET(&p->chunk, chunk);
+    POOL_STORE(&p->count, count);
+    POOL_STORE(&p->chunk, chunk);
     POOL_SET(&p->done, 0);
-    uint32_t gen = (uint32_t)(POOL_RELAXED(&p->state) >> 32) + 1u;
     POOL_STORE(&p->state, (uint64_t)gen << 32); /* publishes the fields above */
     pthread_mutex_lock(&p->lock);
     if (p->sleepers > 0) pthread_cond_broadcast(&p->wake);

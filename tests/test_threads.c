@@ -9,7 +9,8 @@
  *     worker indices, and defers them to finish (it exercises what threads would do to the
  *     split and the order, deterministically),
  *   - rg_thread_pool with 1 to 4 threads (real threads; this machine may have fewer cores).
- * And the pool's and the task system's bad input. */
+ * And the pool's and the task system's bad input, and the pool's own promise: every item of
+ * every task runs once, inside its task. */
 #include "testutil.h"
 #include "shuffler.h"
 
@@ -253,6 +254,57 @@ static void test_two_worlds_on_two_threads_share_a_pool(void **state)
     assert_true(a.h == one && b.h == one);
 }
 
+/* The pool runs every item of every task exactly once, and only inside its task: tasks of
+ * alternating sizes back to back (the next task's count larger than where the last one's
+ * ranges ran out), each item counting its runs in its own task's record.  A thread late from
+ * one task must find no range of it left, never run a range of the next task under the last
+ * one's claim (which ran those items twice, and let the task end before they were done). */
+enum { POOL_TASKS = 100000, POOL_ITEMS = 64 };
+
+typedef struct count_task {
+    uint8_t *runs;   /* POOL_ITEMS per task */
+} count_task;
+
+static void count_range(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    uint8_t *runs = context;
+    (void)worker;
+    for (int32_t i = begin; i < end; i++) __atomic_fetch_add(&runs[i], 1, __ATOMIC_RELAXED);
+}
+
+static void test_the_pool_runs_each_item_of_each_task_once(void **state)
+{
+    (void)state;
+    uint8_t *runs = malloc((size_t)POOL_TASKS * POOL_ITEMS);
+    assert_non_null(runs);
+    for (int32_t threads = 2; threads <= 3; threads++) {
+        rg_thread_pool *pool;
+        rg_task_system ts;
+        assert_ok(rg_thread_pool_create(threads, &pool));
+        assert_ok(rg_thread_pool_task_system(pool, &ts));
+        memset(runs, 0, (size_t)POOL_TASKS * POOL_ITEMS);
+        long early = 0, wrong = 0;
+        for (int32_t k = 0; k < POOL_TASKS; k++) {
+            /* 3 items, then 64, in ranges of 1: a late thread of the small task sees its
+             * ranges run out at 3, below the next task's count */
+            int32_t count = (k & 1) ? POOL_ITEMS : 3;
+            uint8_t *r = runs + (size_t)k * POOL_ITEMS;
+            void *h = ts.enqueue(count_range, count, 1, r, ts.user);
+            if (h != NULL) ts.finish(h, ts.user);
+            early += __atomic_load_n(&r[count - 1], __ATOMIC_RELAXED) == 0;   /* returned before its end */
+        }
+        rg_thread_pool_destroy(pool);
+        for (int32_t k = 0; k < POOL_TASKS; k++)
+            for (int32_t i = 0; i < POOL_ITEMS; i++)
+                wrong += runs[(size_t)k * POOL_ITEMS + i] != (i < ((k & 1) ? POOL_ITEMS : 3));
+        printf("  %d threads: %d tasks, %ld items run other than once, %ld tasks returned early\n",
+               (int)threads, (int)POOL_TASKS, wrong, early);
+        assert_int_equal(wrong, 0);
+        assert_int_equal(early, 0);
+    }
+    free(runs);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -260,6 +312,7 @@ int main(void)
         cmocka_unit_test(test_the_other_integrators_are_identical_with_more_workers),
         cmocka_unit_test(test_bad_task_systems_and_pools_are_refused),
         cmocka_unit_test(test_two_worlds_on_two_threads_share_a_pool),
+        cmocka_unit_test(test_the_pool_runs_each_item_of_each_task_once),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
