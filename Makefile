@@ -6,6 +6,7 @@
 #   make sanitize        the tests under AddressSanitizer + UndefinedBehaviorSanitizer
 #                        (CC=clang for clang's; each compiler builds in its own folder)
 #   make fuzz            the libFuzzer harnesses of tests/fuzz, FUZZ_SECONDS each (clang)
+#   make tsan            the threaded tests under ThreadSanitizer (clang)
 #   make install PREFIX=/usr/local   (and make uninstall; DESTDIR for staging)
 REAL ?= float
 PREFIX ?= /usr/local
@@ -54,7 +55,7 @@ TEST_RUNS := check-c check-ffi check-readme check-exports check-modules check-in
 .DEFAULT_GOAL := all
 include $(sort $(wildcard lua/*.mk tools/*.mk tests/fuzz/*.mk))
 
-.PHONY: all test test-all deps sanitize install uninstall FORCE clean run run-main bench charts \
+.PHONY: all test test-all deps sanitize tsan install uninstall FORCE clean run run-main bench charts \
         $(TEST_RUNS)
 all: $(ALL_TARGETS)
 
@@ -141,6 +142,16 @@ sanitize: deps
 	@$(MAKE) --no-print-directory test-all B=$(SAN_B) OPT=-O1 $(if $(CC_IS_CLANG),$(SAN_KNOWN_VARS)) \
 	  EXTRA_CFLAGS="$(SAN_FLAGS)" EXTRA_LDFLAGS="$(SAN_FLAGS) $(SAN_LINK)" \
 	  FFI_ENV="LD_PRELOAD=$$($(CC) -print-file-name=$(SAN_RT)) ASAN_OPTIONS=detect_leaks=0"
+
+# The threaded tests under ThreadSanitizer (clang's: gcc 12's runtime does not start on this
+# kernel), with tests/tsan.supp: the one benign race it names, nothing else.
+TSAN_B := build/tsan
+tsan: deps
+	@tools/install-deps.sh --fuzz
+	@$(MAKE) --no-print-directory B=$(TSAN_B) CC=clang OPT=-O1 EXTRA_CFLAGS="-fsanitize=thread -g" \
+	  EXTRA_LDFLAGS="-fsanitize=thread" $(TSAN_B)/tests/test_threads
+	@echo "== $(TSAN_B)/tests/test_threads under ThreadSanitizer"
+	@TSAN_OPTIONS="suppressions=tests/tsan.supp halt_on_error=1" $(TSAN_B)/tests/test_threads
 
 # ---------------------------------------------------------------- install
 # The header, the library (static, shared with its SONAME and links) and its pc file; the
