@@ -269,6 +269,10 @@ static void count_range(int32_t begin, int32_t end, int32_t worker, void *contex
     for (int32_t i = begin; i < end; i++) __atomic_fetch_add(&runs[i], 1, __ATOMIC_RELAXED);
 }
 
+/* Task k's items: 3, then 64, in turn: a late thread of a small task sees its ranges run out
+ * at 3, below the next task's count. */
+static int32_t pool_task_items(int32_t k) { return (k & 1) ? POOL_ITEMS : 3; }
+
 static void test_the_pool_runs_each_item_of_each_task_once(void **state)
 {
     (void)state;
@@ -282,9 +286,7 @@ static void test_the_pool_runs_each_item_of_each_task_once(void **state)
         memset(runs, 0, (size_t)POOL_TASKS * POOL_ITEMS);
         long early = 0, wrong = 0;   /* early: items not yet run when their task returned */
         for (int32_t k = 0; k < POOL_TASKS; k++) {
-            /* 3 items, then 64, in ranges of 1: a late thread of the small task sees its
-             * ranges run out at 3, below the next task's count */
-            int32_t count = (k & 1) ? POOL_ITEMS : 3;
+            int32_t count = pool_task_items(k);   /* in ranges of 1 */
             uint8_t *r = runs + (size_t)k * POOL_ITEMS;
             void *h = ts.enqueue(count_range, count, 1, r, ts.user);
             if (h != NULL) ts.finish(h, ts.user);
@@ -293,7 +295,7 @@ static void test_the_pool_runs_each_item_of_each_task_once(void **state)
         rg_thread_pool_destroy(pool);
         for (int32_t k = 0; k < POOL_TASKS; k++)
             for (int32_t i = 0; i < POOL_ITEMS; i++)
-                wrong += runs[(size_t)k * POOL_ITEMS + i] != (i < ((k & 1) ? POOL_ITEMS : 3));
+                wrong += runs[(size_t)k * POOL_ITEMS + i] != (i < pool_task_items(k));
         printf("  %d threads: %d tasks, %ld items run other than once, %ld not yet run when their task returned\n",
                (int)threads, (int)POOL_TASKS, wrong, early);
         assert_int_equal(wrong, 0);
