@@ -263,6 +263,21 @@ void broadphase_locate(rg_real lx, rg_real ly, rg_real ux, rg_real uy, int16_t *
     }
 }
 
+void broadphase_locate_known(const broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_real ux, rg_real uy,
+                             int16_t *level, uint64_t *key)
+{
+    if (slot >= 0 && slot < bp->cap && bp->e[slot].member >= 0) {
+        const bp_entry *e = &bp->e[slot];
+        const rg_real box[4] = { lx, ly, ux, uy }, was[4] = { e->lx, e->ly, e->ux, e->uy };
+        if (memcmp(box, was, sizeof box) == 0) { /* the same bits: the same level and cell */
+            *level = e->level;
+            *key = e->key;
+            return;
+        }
+    }
+    broadphase_locate(lx, ly, ux, uy, level, key);
+}
+
 uint32_t broadphase_bucket(int bits, uint64_t key)
 {
     return (uint32_t)((key * 0x9E3779B97F4A7C15ull) >> (64 - bits));

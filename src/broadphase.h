@@ -98,6 +98,10 @@ static inline uint32_t broadphase_new_mark(broadphase *bp)
 
 /* The level (or BP_HUGE) and cell key of a fat box, as insert and move compute them. */
 void broadphase_locate(rg_real lx, rg_real ly, rg_real ux, rg_real uy, int16_t *level, uint64_t *key);
+/* The same, taken from the slot's entry when the slot is a member with the same box bits
+ * (the level and key are a function of them): a rollback finds most boxes where they were. */
+void broadphase_locate_known(const broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_real ux, rg_real uy,
+                             int16_t *level, uint64_t *key);
 /* The bucket of a key in a table of 2^bits buckets (bits >= 1). */
 uint32_t broadphase_bucket(int bits, uint64_t key);
 /* Room for slots [0, slots), nothing else changed; all-or-nothing. */

@@ -17,13 +17,20 @@
 static void restore_array(void *dst, const uint8_t *src, int32_t n, size_t elem, size_t stride)
 {
     if (n <= 0) return;
-    if (stride == 0) { /* one value for all: the same bits in every element */
+    if (stride == 0) { /* one value for all: the same bits in every element, the first
+                          * written and then copied in doubling runs */
+        uint8_t *d = dst;
         if (elem == 8) {
-            uint64_t u = snap_get64(src), *q = dst;
-            for (int32_t i = 0; i < n; i++) q[i] = u;
+            uint64_t u = snap_get64(src);
+            memcpy(d, &u, 8);
         } else {
-            uint32_t u = snap_get32(src), *q = dst;
-            for (int32_t i = 0; i < n; i++) q[i] = u;
+            uint32_t u = snap_get32(src);
+            memcpy(d, &u, 4);
+        }
+        for (size_t done = elem, total = (size_t)n * elem; done < total;) {
+            size_t run = done < total - done ? done : total - done;
+            memcpy(d + done, d, run);
+            done += run;
         }
         return;
     }
@@ -138,12 +145,20 @@ static void restore_broadphase(broadphase *bp, const snap_in *in, const restore_
         snap_member m;
         restore_member(in, k, &m);
         bp_entry *e = &bp->e[m.slot];
+        int16_t level;
+        uint64_t key;
+        if (r->located) {
+            level = r->level[k];
+            key = r->key[k];
+        } else { /* from the entry's box, still there (broadphase_clear leaves it) */
+            broadphase_locate_known(bp, m.slot, m.lx, m.ly, m.ux, m.uy, &level, &key);
+        }
         e->lx = m.lx;
         e->ly = m.ly;
         e->ux = m.ux;
         e->uy = m.uy;
-        e->level = r->level[k];
-        e->key = r->key[k];
+        e->level = level;
+        e->key = key;
         e->next = m.next;
         e->prev = m.prev;
         e->lnext = m.lnext;
@@ -246,38 +261,60 @@ static void restore_load(rg_world *w, const snap_in *in, const restore_scratch *
 
 /* A snapshot whose checksum holds but whose state breaks an invariant: forged, or damaged
  * before it was sealed. */
-static rg_status restore_refuse(const rg_world *w, const char *what)
+static rg_status restore_refuse(const rg_world *w, const char *fn, const char *what)
 {
-    return error_set(w, RG_ERR_INVALID_ARGUMENT, "rg_world_restore",
+    return error_set(w, RG_ERR_INVALID_ARGUMENT, fn,
                      "the snapshot's %s break the state's invariants (forged or damaged before it was sealed)", what);
 }
 
-static rg_status restore_checked(rg_world *w, snap_in *in)
+/* The checks of the bodies, springs and events; the name of what breaks an invariant, or
+ * NULL. */
+static const char *restore_check_values(const snap_in *in)
+{
+    const snap_scalars *s = &in->s;
+    if (!restore_check_pool(in, in->l.bgen, in->l.bindex, s->bslots, s->bmax_gen, s->bfree, s->count,
+                            in->p + in->l.field[SNAP_F_slot], in->l.stride[SNAP_F_slot]))
+        return "body handles";
+    if (!restore_check_bodies(in)) return "bodies";
+    if (!restore_check_springs(in)) return "springs";
+    if (!restore_check_events(in, in->l.ev, s->n_ev) || !restore_check_events(in, in->l.pend, s->n_pend))
+        return "events";
+    return NULL;
+}
+
+/* A state this world wrote itself (a kept slot): of the scratch the checks would fill, the
+ * load needs the members' places (the levels and keys it finds itself). */
+static void restore_fill_scratch(const snap_in *in, restore_scratch *r)
+{
+    memset(r->member_of, 0, (size_t)in->s.bslots * sizeof *r->member_of);
+    for (int32_t k = 0; k < in->s.members; k++)
+        r->member_of[(int32_t)snap_get32(rec(in, in->l.members, SNAP_MEMBER, k))] = k + 1;
+}
+
+/* Checks the state unless it is the world's own (checked 0), then grows the world to hold
+ * it and loads it. */
+static rg_status restore_state(rg_world *w, const char *fn, const snap_in *in, int checked)
 {
     const snap_scalars *s = &in->s;
     const rg_mem *m = &w->mem;
-    const char *bad = NULL;
-    if (!restore_check_pool(in, in->l.bgen, in->l.bindex, s->bslots, s->bmax_gen, s->bfree, s->count,
-                            in->p + in->l.field[SNAP_F_slot], in->l.stride[SNAP_F_slot]))
-        bad = "body handles";
-    else if (!restore_check_bodies(in))
-        bad = "bodies";
-    else if (!restore_check_springs(in))
-        bad = "springs";
-    else if (!restore_check_events(in, in->l.ev, s->n_ev) || !restore_check_events(in, in->l.pend, s->n_pend))
-        bad = "events";
-    if (bad != NULL) return restore_refuse(w, bad);
+    const char *bad = checked ? restore_check_values(in) : NULL;
+    if (bad != NULL) return restore_refuse(w, fn, bad);
     restore_scratch r;
     size_t rsize = 0;
     r.s = s;
     void *rblock = mem_block(m, restore_check_scratch_layout, &r, &rsize);
-    if (rblock == NULL) return error_alloc(w, "rg_world_restore", RG_ERR_OUT_OF_MEMORY, "restore scratch", "RG_MAX_BODIES");
-    memset(rblock, 0, rsize);
+    if (rblock == NULL) return error_alloc(w, fn, RG_ERR_OUT_OF_MEMORY, "restore scratch", "RG_MAX_BODIES");
     rg_status st = RG_OK;
-    if (!restore_check_contacts(in, &r))
-        st = restore_refuse(w, "contacts");
-    else if (!restore_check_broadphase(in, &r))
-        st = restore_refuse(w, "broadphase");
+    r.located = checked;
+    if (checked) {
+        memset(rblock, 0, rsize);
+        if (!restore_check_contacts(in, &r))
+            st = restore_refuse(w, fn, "contacts");
+        else if (!restore_check_broadphase(in, &r))
+            st = restore_refuse(w, fn, "broadphase");
+    } else {
+        restore_fill_scratch(in, &r);
+    }
     /* room: growth keeps the world as it is; the contact storage (of exactly the saved
      * capacity, which decides the ids of new contacts) and the bucket table (of exactly the
      * saved size, which decides the chains) are made aside and taken at the end */
@@ -300,7 +337,7 @@ static rg_status restore_checked(rg_world *w, snap_in *in)
         }
     }
     if (st == RG_ERR_OUT_OF_MEMORY || st == RG_ERR_CAPACITY)
-        error_alloc(w, "rg_world_restore", st, "the restored world", "RG_MAX_BODIES");
+        error_alloc(w, fn, st, "the restored world", "RG_MAX_BODIES");
     if (st == RG_OK) {
         /* nothing can fail from here on */
         contact_block_adopt(w, &cb);
@@ -311,13 +348,24 @@ static rg_status restore_checked(rg_world *w, snap_in *in)
     return st;
 }
 
+rg_status restore_kept(rg_world *w, const void *data, size_t size)
+{
+    snap_in in;
+    memset(&in, 0, sizeof in);
+    /* the world wrote it: the header and scalars are checked all the same (they cost
+     * nothing), the rest is known good */
+    if (!restore_check_header(w, &in, data, size, 0)) return RG_ERR_INVALID_ARGUMENT;
+    if (!restore_check_scalars(&in)) return restore_refuse(w, "rg_world_restore_slot", "settings and counts");
+    return restore_state(w, "rg_world_restore_slot", &in, 0);
+}
+
 RG_API rg_status rg_world_restore(rg_world *world, const void *data, size_t size)
 {
     WORLD_WRITABLE(world);
     if (data == NULL) return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "data is NULL");
     snap_in in;
     memset(&in, 0, sizeof in);
-    if (!restore_check_header(world, &in, data, size)) return RG_ERR_INVALID_ARGUMENT;
-    if (!restore_check_scalars(&in)) return restore_refuse(world, "settings and counts");
-    return restore_checked(world, &in);
+    if (!restore_check_header(world, &in, data, size, 1)) return RG_ERR_INVALID_ARGUMENT;
+    if (!restore_check_scalars(&in)) return restore_refuse(world, "rg_world_restore", "settings and counts");
+    return restore_state(world, "rg_world_restore", &in, 1);
 }

@@ -129,9 +129,9 @@ static int within(rg_real v, double lo, double hi) { return fin(v) && v >= (rg_r
 static int within_vec(rg_vec2 v, double max) { return within(v.x, -max, max) && within(v.y, -max, max); }
 
 /* The header; 1, or 0 with the reason set. */
-int restore_check_header(const rg_world *w, snap_in *in, const void *data, size_t size)
+int restore_check_header(const rg_world *w, snap_in *in, const void *data, size_t size, int sealed)
 {
-    const char *f = "rg_world_restore";
+    const char *f = sealed ? "rg_world_restore" : "rg_world_restore_slot";
     in->p = data;
     in->size = size;
     if (size < SNAP_HEADER + snap_scalars_size() || memcmp(in->p, SNAP_MAGIC, 8) != 0) {
@@ -153,7 +153,7 @@ int restore_check_header(const rg_world *w, snap_in *in, const void *data, size_
                   (unsigned long)size, (unsigned long long)snap_get64(in->p + 16));
         return 0;
     }
-    if (snap_get64(in->p + 24) != snap_hash(in->p + SNAP_HEADER, size - SNAP_HEADER)) {
+    if (sealed && snap_get64(in->p + 24) != snap_hash(in->p + SNAP_HEADER, size - SNAP_HEADER)) {
         error_set(w, RG_ERR_INVALID_ARGUMENT, f, "checksum mismatch (the snapshot is corrupted)");
         return 0;
     }

@@ -168,12 +168,13 @@ typedef struct restore_scratch {
     uint8_t *huge_used;     /* [n_huge] */
     uint8_t *active_used;   /* [n_bp_active] */
     const snap_scalars *s;
+    int located;            /* level and key filled (by the checks); else the load finds them */
 } restore_scratch;
 
 /* Each check returns 1, or 0 for a snapshot that breaks what it checks. */
-/* The header (magic, version, rg_real, size, checksum), with the reason set on failure; it
- * reads the scalars and the layout into in. */
-int restore_check_header(const rg_world *w, snap_in *in, const void *data, size_t size);
+/* The header (magic, version, rg_real, size and, when sealed, the checksum), with the reason
+ * set on failure; it reads the scalars into in. */
+int restore_check_header(const rg_world *w, snap_in *in, const void *data, size_t size, int sealed);
 /* The settings and counts, each within the range of the setter it enters by. */
 int restore_check_scalars(snap_in *in);
 /* A pool's slots against the dense places that name them (slot_of, slot_stride). */

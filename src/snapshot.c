@@ -125,7 +125,7 @@ typedef struct snap_out {
     uint8_t *buf;
     size_t at;
     size_t hashed;      /* save: bytes of buf hashed so far */
-    snap_hasher *hash;
+    snap_hasher *hash;  /* NULL: a kept state (slots.c), written unsealed */
     int anonymous;      /* the world tag left out (rg_world_hash) */
     const int *uniform; /* per body field: all its values equal */
     size_t nchunk;
@@ -143,7 +143,7 @@ static void snap_emit(snap_out *o, const void *p, size_t n)
     o->at += n;
     if (o->buf != NULL) {
         memcpy(o->buf + o->at - n, p, n);
-        if (o->at - o->hashed >= SNAP_HASH_BEHIND) {
+        if (o->hash != NULL && o->at - o->hashed >= SNAP_HASH_BEHIND) {
             snap_hash_bytes(o->hash, o->buf + o->hashed, o->at - o->hashed);
             o->hashed = o->at;
         }
@@ -163,7 +163,7 @@ static void snap_emit(snap_out *o, const void *p, size_t n)
 static uint8_t *snap_record(snap_out *o, size_t n)
 {
     if (o->buf != NULL) {
-        if (o->at - o->hashed >= SNAP_HASH_BEHIND) {
+        if (o->hash != NULL && o->at - o->hashed >= SNAP_HASH_BEHIND) {
             snap_hash_bytes(o->hash, o->buf + o->hashed, o->at - o->hashed);
             o->hashed = o->at;
         }
@@ -485,40 +485,50 @@ static size_t snap_size(const snap_scalars *s, const int *uniform)
     return (at + 7u) & ~(size_t)7u;
 }
 
-RG_API rg_status rg_world_save(const rg_world *world, void *out, size_t capacity, size_t *out_size)
+void snap_plan_of(const rg_world *w, snap_plan *plan)
 {
-    ERROR_BEGIN(world);
-    if (out_size == NULL) return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "out_size is NULL");
-    if (out == NULL && capacity > 0)
-        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "out is NULL with capacity %lu", (unsigned long)capacity);
-    snap_scalars s;
-    int uniform[SNAP_FIELDS];
-    snap_scalars_of(world, &s);
-    snap_uniforms(world, uniform);
-    size_t size = snap_size(&s, uniform);
-    *out_size = size;
-    if (out == NULL && capacity == 0) return RG_OK;
-    if (capacity < size)
-        return RG_FAIL(world, RG_ERR_CAPACITY, "capacity %lu is below the snapshot's size %lu", (unsigned long)capacity,
-                       (unsigned long)size);
-    uint8_t *p = out;
+    snap_scalars_of(w, &plan->s);
+    snap_uniforms(w, plan->uniform);
+    plan->size = snap_size(&plan->s, plan->uniform);
+}
+
+void snap_write_planned(const rg_world *w, const snap_plan *plan, uint8_t *p, int sealed)
+{
     memcpy(p, SNAP_MAGIC, 8);
     snap_put32(p + 8, SNAP_VERSION);
     snap_put32(p + 12, (uint32_t)sizeof(rg_real));
-    snap_put64(p + 16, (uint64_t)size);
+    snap_put64(p + 16, (uint64_t)plan->size);
+    snap_put64(p + 24, 0);
     snap_hasher h;
     snap_hash_init(&h);
     snap_out o;
     o.buf = p;
     o.at = SNAP_HEADER;
     o.hashed = SNAP_HEADER;
-    o.hash = &h;
+    o.hash = sealed ? &h : NULL;
     o.anonymous = 0;
-    o.uniform = uniform;
+    o.uniform = plan->uniform;
     o.nchunk = 0;
-    snap_write(world, &o, &s);
-    snap_hash_bytes(&h, p + o.hashed, size - o.hashed);
+    snap_write(w, &o, &plan->s);
+    if (!sealed) return;
+    snap_hash_bytes(&h, p + o.hashed, plan->size - o.hashed);
     snap_put64(p + 24, snap_hash_final(&h)); /* = snap_hash(p + SNAP_HEADER, size - SNAP_HEADER) */
+}
+
+RG_API rg_status rg_world_save(const rg_world *world, void *out, size_t capacity, size_t *out_size)
+{
+    ERROR_BEGIN(world);
+    if (out_size == NULL) return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "out_size is NULL");
+    if (out == NULL && capacity > 0)
+        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "out is NULL with capacity %lu", (unsigned long)capacity);
+    snap_plan plan;
+    snap_plan_of(world, &plan);
+    *out_size = plan.size;
+    if (out == NULL && capacity == 0) return RG_OK;
+    if (capacity < plan.size)
+        return RG_FAIL(world, RG_ERR_CAPACITY, "capacity %lu is below the snapshot's size %lu", (unsigned long)capacity,
+                       (unsigned long)plan.size);
+    snap_write_planned(world, &plan, out, 1);
     return RG_OK;
 }
 

@@ -103,6 +103,23 @@ typedef struct snap_layout {
 /* The scalars' size in the file. */
 size_t snap_scalars_size(void);
 
+/* What a save of the world now writes: its scalars, which body fields are uniform, and the
+ * size in bytes. */
+typedef struct snap_plan {
+    snap_scalars s;
+    int uniform[SNAP_FIELDS];
+    size_t size;
+} snap_plan;
+void snap_plan_of(const rg_world *w, snap_plan *plan);
+/* Writes the planned snapshot (plan->size bytes at p).  sealed: with its checksum, as
+ * rg_world_save; else checksum 0, for a state the world keeps for itself (slots.c), which
+ * only rg_world_restore_slot reads. */
+void snap_write_planned(const rg_world *w, const snap_plan *plan, uint8_t *p, int sealed);
+/* restore.c: a state written unsealed by this world (slots.c), loaded as rg_world_restore
+ * loads a snapshot but without the checks of its values and structure (the header and
+ * scalars are checked all the same). */
+rg_status restore_kept(rg_world *w, const void *data, size_t size);
+
 /* ---- little-endian encoding (plain copies where the machine is little-endian) */
 
 /* Whether the machine stores integers and reals in the file's order, so that arrays copy

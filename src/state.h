@@ -304,6 +304,13 @@ struct rg_world {
     /* The task system the stages spread over (task.c); tasks_on 0: one thread. */
     rg_task_system tasks;
     int32_t tasks_on;
+
+    /* Kept states (slots.c): unsealed snapshots of this world, size bytes in blocks of cap
+     * (0: the slot is empty) from its allocator. */
+    struct {
+        uint8_t *p;
+        size_t size, cap;
+    } kept[RG_MAX_SLOTS];
 };
 
 /* At the top of every call that changes the world: ERROR_BEGIN, and RG_ERR_LOCKED inside a

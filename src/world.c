@@ -103,6 +103,8 @@ RG_API void rg_world_destroy(rg_world *world)
     collide_release(world);
     body_store_release(world);
     rg_mem mem = world->mem;
+    for (int k = 0; k < RG_MAX_SLOTS; k++) /* the kept states (slots.c) */
+        if (world->kept[k].p != NULL) mem_free(&mem, world->kept[k].p, world->kept[k].cap);
     mem_free(&mem, world, sizeof *world + ERROR_SIZE);
 }
 

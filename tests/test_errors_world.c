@@ -103,6 +103,11 @@ static void test_world_settings_fail_and_say_why(void **state)
     FAILS(s, INVALID, "out_restitution_threshold", rg_world_get_contact_tuning(w, &r, &r, &r, NULL));
     FAILS(s, INVALID, "enabled", rg_world_set_continuous(w, -1));
     FAILS(s, INVALID, "out_enabled", rg_world_get_continuous(w, NULL));
+    FAILS(s, INVALID, "slot", rg_world_save_slot(w, -1));
+    FAILS(s, INVALID, "slot", rg_world_save_slot(w, RG_MAX_SLOTS));
+    FAILS(s, INVALID, "slot", rg_world_restore_slot(w, RG_MAX_SLOTS));
+    FAILS_SAYING(s, INVALID, "slot", "empty", rg_world_restore_slot(w, 3));
+    FAILS(s, INVALID, "slot", rg_world_drop_slot(w, -1));
     /* each succeeds with good input and leaves "" */
     SUCCEEDS(s, rg_world_set_gravity(w, v2(0, -9.81)));
     SUCCEEDS(s, rg_world_get_gravity(w, &v));
@@ -298,6 +303,9 @@ static void test_a_null_world_is_refused_everywhere(void **state)
     NULL_WORLD(INVALID, rg_body_get_contacts(W, b, &c, 1));
     NULL_WORLD(INVALID, rg_world_raycast_all(W, v2(0, 0), v2(1, 0), ALL, &hit, 1));
     NULL_WORLD(INVALID, rg_world_query_point(W, v2(0, 0), ALL, out, 2));
+    NULL_WORLD(INVALID, rg_world_save_slot(W, 0));
+    NULL_WORLD(INVALID, rg_world_restore_slot(W, 0));
+    NULL_WORLD(INVALID, rg_world_drop_slot(W, 0));
     NULL_WORLD(INVALID, rg_world_cast_shape(W, RG_SHAPE_CIRCLE, v2(1, 0), v2(0, 0), v2(1, 0), ALL, &hit));
     NULL_WORLD(INVALID, rg_body_move(W, b, v2(1, 0), ALL, RG_MOVE_SLIDE, &v, NULL, 0, &i));
     NULL_WORLD(INVALID, rg_world_draw(W, &d));
@@ -364,6 +372,9 @@ static int32_t locked_hook(rg_body a, rg_body b, rg_vec2 normal, rg_real separat
     LOCKED(s, rg_body_pass_through(w, d, s->floor));
     LOCKED(s, rg_world_set_pre_solve(w, NULL, NULL));
     LOCKED(s, rg_body_move(w, d, v2(1, 1), ALL, RG_MOVE_SLIDE, &v, NULL, 0, &n));
+    LOCKED(s, rg_world_save_slot(w, 0));
+    LOCKED(s, rg_world_restore_slot(w, 0));
+    LOCKED(s, rg_world_drop_slot(w, 0));
     rg_world_destroy(w); /* a no-op from inside */
     assert_true(rg_body_is_valid(w, d));
     SUCCEEDS(s, rg_body_get_position(w, d, &v));

@@ -102,6 +102,10 @@ typedef struct bench_engine {
     size_t (*save)(void *ctx, void *buf, size_t cap);
     int (*restore)(void *ctx, const void *buf, size_t size);
     uint64_t (*hash)(void *ctx);
+    /* Kept states, NULL when the engine has none: keep copies the world's state into a slot
+     * of its own, back brings it back; 1 on success. */
+    int (*keep)(void *ctx, int slot);
+    int (*back)(void *ctx, int slot);
 } bench_engine;
 
 /* tools/bench_gameplay.c: the scenes that measure what one-way shapes and a pre-solve hook

@@ -256,6 +256,18 @@ static uint64_t rigid_hash(void *p)
     return h;
 }
 
+static int rigid_keep(void *p, int slot)
+{
+    rigid_ctx *c = p;
+    return rg_world_save_slot(c->w, slot) == RG_OK;
+}
+
+static int rigid_back(void *p, int slot)
+{
+    rigid_ctx *c = p;
+    return rg_world_restore_slot(c->w, slot) == RG_OK;
+}
+
 static const char *rigid_version(void)
 {
     static char text[48];
@@ -270,4 +282,5 @@ const bench_engine bench_rigid_engine = {
     .force = rigid_force, .impulse = rigid_impulse, .read = rigid_read, .bytes = rigid_bytes,
     .destroy = rigid_destroy, .alloc_calls = rigid_alloc_calls, .version = rigid_version,
     .contacts = rigid_contacts, .save = rigid_save, .restore = rigid_restore, .hash = rigid_hash,
+    .keep = rigid_keep, .back = rigid_back,
 };

@@ -3,7 +3,9 @@
  * to save, to restore and to hash, for the bench's rain scene (tools/bench_scenes.c, sleeping
  * on) at N = 1000 and 10000, taken while the pile is still moving (step 60) and once it
  * rests (step 600).  Each engine restores into a second world built from the same scene, and
- * the restored world's hash must equal the saved one's.  Medians of 31 timings each.
+ * the restored world's hash must equal the saved one's.  Then the rollback a game makes: the
+ * world saves, steps 8 frames and restores (for rigid also with a kept state, which v3 has
+ * no counterpart of), the step not timed.  Medians of 31 timings each.
  *   build/bench-snapshot [--v3 DIR|none] [N ...] */
 #define _GNU_SOURCE 1 /* mallopt */
 #include <malloc.h>
@@ -33,6 +35,31 @@ static double median(double *v, int n)
 {
     qsort(v, (size_t)n, sizeof *v, cmp);
     return v[n / 2];
+}
+
+/* The rollback pattern: save (or keep) at a frame, step ROLLBACK frames, restore (or go
+ * back); each time from the same frame, whose hash the restored world must have.  Medians
+ * of REPS; 0 when a call failed or the hash differed. */
+#define ROLLBACK 8
+static int rollback(const bench_engine *e, void *w, void *buf, size_t size, int kept, double *save, double *restore)
+{
+    double ts[REPS], tr[REPS];
+    uint64_t h = e->hash(w);
+    for (int r = 0; r < REPS; r++) {
+        double t0 = now();
+        int ok = kept ? e->keep(w, 0) : e->save(w, buf, size) == size;
+        double t1 = now();
+        for (int k = 0; k < ROLLBACK; k++) e->step(w, 1.0 / 60.0);
+        double t2 = now();
+        ok = ok && (kept ? e->back(w, 0) : e->restore(w, buf, size));
+        double t3 = now();
+        if (!ok || e->hash(w) != h) return 0;
+        ts[r] = t1 - t0;
+        tr[r] = t3 - t2;
+    }
+    *save = median(ts, REPS);
+    *restore = median(tr, REPS);
+    return 1;
 }
 
 /* 0 when the engine cannot save or restore this world. */
@@ -71,6 +98,17 @@ static int measure(const bench_engine *e, const bench_scene *s, int steps)
                restore * 1e6, median(th, REPS) * 1e6, (save + restore) * 1e6, same ? "" : "  HASH DIFFERS");
     } else {
         printf("%-10s rain %6d  step %3d  the snapshot failed\n", e->name, (int)s->size, steps);
+    }
+    for (int kept = 0; kept <= (e->keep != NULL) && ok; kept++) {
+        double save, restore;
+        ok = rollback(e, w, buf, size, kept, &save, &restore);
+        if (ok)
+            printf("%-10s rain %6d  step %3d  rollback of %d steps, %-14s save %7.1f us  restore %7.1f us  "
+                   "save+restore %7.1f us\n",
+                   e->name, (int)s->size, steps, ROLLBACK, kept ? "kept in a slot:" : "snapshot:", save * 1e6,
+                   restore * 1e6, (save + restore) * 1e6);
+        else
+            printf("%-10s rain %6d  step %3d  the rollback failed\n", e->name, (int)s->size, steps);
     }
     free(buf);
     e->destroy(target);

@@ -172,6 +172,12 @@ rg_status rg_body_move(rg_world *world, rg_body body, rg_vec2 target, uint32_t m
 rg_status rg_world_save(const rg_world *world, void *out, size_t capacity, size_t *out_size);
 rg_status rg_world_restore(rg_world *world, const void *data, size_t size);
 rg_status rg_world_hash(const rg_world *world, uint64_t *out_hash);
+enum {
+  RG_MAX_SLOTS = 64
+};
+rg_status rg_world_save_slot(rg_world *world, int32_t slot);
+rg_status rg_world_restore_slot(rg_world *world, int32_t slot);
+rg_status rg_world_drop_slot(rg_world *world, int32_t slot);
 typedef struct rg_debug_draw {
   void (*circle)(rg_body body, rg_vec2 center, rg_real radius, uint32_t rgba, void *user);
   void (*box)(rg_body body, rg_vec2 lower, rg_vec2 upper, uint32_t rgba, void *user);
