@@ -92,7 +92,7 @@ check-ffi: $(LIB_SO)
 
 # The README's C examples (the block after each `<!-- example:c NAME -->` line), extracted,
 # compiled and run, so they stay true.
-README_C := main rollback threads
+README_C := main rollback threads slots
 $(B)/readme/%.c: README.md
 	@mkdir -p $(@D)
 	awk -v name='$*' '$$0 == "<!-- example:c " name " -->" {on=1; next} on && /^```c/ {inb=1; next} inb && /^```/ {exit} inb {print}' $< > $@

@@ -82,24 +82,30 @@ static void restore_events(rg_contact_event *e, const snap_in *in, size_t off, i
 }
 
 /* After the bodies: the contacts, their mixed materials from their bodies, the free list
- * in its order, the awake list and each contact's place in it. */
-static void restore_contacts(rg_world *w, const snap_in *in)
+ * in its order, the awake list and each contact's place in it (found through place[id],
+ * scratch of ccap entries, so that the contacts are written in one pass by id). */
+static void restore_contacts(rg_world *w, const snap_in *in, int32_t *place)
 {
     contact_store *cs = &w->coll.contacts;
     const body_store *b = &w->b;
     const snap_scalars *s = &in->s;
+    memset(place, 0xFF, (size_t)s->ccap * sizeof *place); /* -1: not awake */
+    restore_array(cs->awake, in->p + in->l.awake, s->n_awake, 4, 4);
+    for (int32_t k = 0; k < s->n_awake; k++) place[cs->awake[k]] = k;
     /* the mixed materials once for all when every body has the same */
     int same = in->l.stride[SNAP_F_mu] == 0 && in->l.stride[SNAP_F_rest] == 0 && b->count > 0;
     rg_real mu = same ? rg_sqrt(b->mu[0] * b->mu[0]) : 0, e = same ? b->rest[0] : 0;
     for (int32_t k = 0; k < s->clive; k++) {
         snap_cursor q = { rec(in, in->l.contacts, SNAP_CONTACT, k) };
-        contact *c = &cs->c[cur_i32(&q)];
+        int32_t id = cur_i32(&q);
+        contact *c = &cs->c[id];
         c->sa = cur_i32(&q);
         c->sb = cur_i32(&q);
         c->na = cur_i32(&q);
         c->pa = cur_i32(&q);
         c->nb = cur_i32(&q);
         c->pb = cur_i32(&q);
+        c->awake = place[id];
         c->flags = cur_u32(&q);
         c->nx = cur_real(&q);
         c->ny = cur_real(&q);
@@ -112,7 +118,7 @@ static void restore_contacts(rg_world *w, const snap_in *in)
         c->pn = cur_real(&q);
         c->pt = cur_real(&q);
         c->toi = 0;
-        c->awake = -1;
+        c->decided = 0;
         if (same) {
             c->mu = mu;
             c->e = e;
@@ -122,21 +128,22 @@ static void restore_contacts(rg_world *w, const snap_in *in)
         c->mu = rg_sqrt(b->mu[ia] * b->mu[ib]);
         c->e = rg_max(b->rest[ia], b->rest[ib]);
     }
+    /* a free id holds what contact_destroy leaves that anything reads: no bodies, no links
+     * but the free list's, no flags (its other fields are written whole when it is taken) */
     int32_t nfree = s->ccap - s->clive;
     for (int32_t k = 0; k < nfree; k++) {
         contact *c = &cs->c[rd_i32(in, in->l.free, k)];
-        memset(c, 0, sizeof *c);
         c->sa = c->sb = -1;
-        c->awake = -1;
         c->na = k + 1 < nfree ? rd_i32(in, in->l.free, k + 1) : -1;
+        c->pa = c->nb = c->pb = -1;
+        c->awake = -1;
+        c->flags = 0;
     }
     cs->cap = s->ccap;
     cs->live = s->clive;
     cs->free_head = nfree > 0 ? rd_i32(in, in->l.free, 0) : -1;
     cs->n_awake = s->n_awake;
     cs->n_touching = s->n_touching;
-    restore_array(cs->awake, in->p + in->l.awake, s->n_awake, 4, 4);
-    for (int32_t k = 0; k < s->n_awake; k++) cs->c[cs->awake[k]].awake = k;
 }
 
 static void restore_broadphase(broadphase *bp, const snap_in *in, const restore_scratch *r)
@@ -243,7 +250,7 @@ static void restore_load(rg_world *w, const snap_in *in, const restore_scratch *
         sp->c = cur_real(&c);
     }
     w->springs.count = s->springs;
-    restore_contacts(w, in);
+    restore_contacts(w, in, r->rec_of); /* the checks are done with it */
     event_store *es = &cw->events;
     restore_events(es->ev, in, in->l.ev, s->n_ev);
     restore_events(es->pend, in, in->l.pend, s->n_pend);

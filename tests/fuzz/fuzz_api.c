@@ -53,7 +53,7 @@ enum {
     OP_SET_CONTINUOUS, OP_GET_CONTINUOUS, OP_EVENTS, OP_RAYCAST, OP_QUERY, OP_DRAW,
     OP_STEP_SMALL, OP_BODY_CREATE_SHAPED, OP_SET_ONE_WAY, OP_GET_ONE_WAY, OP_PASS_THROUGH,
     OP_PRE_SOLVE, OP_CONTACTS, OP_RAYCAST_ALL, OP_QUERY_POINT, OP_CAST_SHAPE, OP_MOVE, OP_SAVE,
-    OP_RESTORE, OP_HASH, OP_SET_TASKS, OP_POOL, OP_STOPPED, OP_CROWD, OP_BY_VALUE, OP_COUNT
+    OP_RESTORE, OP_HASH, OP_SET_TASKS, OP_POOL, OP_STOPPED, OP_CROWD, OP_BY_VALUE, OP_KEPT, OP_COUNT
 };
 
 static const char *const op_names[OP_COUNT] = {
@@ -73,8 +73,15 @@ static const char *const op_names[OP_COUNT] = {
     "body_create+shape", "set_one_way", "get_one_way", "pass_through", "set_pre_solve",
     "get_contacts", "raycast_all", "query_point", "cast_shape", "move", "save", "restore",
     "hash", "set_task_system", "thread_pool", "get_stopped", "crowd",
-    "position/velocity by value"
+    "position/velocity by value", "kept_state"
 };
+
+/* Kept states: per world, the model of slots 0, 1 and RG_MAX_SLOTS - 1 when kept, and the
+ * hash the world had then. */
+#define KEPT 3
+static fworld kept_model[NW][KEPT];
+static uint64_t kept_hash[NW][KEPT];
+static int kept_valid[NW][KEPT];
 
 static void create_world(input *in, fworld *fw)
 {
@@ -82,6 +89,7 @@ static void create_world(input *in, fworld *fw)
     rg_world *w = NULL;
     rg_status st;
     world_close(fw);
+    memset(kept_valid[fw - W], 0, sizeof kept_valid[0]);
     if (how < 16) {                       /* the argument checks */
         if (rg_world_create(NULL) != RG_ERR_INVALID_ARGUMENT) FAIL("create(NULL)");
         if (rg_world_create_with_allocator(NULL, NULL, &w) != RG_ERR_INVALID_ARGUMENT || w != NULL)
@@ -249,6 +257,22 @@ static int32_t do_save(input *in, fworld *fw)
     return RG_OK;
 }
 
+/* After a restore: the world is the model's, but for what is its own (the allocator, the
+ * pre-solve hook); bodies live before and not in the model are dead. */
+static void adopt_model(fworld *fw, const fworld *model)
+{
+    for (int k = 0; k < fw->nlive; k++)
+        if (!in_list(model->live, model->nlive, fw->live[k])) remember_dead(fw->live[k], fw);
+    rg_world *w = fw->w;
+    fz_alloc *al = fw->al;
+    int presolve = fw->presolve;
+    *fw = *model;
+    fw->w = w;
+    fw->al = al;
+    fw->presolve = presolve;   /* the hook is the world's own, not saved */
+    fw->serial = ++next_serial;
+}
+
 static int32_t do_restore(input *in, fworld *fw)
 {
     saved *sl = &slots[u8(in) & 1];
@@ -269,16 +293,40 @@ static int32_t do_restore(input *in, fworld *fw)
     free(data);
     if (st == RG_OK && corrupt) FAIL("a corrupted snapshot was accepted");
     if (st != RG_OK) return st;
-    for (int k = 0; k < fw->nlive; k++)
-        if (!in_list(sl->model.live, sl->model.nlive, fw->live[k])) remember_dead(fw->live[k], fw);
-    rg_world *w = fw->w;
-    fz_alloc *al = fw->al;
-    int presolve = fw->presolve;
-    *fw = sl->model;
-    fw->w = w;
-    fw->al = al;
-    fw->presolve = presolve;   /* the hook is the world's own, not saved */
-    fw->serial = ++next_serial;
+    adopt_model(fw, &sl->model);
+    return RG_OK;
+}
+
+/* Keeps (how 0; const), brings back (1) or drops (2; const) a slot, sometimes out of range. */
+static int32_t do_kept(input *in, fworld *fw, int *is_const)
+{
+    static const int32_t slot_of[KEPT] = { 0, 1, RG_MAX_SLOTS - 1 };
+    uint8_t how = u8(in) % 3, b = u8(in);
+    int in_range = b >= 8, k = b % KEPT, wi = (int)(fw - W);
+    int32_t slot = in_range ? slot_of[k] : (b & 1) ? -1 : RG_MAX_SLOTS;
+    *is_const = how != 1;
+    rg_status st = how == 0 ? rg_world_save_slot(fw->w, slot)
+                 : how == 1 ? rg_world_restore_slot(fw->w, slot)
+                            : rg_world_drop_slot(fw->w, slot);
+    if ((fw->w == NULL || !in_range) && st != RG_ERR_INVALID_ARGUMENT)
+        FAIL("kept state %d of slot %ld: status %d, not INVALID_ARGUMENT", how, (long)slot, st);
+    if (st != RG_OK) {
+        if (st != RG_ERR_INVALID_ARGUMENT && st != RG_ERR_OUT_OF_MEMORY) FAIL("kept state %d: status %d", how, st);
+        if (how == 1 && st == RG_ERR_INVALID_ARGUMENT && in_range && kept_valid[wi][k])
+            FAIL("a kept state was refused: %s", rg_world_last_error(fw->w));
+        return st;
+    }
+    if (how == 0) {
+        kept_model[wi][k] = *fw;
+        kept_valid[wi][k] = rg_world_hash(fw->w, &kept_hash[wi][k]) == RG_OK;
+    } else if (how == 2) {
+        kept_valid[wi][k] = 0;
+    } else {
+        uint64_t h = 0;
+        if (!kept_valid[wi][k]) FAIL("an empty slot was restored");
+        if (rg_world_hash(fw->w, &h) != RG_OK || h != kept_hash[wi][k]) FAIL("a kept state came back with another hash");
+        adopt_model(fw, &kept_model[wi][k]);
+    }
     return RG_OK;
 }
 
@@ -589,6 +637,7 @@ static int32_t run_op(input *in, int op, int *is_step, int *is_const)
     case OP_SAVE: *is_const = 1; return w == NULL ? rg_world_save(NULL, NULL, 0, NULL) : do_save(in, fw);
     case OP_RESTORE: return do_restore(in, fw);
     case OP_HASH: *is_const = 1; return rg_world_hash(w, OUT(in, u64v));
+    case OP_KEPT: return do_kept(in, fw, is_const);
     case OP_SET_TASKS: return tasks_set(in, fw);
     case OP_POOL: return tasks_pool(in);
     case OP_CROWD:
@@ -616,6 +665,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     input in = { data, size };
     if (trace < 0) trace = getenv("FUZZ_API_TRACE") != NULL;   /* the ops of a reproducer */
     memset(W, 0, sizeof W);
+    memset(kept_valid, 0, sizeof kept_valid);
     ndead = dead_next = next_serial = crowds = 0;
     op_name = "setup";
     for (op_no = 0; op_no < MAXOPS && in.n > 0; op_no++) {
