@@ -19,7 +19,7 @@ RG_API rg_status rg_world_save_slot(rg_world *world, int32_t slot)
     if (plan.size > world->kept[slot].cap) {
         /* an eighth more than now, so that a state that grows a little does not grow the
          * block at every save */
-        size_t cap = plan.size + plan.size / 8;
+        size_t cap = plan.size + plan.size / 8 >= plan.size ? plan.size + plan.size / 8 : plan.size;
         p = mem_alloc(&world->mem, cap);
         if (p == NULL)
             return error_alloc(world, "rg_world_save_slot", RG_ERR_OUT_OF_MEMORY, "the kept state", "RG_MAX_BODIES");
