@@ -33,6 +33,8 @@
  *   world:save() --> string   world:restore(string)   world:hash() --> integer (64 bits)
  *                      (a restore brings back the saved bodies as the values they had, and
  *                      destroys those made since; a bad string raises and changes nothing)
+ *   world:save_slot(k)  restore_slot(k)  drop_slot(k)   the world's kept states, k in [0, 64)
+ *                      (restore_slot as restore, without the checks a string needs)
  *   world:close() (also <close> and garbage collection)  world:is_open()
  *   body:position() / set_position(x, y)   body:velocity() / set_velocity(vx, vy)
  *   body:apply_force(fx, fy)  body:apply_impulse(ix, iy)  body:acceleration()

@@ -87,11 +87,13 @@ extern const char *const lcheck_type_names[];
  * live one strongly (a body lives in its world whether or not a script keeps its value),
  * `dead` holds destroyed ones weakly, so a body keeps its identity for as long as anyone
  * holds it.  `springs` holds the spring values weakly by handle (lspring.c).  A restore
- * (lsnapshot.c) puts every body value where the restored world says it is. */
+ * (lsnapshot.c) puts every body value where the restored world says it is; `kept` holds,
+ * by slot, the body list of each state the world keeps (world:save_slot). */
 #define LWORLD_UV_LIVE    1
 #define LWORLD_UV_DEAD    2
 #define LWORLD_UV_SPRINGS 3
-#define LWORLD_UVS        3
+#define LWORLD_UV_KEPT    4   /* by slot: the body list kept with the state (lsnapshot.c) */
+#define LWORLD_UVS        4
 
 typedef struct lworld {
     rg_world *w;             /* NULL once closed */

@@ -1,5 +1,6 @@
 /* lsnapshot.c: world:save(), world:restore(s) and world:hash(): the library's snapshots
- * (rg_world_save, rg_world_restore, rg_world_hash) with what the binding knows of the bodies.
+ * (rg_world_save, rg_world_restore, rg_world_hash) with what the binding knows of the bodies;
+ * and the kept states (world:save_slot(k), restore_slot(k), drop_slot(k)).
  *
  * A snapshot string holds the library's snapshot and the binding's list of the live bodies
  * (handle, creation serial, name), which the library does not keep.  Restoring it puts every
@@ -71,17 +72,17 @@ static size_t lsnap_name(lua_State *L, const char **name)
     return len;
 }
 
-static int lsnap_save(lua_State *L)
+/* Pushes the snapshot string of the world at 1 (stack: the world alone): the body list and,
+ * with_world, the library's snapshot after it; without, the list alone (what a kept state
+ * pairs with).  `what` names the method in errors. */
+static void lsnap_push(lua_State *L, rg_world *w, const lworld *lw, int with_world, const char *what)
 {
-    rg_world *w = lworld_checkopen(L, 1);
-    const lworld *lw = (const lworld *)lua_touserdata(L, 1);
     int count = 0, cap = rg_world_body_count(w), i;
     size_t csize = 0, list = 12, total, off, got = 0;
     lsnap_ref *refs;
     unsigned char *p;
     luaL_Buffer buf;
-    lua_settop(L, 1);
-    LCHECK(L, w, rg_world_save(w, NULL, 0, &csize), "save");
+    if (with_world) LCHECK(L, w, rg_world_save(w, NULL, 0, &csize), what);
     lua_getiuservalue(L, 1, LWORLD_UV_LIVE);   /* 2 */
     refs = (lsnap_ref *)lua_newuserdatauv(L, (size_t)(cap > 0 ? cap : 1) * sizeof *refs, 0);
     lua_pushnil(L);
@@ -89,7 +90,7 @@ static int lsnap_save(lua_State *L)
         const lbody *b = (const lbody *)lua_touserdata(L, -1);
         const char *name;
         size_t len = lsnap_name(L, &name);
-        if (count == cap || b == NULL) return luaL_error(L, "save: the world's bodies changed");
+        if (count == cap || b == NULL) luaL_error(L, "%s: the world's bodies changed", what);
         refs[count].serial = b->serial;
         refs[count].key = lua_tointeger(L, -3);
         list += LSNAP_ENTRY + (name != NULL ? len : 0);
@@ -121,8 +122,15 @@ static int lsnap_save(lua_State *L)
     }
     lsnap_put(p + off, lsnap_fnv(p, off), 8);
     off += 8;
-    LCHECK(L, w, rg_world_save(w, p + off, csize, &got), "save");
+    if (with_world) LCHECK(L, w, rg_world_save(w, p + off, csize, &got), what);
     luaL_pushresultsize(&buf, total);
+}
+
+static int lsnap_save(lua_State *L)
+{
+    rg_world *w = lworld_checkopen(L, 1);
+    lua_settop(L, 1);
+    lsnap_push(L, w, (const lworld *)lua_touserdata(L, 1), 1, "save");
     return 1;
 }
 
@@ -330,6 +338,66 @@ static int lsnap_restore(lua_State *L)
     return 0;
 }
 
+/* ---------------------------------------------------------------- kept states */
+
+/* world:save_slot(k), world:restore_slot(k), world:drop_slot(k): the library's kept states
+ * (rg_world_save_slot), k in [0, 64) as there, each paired with the body list of the moment
+ * (as a snapshot string's, without the library's part) in the world's `kept` table.  A state
+ * and its list are written together and nothing outside the binding reaches either, so a
+ * restore from a slot needs no copy of the world to put back. */
+
+static int32_t lsnap_slot(lua_State *L)
+{
+    return lcheck_int32(L, 2, 0, RG_MAX_SLOTS - 1, "slot must be in [0, 64)");
+}
+
+static int lsnap_save_slot(lua_State *L)
+{
+    rg_world *w = lworld_checkopen(L, 1);
+    int32_t slot = lsnap_slot(L);
+    lua_settop(L, 1);
+    lsnap_push(L, w, (const lworld *)lua_touserdata(L, 1), 0, "save_slot");   /* the list */
+    LCHECK(L, w, rg_world_save_slot(w, slot), "save_slot");
+    lua_getiuservalue(L, 1, LWORLD_UV_KEPT);
+    lua_pushvalue(L, -2);
+    lua_rawseti(L, -2, slot);
+    return 0;
+}
+
+static int lsnap_restore_slot(lua_State *L)
+{
+    rg_world *w = lworld_checkopen(L, 1);
+    lworld *lw = (lworld *)lua_touserdata(L, 1);
+    int32_t slot = lsnap_slot(L);
+    const unsigned char *s;
+    size_t len;
+    lsnap_list list;
+    lua_getiuservalue(L, 1, LWORLD_UV_KEPT);
+    if (lua_rawgeti(L, -1, slot) != LUA_TSTRING) return luaL_error(L, "restore_slot: slot %d is empty", (int)slot);
+    lua_replace(L, 2);
+    lua_settop(L, 2);   /* 1 the world, 2 the list */
+    s = (const unsigned char *)lua_tolstring(L, 2, &len);
+    lsnap_read(L, s, len, &list);
+    lsnap_prepare(L, &list);
+    lworld_charge(L, (double)rg_world_body_count(w) + list.count);
+    LCHECK(L, w, rg_world_restore_slot(w, slot), "restore_slot");
+    if (!lsnap_matches(w, &list))   /* they were kept together: never */
+        return luaL_error(L, "restore_slot: slot %d's state does not match its body list", (int)slot);
+    lsnap_commit(L, lw, &list);
+    return 0;
+}
+
+static int lsnap_drop_slot(lua_State *L)
+{
+    rg_world *w = lworld_checkopen(L, 1);
+    int32_t slot = lsnap_slot(L);
+    LCHECK(L, w, rg_world_drop_slot(w, slot), "drop_slot");
+    lua_getiuservalue(L, 1, LWORLD_UV_KEPT);
+    lua_pushnil(L);
+    lua_rawseti(L, -2, slot);
+    return 0;
+}
+
 /* ---------------------------------------------------------------- hash */
 
 static int lsnap_hash(lua_State *L)
@@ -345,5 +413,8 @@ const luaL_Reg lsnap_world_methods[] = {
     { "save", lsnap_save },
     { "restore", lsnap_restore },
     { "hash", lsnap_hash },
+    { "save_slot", lsnap_save_slot },
+    { "restore_slot", lsnap_restore_slot },
+    { "drop_slot", lsnap_drop_slot },
     { NULL, NULL }
 };

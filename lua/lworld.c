@@ -150,6 +150,8 @@ int lworld_new(lua_State *L)
     lua_setiuservalue(L, -2, LWORLD_UV_DEAD);
     lworld_newweak(L);
     lua_setiuservalue(L, -2, LWORLD_UV_SPRINGS);
+    lua_newtable(L);
+    lua_setiuservalue(L, -2, LWORLD_UV_KEPT);
 
     /* The world allocates through the state's allocator, so a host's memory cap counts it. */
     alloc = lua_getallocf(L, &alloc_ud);

@@ -3,7 +3,9 @@
 -- snapshot with the binding's list of the live bodies (handle, serial, name).  A restore
 -- puts every body value where the restored world says it is, and changes nothing unless
 -- all of it succeeds.  world:hash() returns the 64 bits as an int64_t cdata (the bits Lua
--- 5.4 shows as an integer): == compares two hashes, tostring prints them.  rigid_jit.lua
+-- 5.4 shows as an integer): == compares two hashes, tostring prints them.  The kept states
+-- (world:save_slot(k), restore_slot(k), drop_slot(k)) pair the library's with the body
+-- list of the moment, as lsnapshot.c does.  rigid_jit.lua
 -- calls the function this returns with its core (it returns nothing).
 local ffi = require "ffi"
 local bit = require "bit"
@@ -105,28 +107,32 @@ return function(core)
     return ffi.cast(I64, a[B_H]) < ffi.cast(I64, b[B_H])
   end
 
-  function World.save(w)
-    local p = open_world(w)
+  -- The live bodies of w in creation order, as read() gives a list: { next_serial, entries }.
+  local function list_of(w)
     local bodies = {}
     for _, b in pairs(w[W_LIVE]) do bodies[#bodies + 1] = b end
     table.sort(bodies, by_creation)
-    local list = { le(w[W_SERIAL], 8), le(#bodies, 4) }
-    for i, b in ipairs(bodies) do
-      local name = b[B_NAME]
-      list[i + 2] = le(b[B_H], 8) .. le(b[B_SERIAL], 8) .. le(name and #name or NONAME, 4) ..
-                    (name or "")
+    local entries = {}
+    for i, b in ipairs(bodies) do entries[i] = { b[B_H], b[B_SERIAL], b[B_NAME] } end
+    return { next_serial = w[W_SERIAL], entries = entries }
+  end
+
+  function World.save(w)
+    local p = open_world(w)
+    local l = list_of(w)
+    local list = { le(l.next_serial, 8), le(#l.entries, 4) }
+    for i, e in ipairs(l.entries) do
+      local name = e[3]
+      list[i + 2] = le(e[1], 8) .. le(e[2], 8) .. le(name and #name or NONAME, 4) .. (name or "")
     end
     list = concat(list)
     local head = MAGIC .. le(#list, 4) .. list
     return head .. le(fnv(head), 8) .. library_snapshot(p, "save")
   end
 
-  function World.restore(w, ...)
-    local p = open_world(w)
-    local s = ...
-    if type(s) ~= "string" then typeerror(2, "string", s, select("#", ...) >= 1) end
-    local list, at = read(s)
-    -- Everything the swap needs, made before anything changes.
+  -- Everything the swap to list needs, made before anything changes: the new live and dead
+  -- tables and the list's body values in its order.
+  local function prepare(w, list)
     local live, dead = w[W_LIVE], w[W_DEAD]
     local new_live, new_dead = {}, setmetatable({}, getmetatable(dead))
     local values = {}
@@ -143,22 +149,22 @@ return function(core)
         if not new_live[key] then new_dead[key] = b end
       end
     end
-    -- The library checks its snapshot; whether the list names the bodies it holds shows
-    -- only once it is loaded, so the world's state is kept to put back.
-    local backup = library_snapshot(p, "restore")
-    local st = C.rg_world_restore(p, ffi.cast("const uint8_t *", s) + at, #s - at)
-    if st ~= 0 then status_error(p, st, "restore") end
-    local n, matches = C.rg_world_body_count(p), true
-    if n ~= #list.entries then matches = false end
+    return new_live, new_dead, values
+  end
+
+  -- Whether the world of pointer p holds exactly the list's bodies, and how many it holds.
+  local function matches(p, list)
+    local n, same = C.rg_world_body_count(p), true
+    if n ~= #list.entries then same = false end
     for _, e in ipairs(list.entries) do
-      if C.rg_body_is_valid(p, e[1]) == 0 then matches = false end
+      if C.rg_body_is_valid(p, e[1]) == 0 then same = false end
     end
-    if not matches then
-      st = C.rg_world_restore(p, ffi.cast("const uint8_t *", backup), #backup)
-      if st ~= 0 then status_error(p, st, "restore (putting the world back)") end
-      raise(("restore: the snapshot's body list does not match its world " ..
-             "(%d bodies listed, %d in the world)"):format(#list.entries, n))
-    end
+    return same, n
+  end
+
+  -- After the library restored: the world's tables become the new ones, and the list's
+  -- bodies take their saved serials and names.
+  local function commit(w, p, list, new_live, new_dead, values)
     w[W_LIVE], w[W_DEAD], w[W_SERIAL] = new_live, new_dead, list.next_serial
     for i, e in ipairs(list.entries) do
       local b = values[i]
@@ -166,6 +172,71 @@ return function(core)
       rawset(b, B_NAME, e[3])
       if C.rg_body_get_type(p, e[1], i32) == 0 then rawset(b, B_TYPE, i32[0]) end
     end
+  end
+
+  function World.restore(w, ...)
+    local p = open_world(w)
+    local s = ...
+    if type(s) ~= "string" then typeerror(2, "string", s, select("#", ...) >= 1) end
+    local list, at = read(s)
+    local new_live, new_dead, values = prepare(w, list)
+    -- The library checks its snapshot; whether the list names the bodies it holds shows
+    -- only once it is loaded, so the world's state is kept to put back.
+    local backup = library_snapshot(p, "restore")
+    local st = C.rg_world_restore(p, ffi.cast("const uint8_t *", s) + at, #s - at)
+    if st ~= 0 then status_error(p, st, "restore") end
+    local same, n = matches(p, list)
+    if not same then
+      st = C.rg_world_restore(p, ffi.cast("const uint8_t *", backup), #backup)
+      if st ~= 0 then status_error(p, st, "restore (putting the world back)") end
+      raise(("restore: the snapshot's body list does not match its world " ..
+             "(%d bodies listed, %d in the world)"):format(#list.entries, n))
+    end
+    commit(w, p, list, new_live, new_dead, values)
+  end
+
+  -- Kept states, as lua/lsnapshot.c has them: the library's (rg_world_save_slot), slot k in
+  -- [0, 64), each with the body list of the moment, kept here by world and slot.
+  local kept = setmetatable({}, { __mode = "k" })
+
+  local function slot_of(k, what, given)
+    if type(k) ~= "number" then typeerror(2, "number", k, given) end
+    if k ~= math.floor(k) or k < 0 or k >= C.RG_MAX_SLOTS then
+      raise(("bad argument #2 to '%s' (slot must be in [0, 64))"):format(what))
+    end
+    return k
+  end
+
+  function World.save_slot(w, ...)
+    local p = open_world(w)
+    local k = slot_of((...), "save_slot", select("#", ...) >= 1)
+    local list = list_of(w)
+    local st = C.rg_world_save_slot(p, k)
+    if st ~= 0 then status_error(p, st, "save_slot") end
+    kept[w] = kept[w] or {}
+    kept[w][k] = list
+  end
+
+  function World.restore_slot(w, ...)
+    local p = open_world(w)
+    local k = slot_of((...), "restore_slot", select("#", ...) >= 1)
+    local list = kept[w] and kept[w][k]
+    if list == nil then raise(("restore_slot: slot %d is empty"):format(k)) end
+    local new_live, new_dead, values = prepare(w, list)
+    local st = C.rg_world_restore_slot(p, k)
+    if st ~= 0 then status_error(p, st, "restore_slot") end
+    if not matches(p, list) then   -- they were kept together: never
+      raise(("restore_slot: slot %d's state does not match its body list"):format(k))
+    end
+    commit(w, p, list, new_live, new_dead, values)
+  end
+
+  function World.drop_slot(w, ...)
+    local p = open_world(w)
+    local k = slot_of((...), "drop_slot", select("#", ...) >= 1)
+    local st = C.rg_world_drop_slot(p, k)
+    if st ~= 0 then status_error(p, st, "drop_slot") end
+    if kept[w] then kept[w][k] = nil end
   end
 
   function World.hash(w)

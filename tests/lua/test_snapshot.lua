@@ -1,6 +1,7 @@
 -- test_snapshot.lua: world:save(), world:restore(s) and world:hash(): round trips that
 -- resimulate to the same bytes, the identity of body values across a restore, and bad
--- strings that raise and change nothing.  Runs where tests/lua/test_rigid.lua runs: in the
+-- strings that raise and change nothing; and the kept states (world:save_slot(k),
+-- restore_slot(k), drop_slot(k)).  Runs where tests/lua/test_rigid.lua runs: in the
 -- sandboxed host, in stock lua5.4 and in LuaJIT through lua/rigid_jit.lua, one script for
 -- all.  (Its few helpers repeat test_rigid.lua's: the sandbox loads no second file.)
 -- Prints "N passed, N failed" and fails when anything failed.
@@ -424,6 +425,83 @@ test("save, restore and hash of a closed world raise", function()
   raises("attempt to use a closed world", w.restore, w, s)
   raises("attempt to use a closed world", w.hash, w)
   raises("rigid.world expected, got nil", w.hash, nil)
+end)
+
+-- ---------------------------------------------------------------- kept states
+
+test("a kept state brings the world back as its snapshot would, every integrator", function()
+  for _, integrator in ipairs{ "explicit", "semi_implicit", "verlet", "rk4" } do
+    local w = rigid.world()
+    scene(w, integrator)
+    steps(w, 30)
+    w:save_slot(7)
+    local s, at_keep = w:save(), state(w)
+    local first = {}
+    for i = 1, 60 do w:step(DT); first[i] = state(w) end
+    w:body{ circle = 1, y = 5, name = "late" }
+    w:restore_slot(7)
+    eq(w:save(), s, integrator .. ": the snapshot string of the moment kept")
+    eq(state(w), at_keep, integrator .. ": the state, events included")
+    for i = 1, 60 do
+      w:step(DT)
+      if state(w) ~= first[i] then error(integrator .. ": step " .. (30 + i) .. " differs after the restore") end
+    end
+  end
+end)
+
+test("a kept state keeps body values as a restore does", function()
+  local w = rigid.world()
+  local a = w:body{ circle = 1, x = 1, name = "a" }
+  local gone = w:body{ circle = 1, x = 2, name = "gone" }
+  w:save_slot(0)
+  local late = w:body{ circle = 1, x = 5, name = "late" }
+  check(gone:destroy(), "destroyed")
+  w:restore_slot(0)
+  local list = w:bodies()
+  eq(#list, 2, "two bodies")
+  check(rawequal(list[1], a) and rawequal(list[2], gone), "the same values, in creation order")
+  check(gone:is_valid() and not late:is_valid(), "the destroyed one lives, the late one is gone")
+  eq(gone:name(), "gone", "its name")
+  raises("attempt to use a destroyed body", late.position, late)
+end)
+
+test("slots are independent; a dropped one is empty", function()
+  local w = rigid.world()
+  scene(w, "semi_implicit")
+  local h = {}
+  for _, k in ipairs{ 0, 1, 63 } do
+    steps(w, 9)
+    w:save_slot(k)
+    h[k] = w:hash()
+  end
+  check(h[0] ~= h[1] and h[1] ~= h[63], "three moments")
+  for _, k in ipairs{ 1, 63, 0, 1 } do
+    w:restore_slot(k)
+    eq(w:hash(), h[k], "slot " .. k)
+    steps(w, 4)
+  end
+  w:drop_slot(1)
+  raises("restore_slot: slot 1 is empty", w.restore_slot, w, 1)
+  w:drop_slot(1)   -- an empty slot: no error
+  w:restore_slot(63)
+  eq(w:hash(), h[63], "the others stay")
+end)
+
+test("bad slots raise and change nothing", function()
+  local w = rigid.world()
+  scene(w, "semi_implicit")
+  steps(w, 5)
+  local before = state(w)
+  raises("slot must be in [0, 64)", w.save_slot, w, -1)
+  raises("slot must be in [0, 64)", w.save_slot, w, 64)
+  raises("slot must be in [0, 64)", w.restore_slot, w, 64)
+  raises("slot must be in [0, 64)", w.drop_slot, w, -1)
+  raises("number expected", w.save_slot, w, "one")
+  raises("restore_slot: slot 5 is empty", w.restore_slot, w, 5)
+  eq(state(w), before, "the world")
+  w:close()
+  raises("attempt to use a closed world", w.save_slot, w, 0)
+  raises("attempt to use a closed world", w.restore_slot, w, 0)
 end)
 
 print(passed .. " passed, " .. failed .. " failed")
