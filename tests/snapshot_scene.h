@@ -89,4 +89,23 @@ static inline void *save(rg_world *w, size_t *size)
     return buf;
 }
 
+/* The scene in a world whose memory ta counts, 30 steps on: where the rollback loops start. */
+static inline rg_world *counted_scene(scene *s, test_alloc *ta)
+{
+    rg_world *w;
+    memset(ta, 0, sizeof *ta);
+    assert_ok(rg_world_create_with_allocator(test_alloc_fn, ta, &w));
+    build(s, w, RG_INTEGRATOR_SEMI_IMPLICIT_EULER);
+    step_n(w, 30, 1.0 / 60);
+    return w;
+}
+
+/* Rollback k of a loop holds the memory it started with. */
+static inline void assert_memory_held(const test_alloc *ta, long long bytes, long blocks, int k)
+{
+    if (ta->live_bytes != bytes || ta->live_blocks != blocks)
+        fail_msg("rollback %d: %lld bytes in %ld blocks, was %lld in %ld", k, ta->live_bytes, ta->live_blocks, bytes,
+                 blocks);
+}
+
 #endif

@@ -97,12 +97,8 @@ static void test_ten_thousand_slot_rollbacks_hold_memory(void **state)
 {
     (void)state;
     test_alloc ta;
-    memset(&ta, 0, sizeof ta);
-    rg_world *w;
-    assert_ok(rg_world_create_with_allocator(test_alloc_fn, &ta, &w));
     scene s;
-    build(&s, w, RG_INTEGRATOR_SEMI_IMPLICIT_EULER);
-    step_n(w, 30, 1.0 / 60);
+    rg_world *w = counted_scene(&s, &ta);
     assert_ok(rg_world_save_slot(w, 0));
     uint64_t h0 = hash_of(w);
     size_t first = 0, largest = 0; /* the first keep's block: 9/8 of first */
@@ -119,9 +115,7 @@ static void test_ten_thousand_slot_rollbacks_hold_memory(void **state)
             assert_ok(rg_world_save_slot(w, 0));
         }
         step_n(w, 1, 1.0 / 60);
-        if (ta.live_bytes != bytes || ta.live_blocks != blocks)
-            fail_msg("rollback %d: %lld bytes in %ld blocks, was %lld in %ld", k, ta.live_bytes, ta.live_blocks,
-                     bytes, blocks);
+        assert_memory_held(&ta, bytes, blocks, k);
     }
     int growths = 0;
     for (int k = 0; k < 2000; k++) {

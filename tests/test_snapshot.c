@@ -245,12 +245,8 @@ static void test_ten_thousand_rollbacks_hold_memory_and_handles(void **state)
 {
     (void)state;
     test_alloc ta;
-    memset(&ta, 0, sizeof ta);
-    rg_world *w;
-    assert_ok(rg_world_create_with_allocator(test_alloc_fn, &ta, &w));
     scene s;
-    build(&s, w, RG_INTEGRATOR_SEMI_IMPLICIT_EULER);
-    step_n(w, 30, 1.0 / 60);
+    rg_world *w = counted_scene(&s, &ta);
     size_t size;
     void *snap = save(w, &size);
     uint64_t h0 = hash_of(w);
@@ -267,9 +263,7 @@ static void test_ten_thousand_rollbacks_hold_memory_and_handles(void **state)
         assert_ok(rg_world_restore(w, snap, size));
         if (k % 1000 == 0) assert_true(hash_of(w) == h0);
         step_n(w, 1, 1.0 / 60);
-        if (ta.live_bytes != bytes || ta.live_blocks != blocks)
-            fail_msg("rollback %d: %lld bytes in %ld blocks, was %lld in %ld", k, ta.live_bytes, ta.live_blocks,
-                     bytes, blocks);
+        assert_memory_held(&ta, bytes, blocks, k);
     }
     /* a new body after a restore never takes a handle that was live in the snapshot's
      * future: handles of the saving world's bodies still name them */
