@@ -3,13 +3,11 @@
  * the rollback loop's memory holds, and a failure changes nothing. */
 #include "snapshot_scene.h"
 
-/* The snapshot of the world now: its bytes are the whole state (snapshot.h). */
-static void *snapshot_of(rg_world *w, size_t *size) { return save(w, size); }
-
+/* The world's snapshot now is the one given: its bytes are the whole state (snapshot.h). */
 static void assert_same_state(rg_world *w, const void *snap, size_t size)
 {
     size_t n;
-    void *now = snapshot_of(w, &n);
+    void *now = save(w, &n);
     assert_true(n == size);
     assert_memory_equal(now, snap, size);
     free(now);
@@ -32,7 +30,7 @@ static void test_a_kept_state_restores_as_its_snapshot_would(void **state)
         step_n(w, K, 1.0 / 60);
         assert_ok(rg_world_save_slot(w, 5));
         size_t size;
-        void *snap = snapshot_of(w, &size);
+        void *snap = save(w, &size);
         run(w, N, first);
         assert_ok(rg_body_destroy(w, s.doomed));
         rg_body late;
