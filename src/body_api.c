@@ -181,6 +181,7 @@ RG_API rg_status rg_body_apply_force(rg_world *world, rg_body body, rg_vec2 forc
     }
     b->fx[i] = fx;
     b->fy[i] = fy;
+    world->forces_applied = 1;
     island_touch(world, b->slot[i]);
     return RG_OK;
 }

@@ -84,6 +84,7 @@ typedef struct euler_env {
     rg_real h, gx, gy, wx, wy;
     const rg_real *sax, *say;
     int springs, dissipative, explicit_euler;
+    int forces; /* some body may have an applied force (rg_world.forces_applied) */
 } euler_env;
 
 /* One body of the pass, exactly as specified; the blocked loop below runs it wherever its
@@ -196,12 +197,12 @@ static EULER_INLINE int32_t euler_commit(rg_real *restrict x, rg_real *restrict 
  * spring term is -0, the exact identity of addition.  Returns 1 when the block must run
  * body by body. */
 static EULER_INLINE int euler_block(const body_store *b, int32_t i0, const euler_env *e,
+                              const rg_real *restrict fx, const rg_real *restrict fy,
                               const rg_real *restrict spx, const rg_real *restrict spy,
                               rg_real *restrict nvx, rg_real *restrict nvy,
                               rg_real *restrict oax, rg_real *restrict oay)
 {
     const rg_real *restrict im = b->inv_mass + i0, *restrict gs = b->gscale + i0;
-    const rg_real *restrict fx = b->fx + i0, *restrict fy = b->fy + i0;
     const rg_real *restrict vx = b->vx + i0, *restrict vy = b->vy + i0;
     const uint32_t *restrict fl = b->flags + i0;
     const rg_real *restrict lin = b->drag_lin + i0, *restrict quad = b->drag_quad + i0;
@@ -288,8 +289,11 @@ EULER_DISPATCH static void euler_range(int32_t begin, int32_t end, int32_t worke
     euler_task *t = context;
     body_store *b = t->b;
     const euler_env *e = &t->e;
-    rg_real no_spring[EULER_BLOCK];
-    for (int j = 0; j < EULER_BLOCK; j++) no_spring[j] = -RG_R(0.0);
+    rg_real no_spring[EULER_BLOCK], no_force[EULER_BLOCK];
+    for (int j = 0; j < EULER_BLOCK; j++) {
+        no_spring[j] = -RG_R(0.0);
+        no_force[j] = 0; /* +0: what a step's clearing leaves in fx and fy */
+    }
     int32_t out = 0;
     for (int32_t k = begin; k < end; k++) {
         int32_t i0 = k * EULER_BLOCK;
@@ -301,7 +305,10 @@ EULER_DISPATCH static void euler_range(int32_t begin, int32_t end, int32_t worke
         const rg_real *spx = e->springs ? e->sax + i0 : no_spring;
         const rg_real *spy = e->springs ? e->say + i0 : no_spring;
         /* A slow block's accelerations are written again by euler_body. */
-        if (euler_block(b, i0, e, spx, spy, nvx, nvy, b->ax + i0, b->ay + i0)) {
+        /* no applied force: every fx and fy is +0, so the pass reads the same bits from a
+         * block of its own and not from memory */
+        const rg_real *fx = e->forces ? b->fx + i0 : no_force, *fy = e->forces ? b->fy + i0 : no_force;
+        if (euler_block(b, i0, e, fx, fy, spx, spy, nvx, nvy, b->ax + i0, b->ay + i0)) {
             for (int j = 0; j < EULER_BLOCK; j++) out |= euler_body(b, e, i0 + j);
             continue;
         }
@@ -328,6 +335,7 @@ static int32_t euler_step(rg_world *w, rg_real h, int explicit_euler)
     e->springs = w->springs.count > 0;
     e->dissipative = w->dissipative_count > 0;
     e->explicit_euler = explicit_euler;
+    e->forces = w->forces_applied;
     /* the springs at the start state come from the forces stage (force_begin) */
     e->sax = w->scratch.sax;
     e->say = w->scratch.say;

@@ -235,6 +235,7 @@ static void restore_load(rg_world *w, const snap_in *in, const restore_scratch *
     w->dissipative_count = dissipative;
     w->limit_count = limited;
     w->stopped_any = 0; /* the flags above hold no BODY_F_STOPPED: a restore is no step */
+    w->forces_applied = 1; /* the snapshot's fx, fy may hold forces applied before its step */
     restore_pool(&w->springs.pool, in, in->l.sgen, in->l.sindex, s->sslots, s->stag, s->smax_gen,
                  s->smax_slots, s->sfree, s->slive);
     for (int32_t k = 0; k < s->springs; k++) {

@@ -70,12 +70,13 @@ static void step_run(rg_world *w, rg_real dt)
         }
         events_end_step(&w->coll.events);
     }
-    /* Applied forces last one step.  (An empty world has no arrays: memset(NULL, 0, 0) is
-     * undefined.) */
-    if (b->n_moving > 0) {
+    /* Applied forces last one step; where none was applied they are +0 already.  (An empty
+     * world has no arrays: memset(NULL, 0, 0) is undefined.) */
+    if (w->forces_applied && b->n_moving > 0) {
         memset(b->fx, 0, (size_t)b->n_moving * sizeof *b->fx);
         memset(b->fy, 0, (size_t)b->n_moving * sizeof *b->fy);
     }
+    w->forces_applied = 0;
     w->step_count++;
 }
 
