@@ -18,8 +18,9 @@ RG_API rg_status rg_world_save_slot(rg_world *world, int32_t slot)
     uint8_t *p = world->kept[slot].p;
     if (plan.size > world->kept[slot].cap) {
         /* an eighth more than now, so that a state that grows a little does not grow the
-         * block at every save */
-        size_t cap = plan.size + plan.size / 8 >= plan.size ? plan.size + plan.size / 8 : plan.size;
+         * block at every save (the size itself where that would wrap) */
+        size_t cap = plan.size + plan.size / 8;
+        if (cap < plan.size) cap = plan.size;
         p = mem_alloc(&world->mem, cap);
         if (p == NULL)
             return error_alloc(world, "rg_world_save_slot", RG_ERR_OUT_OF_MEMORY, "the kept state", "RG_MAX_BODIES");
