@@ -112,17 +112,26 @@ int32_t body_move_to_partition(rg_world *w, int32_t i, int part)
     return i;
 }
 
+uint32_t body_flags_of(const body_store *b, int32_t i)
+{
+    uint32_t f = 0;
+    if (b->type[i] == RG_BODY_DYNAMIC) {
+        if (b->drag_lin[i] > 0 || b->drag_quad[i] > 0 || b->fric[i] > 0) f |= BODY_F_DISSIPATIVE;
+        if (b->drag_quad[i] > 0 || b->fric[i] > 0) f |= BODY_F_MAGNITUDE;
+        if (b->min_speed[i] > 0 || b->max_speed[i] > 0) f |= BODY_F_LIMITED;
+    }
+    if (b->type[i] != RG_BODY_STATIC && b->gscale[i] != 1) f |= BODY_F_GSCALE;
+    return f;
+}
+
 void body_update_flags(rg_world *w, int32_t i)
 {
     body_store *b = &w->b;
     uint32_t old = b->flags[i];
-    uint32_t f = old & ~(BODY_F_DISSIPATIVE | BODY_F_LIMITED);
-    if (b->type[i] == RG_BODY_DYNAMIC) {
-        if (b->drag_lin[i] > 0 || b->drag_quad[i] > 0 || b->fric[i] > 0) f |= BODY_F_DISSIPATIVE;
-        if (b->min_speed[i] > 0 || b->max_speed[i] > 0) f |= BODY_F_LIMITED;
-    }
+    uint32_t f = (old & ~BODY_F_COUNTED) | body_flags_of(b, i);
     w->dissipative_count += (int32_t)((f & BODY_F_DISSIPATIVE) != 0) - (int32_t)((old & BODY_F_DISSIPATIVE) != 0);
     w->limit_count += (int32_t)((f & BODY_F_LIMITED) != 0) - (int32_t)((old & BODY_F_LIMITED) != 0);
+    w->gscale_count += (int32_t)((f & BODY_F_GSCALE) != 0) - (int32_t)((old & BODY_F_GSCALE) != 0);
     b->flags[i] = f;
 }
 
@@ -146,6 +155,7 @@ rg_body body_add(rg_world *w, int32_t type, rg_real mass, rg_vec2 position)
         b->inv_mass[i] = 1 / mass;
         b->gscale[i] = 1;
     }
+    body_update_flags(w, i);
     /* The new body sits in the static partition (the last place); move it where it goes. */
     if (type != RG_BODY_STATIC) body_move_to_partition(w, i, BODY_PART_ACTIVE);
     return h;

@@ -48,7 +48,9 @@ rg_status body_scratch_reserve(struct rg_world *w);
 void body_store_release(struct rg_world *w);
 /* Moves the body at dense index i into partition part; returns its new dense index. */
 int32_t body_move_to_partition(struct rg_world *w, int32_t i, int part);
-/* Recomputes BODY_F_* of dense index i and the world's counts. */
+/* The BODY_F_COUNTED flags dense index i's settings give it. */
+uint32_t body_flags_of(const body_store *b, int32_t i);
+/* Recomputes BODY_F_COUNTED of dense index i and the world's counts. */
 void body_update_flags(struct rg_world *w, int32_t i);
 
 #endif

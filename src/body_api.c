@@ -210,7 +210,9 @@ RG_API rg_status rg_body_set_gravity_scale(rg_world *world, rg_body body, rg_rea
 {
     BODY_SET(world, body, i);
     ARG_ABS(world, scale, RG_MAX_GRAVITY_SCALE);
-    if (world->b.type[i] == RG_BODY_DYNAMIC) world->b.gscale[i] = scale;
+    if (world->b.type[i] != RG_BODY_DYNAMIC) return RG_OK;
+    world->b.gscale[i] = scale;
+    body_update_flags(world, i);
     return RG_OK;
 }
 

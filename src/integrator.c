@@ -85,6 +85,8 @@ typedef struct euler_env {
     const rg_real *sax, *say;
     int springs, dissipative, explicit_euler;
     int forces; /* some body may have an applied force (rg_world.forces_applied) */
+    int wind;    /* the wind is not zero */
+    int gscaled; /* some body has BODY_F_GSCALE */
 } euler_env;
 
 /* One body of the pass, exactly as specified; the blocked loop below runs it wherever its
@@ -137,21 +139,6 @@ static inline int32_t euler_body(body_store *b, const euler_env *e, int32_t i)
  * restrict parameters spare it alias checks. */
 #define EULER_BLOCK 64
 
-#ifdef RG_DOUBLE
-typedef uint64_t euler_bits;
-#define EULER_MAGNITUDE UINT64_C(0x7FFFFFFFFFFFFFFF)
-#else
-typedef uint32_t euler_bits;
-#define EULER_MAGNITUDE UINT32_C(0x7FFFFFFF)
-#endif
-
-static EULER_INLINE euler_bits euler_bits_of(rg_real v)
-{
-    euler_bits u;
-    memcpy(&u, &v, sizeof u);
-    return u;
-}
-
 /* The commit of a block whose bodies all took the fast path: positions from the old
  * (explicit) or new (semi-implicit) velocities, then the new velocities.  Returns 1 when a
  * body's new state is out of range (bounds.h), checked here while it is in registers. */
@@ -186,92 +173,156 @@ static EULER_INLINE int32_t euler_commit(rg_real *restrict x, rg_real *restrict 
 /* The pass runs in blocks: a branch-free first loop computes every body's new velocity into
  * block-local arrays (and its acceleration, an output only, in place), and a second loop
  * commits the block unless one of its bodies needs what the fast path leaves out (quadratic
- * drag or surface friction, a body at rest or with a huge speed, a dissipation overshoot or
- * a stiff step, kh >= 1):
- * then the block runs body by body.  The fast path does the same IEEE operations in the
- * same order, so results are bit-identical either way: with quad and fric both +-0 and
- * 0 < |v|^2 < HUGE, quad*|v| == quad and fric/|v| == fric exactly, so k = (lin + quad +
- * fric) * im needs no square root, and where every body of the block is dissipative with
- * quad and fric +-0, each has lin > 0 and k = lin * im exactly; the rest is
- * dissipation_explicit's arithmetic and dissipation_overshoots' test.  Without springs the
- * spring term is -0, the exact identity of addition.  Returns 1 when the block must run
- * body by body. */
-static EULER_INLINE int euler_block(const body_store *b, int32_t i0, const euler_env *e,
-                              const rg_real *restrict fx, const rg_real *restrict fy,
-                              const rg_real *restrict spx, const rg_real *restrict spy,
-                              rg_real *restrict nvx, rg_real *restrict nvy,
-                              rg_real *restrict oax, rg_real *restrict oay)
+ * drag or surface friction, BODY_F_MAGNITUDE; a body at rest or with a huge speed, a
+ * dissipation overshoot or a stiff step, kh >= 1): then the block runs body by body.  The
+ * fast path does the same IEEE operations in the same order, so results are bit-identical
+ * either way: with quad and fric both +-0 and 0 < |v|^2 < HUGE, quad*|v| == quad and
+ * fric/|v| == fric exactly, so k = (lin + quad + fric) * im needs no square root, and where
+ * a body is dissipative without BODY_F_MAGNITUDE it has lin > 0 and k = lin * im exactly;
+ * the rest is dissipation_explicit's arithmetic and dissipation_overshoots' test.  Without
+ * springs the spring term is -0, the exact identity of addition.
+ *
+ * What every body of a block would read as the same value comes from the block-sized
+ * constants of `c` instead of memory: the gravity scale 1 where no body of the block has
+ * BODY_F_GSCALE (g * 1 == g), and, with no wind and no applied force, an inverse mass of 0
+ * in force_sum: there (wind + f) is +0, and +0 times any inverse mass (finite, >= 0) is +0.
+ * Returns 1 when the block must run body by body. */
+typedef struct euler_const {
+    rg_real no_spring[EULER_BLOCK]; /* -0 */
+    rg_real zero[EULER_BLOCK];      /* +0: what a step's clearing leaves in fx and fy */
+    rg_real one[EULER_BLOCK];
+} euler_const;
+
+/* A block's inputs, and in `uniform` the one acceleration every body of it feels when no
+ * body has BODY_F_GSCALE and there are no wind, applied forces or springs: force_sum with
+ * the gravity scale 1, (wind + f) = +0 times an inverse mass (+0) and the spring term -0,
+ * the same operations on the same values as each body's. */
+typedef struct euler_in {
+    const rg_real *gs, *imf, *fx, *fy, *spx, *spy;
+    rg_real ax0, ay0;
+} euler_in;
+
+/* The accelerations of body j of the block other than dissipation; with `uniform` a
+ * constant at the call, so the loops below are built once for each case. */
+#define EULER_ACC(in, uniform, j, a0, g, w, f, sp) \
+    ((uniform) ? (in)->a0 : force_sum(e->g, (in)->gs[j], e->w, (in)->f[j], (in)->imf[j]) + (in)->sp[j])
+
+/* No dissipation in the block. */
+static EULER_INLINE void euler_free(const body_store *b, int32_t i0, const euler_env *e,
+                                    const euler_in *in, int uniform, rg_real *restrict nvx,
+                                    rg_real *restrict nvy, rg_real *restrict oax, rg_real *restrict oay)
 {
-    const rg_real *restrict im = b->inv_mass + i0, *restrict gs = b->gscale + i0;
+    const rg_real *restrict vx = b->vx + i0, *restrict vy = b->vy + i0;
+    const rg_real h = e->h;
+    for (int j = 0; j < EULER_BLOCK; j++) {
+        rg_real ax = EULER_ACC(in, uniform, j, ax0, gx, wx, fx, spx);
+        rg_real ay = EULER_ACC(in, uniform, j, ay0, gy, wy, fy, spy);
+        oax[j] = ax;
+        oay[j] = ay;
+        nvx[j] = vx[j] + ax * h;
+        nvy[j] = vy[j] + ay * h;
+    }
+}
+
+/* Linear drag on every body of the block; returns nonzero when a body needs the slow path. */
+static EULER_INLINE int32_t euler_linear(const body_store *b, int32_t i0, const euler_env *e,
+                                         const euler_in *in, int uniform, rg_real *restrict nvx,
+                                         rg_real *restrict nvy, rg_real *restrict oax, rg_real *restrict oay)
+{
+    const rg_real *restrict im = b->inv_mass + i0, *restrict lin = b->drag_lin + i0;
+    const rg_real *restrict vx = b->vx + i0, *restrict vy = b->vy + i0;
+    const rg_real h = e->h;
+    int32_t slow = 0;
+    for (int j = 0; j < EULER_BLOCK; j++) {
+        rg_real ax = EULER_ACC(in, uniform, j, ax0, gx, wx, fx, spx);
+        rg_real ay = EULER_ACC(in, uniform, j, ay0, gy, wy, fy, spy);
+        rg_real v0x = vx[j], v0y = vy[j];
+        rg_real vfx = v0x + ax * h, vfy = v0y + ay * h;
+        rg_real s2 = v0x * v0x + v0y * v0y;
+        rg_real k = lin[j] * im[j];
+        rg_real dax = -k * v0x, day = -k * v0y;
+        rg_real dvx = vfx + dax * h, dvy = vfy + day * h;
+        slow |= !((s2 > 0) & (s2 < RG_HUGE) & (k * h < 1) & (dvx * vfx + dvy * vfy > 0));
+        oax[j] = ax + dax;
+        oay[j] = ay + day;
+        nvx[j] = dvx;
+        nvy[j] = dvy;
+    }
+    return slow;
+}
+
+/* A block of dissipative and other bodies; returns nonzero when a body needs the slow path. */
+static EULER_INLINE int32_t euler_mixed(const body_store *b, int32_t i0, const euler_env *e,
+                                        const euler_in *in, rg_real *restrict nvx,
+                                        rg_real *restrict nvy, rg_real *restrict oax, rg_real *restrict oay)
+{
+    const rg_real *restrict im = b->inv_mass + i0, *restrict lin = b->drag_lin + i0;
     const rg_real *restrict vx = b->vx + i0, *restrict vy = b->vy + i0;
     const uint32_t *restrict fl = b->flags + i0;
-    const rg_real *restrict lin = b->drag_lin + i0, *restrict quad = b->drag_quad + i0;
-    const rg_real *restrict fric = b->fric + i0;
-    const rg_real h = e->h, gx = e->gx, gy = e->gy, wx = e->wx, wy = e->wy;
-    uint32_t all = BODY_F_DISSIPATIVE, any = 0;
-    euler_bits qf = 0;
-    if (e->dissipative) {
+    const rg_real h = e->h;
+    int32_t slow = 0;
+    for (int j = 0; j < EULER_BLOCK; j++) {
+        rg_real ax = EULER_ACC(in, 0, j, ax0, gx, wx, fx, spx);
+        rg_real ay = EULER_ACC(in, 0, j, ay0, gy, wy, fy, spy);
+        rg_real v0x = vx[j], v0y = vy[j];
+        rg_real vfx = v0x + ax * h, vfy = v0y + ay * h;
+        rg_real s2 = v0x * v0x + v0y * v0y;
+        rg_real k = lin[j] * im[j]; /* exact where it is used: d and no magnitude */
+        rg_real dax = -k * v0x, day = -k * v0y;
+        rg_real dvx = vfx + dax * h, dvy = vfy + day * h;
+        rg_real tax = ax + dax, tay = ay + day;
+        /* The flag bits moved to the sign bit: a 32-bit compare the vectoriser takes. */
+        int32_t d = (int32_t)(fl[j] * (0x80000000u / BODY_F_DISSIPATIVE)) < 0;
+        int32_t m = (int32_t)(fl[j] * (0x80000000u / BODY_F_MAGNITUDE)) < 0;
+        /* The finiteness test of tax, tay also keeps their adds out of the selects
+         * below (an add there may trap under -ftrapping-math and would keep a branch). */
+        int32_t ok = !m & (s2 > 0) & (s2 < RG_HUGE) & (k * h < 1) & (dvx * vfx + dvy * vfy > 0) &
+                     (tax - tax == 0) & (tay - tay == 0);
+        slow |= d & !ok;
+        oax[j] = d ? tax : ax;
+        oay[j] = d ? tay : ay;
+        nvx[j] = d ? dvx : vfx;
+        nvy[j] = d ? dvy : vfy;
+    }
+    return slow;
+}
+
+/* Returns 1 when the block must run body by body. */
+static EULER_INLINE int euler_block(const body_store *b, int32_t i0, const euler_env *e,
+                                    const euler_const *c, rg_real *restrict nvx, rg_real *restrict nvy)
+{
+    const uint32_t *restrict fl = b->flags + i0;
+    uint32_t all = ~0u, any = 0;
+    if (e->dissipative || e->gscaled) {
         for (int j = 0; j < EULER_BLOCK; j++) {
             all &= fl[j];
             any |= fl[j];
-            qf |= euler_bits_of(quad[j]) | euler_bits_of(fric[j]);
         }
     }
-    int32_t slow = 0;
-    if (!(any & BODY_F_DISSIPATIVE)) { /* no dissipation in this block */
-        for (int j = 0; j < EULER_BLOCK; j++) {
-            rg_real ax = force_sum(gx, gs[j], wx, fx[j], im[j]) + spx[j];
-            rg_real ay = force_sum(gy, gs[j], wy, fy[j], im[j]) + spy[j];
-            oax[j] = ax;
-            oay[j] = ay;
-            nvx[j] = vx[j] + ax * h;
-            nvy[j] = vy[j] + ay * h;
-        }
-    } else if ((all & BODY_F_DISSIPATIVE) && !(qf & EULER_MAGNITUDE)) {
-        /* linear drag on every body of the block */
-        for (int j = 0; j < EULER_BLOCK; j++) {
-            rg_real ax = force_sum(gx, gs[j], wx, fx[j], im[j]) + spx[j];
-            rg_real ay = force_sum(gy, gs[j], wy, fy[j], im[j]) + spy[j];
-            rg_real v0x = vx[j], v0y = vy[j];
-            rg_real vfx = v0x + ax * h, vfy = v0y + ay * h;
-            rg_real s2 = v0x * v0x + v0y * v0y;
-            rg_real k = lin[j] * im[j];
-            rg_real dax = -k * v0x, day = -k * v0y;
-            rg_real dvx = vfx + dax * h, dvy = vfy + day * h;
-            slow |= !((s2 > 0) & (s2 < RG_HUGE) & (k * h < 1) & (dvx * vfx + dvy * vfy > 0));
-            oax[j] = ax + dax;
-            oay[j] = ay + day;
-            nvx[j] = dvx;
-            nvy[j] = dvy;
-        }
-    } else if (all & BODY_F_DISSIPATIVE) {
-        return 1; /* quadratic drag or friction: square roots, body by body */
-    } else { /* a mixed block */
-        for (int j = 0; j < EULER_BLOCK; j++) {
-            rg_real ax = force_sum(gx, gs[j], wx, fx[j], im[j]) + spx[j];
-            rg_real ay = force_sum(gy, gs[j], wy, fy[j], im[j]) + spy[j];
-            rg_real v0x = vx[j], v0y = vy[j];
-            rg_real vfx = v0x + ax * h, vfy = v0y + ay * h;
-            rg_real s2 = v0x * v0x + v0y * v0y;
-            rg_real k = (lin[j] + quad[j] + fric[j]) * im[j];
-            rg_real dax = -k * v0x, day = -k * v0y;
-            rg_real dvx = vfx + dax * h, dvy = vfy + day * h;
-            rg_real tax = ax + dax, tay = ay + day;
-            /* The flag bit moved to the sign bit: a 32-bit compare the vectoriser takes. */
-            int32_t d = (int32_t)(fl[j] * (0x80000000u / BODY_F_DISSIPATIVE)) < 0;
-            /* quad, fric >= 0, so their sum is 0 exactly when both are.  The finiteness
-             * test of tax, tay also keeps their adds out of the selects below (an add there
-             * may trap under -ftrapping-math and would keep a branch). */
-            int32_t ok = (quad[j] + fric[j] == 0) & (s2 > 0) & (s2 < RG_HUGE) & (k * h < 1) &
-                         (dvx * vfx + dvy * vfy > 0) & (tax - tax == 0) & (tay - tay == 0);
-            slow |= d & !ok;
-            oax[j] = d ? tax : ax;
-            oay[j] = d ? tay : ay;
-            nvx[j] = d ? dvx : vfx;
-            nvy[j] = d ? dvy : vfy;
-        }
+    euler_in in;
+    in.gs = (any & BODY_F_GSCALE) ? b->gscale + i0 : c->one;
+    in.imf = e->wind || e->forces ? b->inv_mass + i0 : c->zero;
+    in.fx = e->forces ? b->fx + i0 : c->zero;
+    in.fy = e->forces ? b->fy + i0 : c->zero;
+    in.spx = e->springs ? e->sax + i0 : c->no_spring;
+    in.spy = e->springs ? e->say + i0 : c->no_spring;
+    int uniform = !(any & BODY_F_GSCALE) && !e->wind && !e->forces && !e->springs;
+    in.ax0 = force_sum(e->gx, 1, e->wx, 0, 0) + -RG_R(0.0);
+    in.ay0 = force_sum(e->gy, 1, e->wy, 0, 0) + -RG_R(0.0);
+    /* A slow block's accelerations are written again by euler_body. */
+    rg_real *oax = b->ax + i0, *oay = b->ay + i0;
+    if (!(any & BODY_F_DISSIPATIVE)) {
+        if (uniform)
+            euler_free(b, i0, e, &in, 1, nvx, nvy, oax, oay);
+        else
+            euler_free(b, i0, e, &in, 0, nvx, nvy, oax, oay);
+        return 0;
     }
-    return slow != 0;
+    if ((all & BODY_F_DISSIPATIVE) && !(any & BODY_F_MAGNITUDE))
+        return (uniform ? euler_linear(b, i0, e, &in, 1, nvx, nvy, oax, oay)
+                        : euler_linear(b, i0, e, &in, 0, nvx, nvy, oax, oay)) != 0;
+    if (all & BODY_F_DISSIPATIVE) return 1; /* quadratic drag or friction: square roots, body by body */
+    return euler_mixed(b, i0, e, &in, nvx, nvy, oax, oay) != 0;
 }
 
 /* The pass over blocks [begin, end) of EULER_BLOCK bodies (the last one short), as a task
@@ -289,10 +340,11 @@ EULER_DISPATCH static void euler_range(int32_t begin, int32_t end, int32_t worke
     euler_task *t = context;
     body_store *b = t->b;
     const euler_env *e = &t->e;
-    rg_real no_spring[EULER_BLOCK], no_force[EULER_BLOCK];
+    euler_const c;
     for (int j = 0; j < EULER_BLOCK; j++) {
-        no_spring[j] = -RG_R(0.0);
-        no_force[j] = 0; /* +0: what a step's clearing leaves in fx and fy */
+        c.no_spring[j] = -RG_R(0.0);
+        c.zero[j] = 0;
+        c.one[j] = 1;
     }
     int32_t out = 0;
     for (int32_t k = begin; k < end; k++) {
@@ -302,13 +354,7 @@ EULER_DISPATCH static void euler_range(int32_t begin, int32_t end, int32_t worke
             continue;
         }
         rg_real nvx[EULER_BLOCK], nvy[EULER_BLOCK];
-        const rg_real *spx = e->springs ? e->sax + i0 : no_spring;
-        const rg_real *spy = e->springs ? e->say + i0 : no_spring;
-        /* A slow block's accelerations are written again by euler_body. */
-        /* no applied force: every fx and fy is +0, so the pass reads the same bits from a
-         * block of its own and not from memory */
-        const rg_real *fx = e->forces ? b->fx + i0 : no_force, *fy = e->forces ? b->fy + i0 : no_force;
-        if (euler_block(b, i0, e, fx, fy, spx, spy, nvx, nvy, b->ax + i0, b->ay + i0)) {
+        if (euler_block(b, i0, e, &c, nvx, nvy)) {
             for (int j = 0; j < EULER_BLOCK; j++) out |= euler_body(b, e, i0 + j);
             continue;
         }
@@ -336,6 +382,8 @@ static int32_t euler_step(rg_world *w, rg_real h, int explicit_euler)
     e->dissipative = w->dissipative_count > 0;
     e->explicit_euler = explicit_euler;
     e->forces = w->forces_applied;
+    e->wind = e->wx != 0 || e->wy != 0;
+    e->gscaled = w->gscale_count > 0;
     /* the springs at the start state come from the forces stage (force_begin) */
     e->sax = w->scratch.sax;
     e->say = w->scratch.say;

@@ -220,20 +220,19 @@ static void restore_load(rg_world *w, const snap_in *in, const restore_scratch *
     b->n_moving = s->n_moving;
     /* what the snapshot leaves out: inverse masses, flags (as body_update_flags makes them)
      * and the step's displacements */
-    int32_t dissipative = 0, limited = 0;
+    int32_t dissipative = 0, limited = 0, gscaled = 0;
     for (int32_t i = 0; i < b->count; i++) {
-        int dynamic = b->type[i] == RG_BODY_DYNAMIC;
-        b->inv_mass[i] = dynamic ? 1 / b->mass[i] : 0;
+        b->inv_mass[i] = b->type[i] == RG_BODY_DYNAMIC ? 1 / b->mass[i] : 0;
         b->dx[i] = b->dy[i] = 0;
-        uint32_t fl = 0;
-        if (dynamic && (b->drag_lin[i] > 0 || b->drag_quad[i] > 0 || b->fric[i] > 0)) fl |= BODY_F_DISSIPATIVE;
-        if (dynamic && (b->min_speed[i] > 0 || b->max_speed[i] > 0)) fl |= BODY_F_LIMITED;
+        uint32_t fl = body_flags_of(b, i);
         b->flags[i] = fl;
         dissipative += (fl & BODY_F_DISSIPATIVE) != 0;
         limited += (fl & BODY_F_LIMITED) != 0;
+        gscaled += (fl & BODY_F_GSCALE) != 0;
     }
     w->dissipative_count = dissipative;
     w->limit_count = limited;
+    w->gscale_count = gscaled;
     w->stopped_any = 0; /* the flags above hold no BODY_F_STOPPED: a restore is no step */
     w->forces_applied = 1; /* the snapshot's fx, fy may hold forces applied before its step */
     restore_pool(&w->springs.pool, in, in->l.sgen, in->l.sindex, s->sslots, s->stag, s->smax_gen,

@@ -49,6 +49,10 @@
 #define BODY_F_DISSIPATIVE 1u /* has drag or surface friction (and is dynamic) */
 #define BODY_F_LIMITED     2u /* has a speed limit (and is dynamic) */
 #define BODY_F_STOPPED     4u /* the last stepping call stopped it at the range's edge (bounds.c) */
+#define BODY_F_MAGNITUDE   8u /* has quadratic drag or surface friction (and is dynamic) */
+#define BODY_F_GSCALE     16u /* moves (dynamic or kinematic) with a gravity scale other than 1 */
+/* the flags a body's settings give it (body_flags_of), the rest are the step's */
+#define BODY_F_COUNTED (BODY_F_DISSIPATIVE | BODY_F_LIMITED | BODY_F_MAGNITUDE | BODY_F_GSCALE)
 
 /* cflags: collision state of a body */
 #define CF_SENSOR     1u
@@ -280,6 +284,7 @@ struct rg_world {
     /* What the scene uses, so a stage nobody uses costs nothing. */
     int32_t dissipative_count; /* dynamic bodies with drag or surface friction */
     int32_t limit_count;       /* dynamic bodies with speed limits */
+    int32_t gscale_count;      /* bodies with BODY_F_GSCALE */
     int32_t stopped_any;       /* some body may carry BODY_F_STOPPED (bounds.c) */
     int32_t forces_applied;    /* some dynamic body may hold an applied force (fx, fy other than
                                   +0): set by rg_body_apply_force and a restore, cleared with
