@@ -112,18 +112,6 @@ int32_t body_move_to_partition(rg_world *w, int32_t i, int part)
     return i;
 }
 
-uint32_t body_flags_of(const body_store *b, int32_t i)
-{
-    uint32_t f = 0;
-    if (b->type[i] == RG_BODY_DYNAMIC) {
-        if (b->drag_lin[i] > 0 || b->drag_quad[i] > 0 || b->fric[i] > 0) f |= BODY_F_DISSIPATIVE;
-        if (b->drag_quad[i] > 0 || b->fric[i] > 0) f |= BODY_F_MAGNITUDE;
-        if (b->min_speed[i] > 0 || b->max_speed[i] > 0) f |= BODY_F_LIMITED;
-    }
-    if (b->type[i] != RG_BODY_STATIC && b->gscale[i] != 1) f |= BODY_F_GSCALE;
-    return f;
-}
-
 void body_update_flags(rg_world *w, int32_t i)
 {
     body_store *b = &w->b;

@@ -49,7 +49,17 @@ void body_store_release(struct rg_world *w);
 /* Moves the body at dense index i into partition part; returns its new dense index. */
 int32_t body_move_to_partition(struct rg_world *w, int32_t i, int part);
 /* The BODY_F_COUNTED flags dense index i's settings give it. */
-uint32_t body_flags_of(const body_store *b, int32_t i);
+static inline uint32_t body_flags_of(const body_store *b, int32_t i)
+{
+    uint32_t f = 0;
+    if (b->type[i] == RG_BODY_DYNAMIC) {
+        if (b->drag_lin[i] > 0 || b->drag_quad[i] > 0 || b->fric[i] > 0) f |= BODY_F_DISSIPATIVE;
+        if (b->drag_quad[i] > 0 || b->fric[i] > 0) f |= BODY_F_MAGNITUDE;
+        if (b->min_speed[i] > 0 || b->max_speed[i] > 0) f |= BODY_F_LIMITED;
+    }
+    if (b->type[i] != RG_BODY_STATIC && b->gscale[i] != 1) f |= BODY_F_GSCALE;
+    return f;
+}
 /* Recomputes BODY_F_COUNTED of dense index i and the world's counts. */
 void body_update_flags(struct rg_world *w, int32_t i);
 
