@@ -87,6 +87,10 @@ typedef struct euler_env {
     int forces; /* some body may have an applied force (rg_world.forces_applied) */
     int wind;    /* the wind is not zero */
     int gscaled; /* some body has BODY_F_GSCALE */
+    /* the one acceleration of a uniform block (euler_in): force_sum with the gravity scale
+     * 1, (wind + f) = +0 times an inverse mass of +0, and the spring term -0 */
+    rg_real ax0, ay0;
+    int plain; /* no wind, applied forces or springs: a block without BODY_F_GSCALE is uniform */
 } euler_env;
 
 /* One body of the pass, exactly as specified; the blocked loop below runs it wherever its
@@ -193,19 +197,17 @@ typedef struct euler_const {
     rg_real one[EULER_BLOCK];
 } euler_const;
 
-/* A block's inputs, and in `uniform` the one acceleration every body of it feels when no
- * body has BODY_F_GSCALE and there are no wind, applied forces or springs: force_sum with
- * the gravity scale 1, (wind + f) = +0 times an inverse mass (+0) and the spring term -0,
- * the same operations on the same values as each body's. */
+/* A block's inputs.  A block is uniform when no body has BODY_F_GSCALE and there are no
+ * wind, applied forces or springs: every body of it then feels euler_env's ax0, ay0, the
+ * same operations on the same values as each body's. */
 typedef struct euler_in {
     const rg_real *gs, *imf, *fx, *fy, *spx, *spy;
-    rg_real ax0, ay0;
 } euler_in;
 
 /* The accelerations of body j of the block other than dissipation; with `uniform` a
  * constant at the call, so the loops below are built once for each case. */
 #define EULER_ACC(in, uniform, j, a0, g, w, f, sp) \
-    ((uniform) ? (in)->a0 : force_sum(e->g, (in)->gs[j], e->w, (in)->f[j], (in)->imf[j]) + (in)->sp[j])
+    ((uniform) ? e->a0 : force_sum(e->g, (in)->gs[j], e->w, (in)->f[j], (in)->imf[j]) + (in)->sp[j])
 
 /* No dissipation in the block. */
 static EULER_INLINE void euler_free(const body_store *b, int32_t i0, const euler_env *e,
@@ -306,9 +308,7 @@ static EULER_INLINE int euler_block(const body_store *b, int32_t i0, const euler
     in.fy = e->forces ? b->fy + i0 : c->zero;
     in.spx = e->springs ? e->sax + i0 : c->no_spring;
     in.spy = e->springs ? e->say + i0 : c->no_spring;
-    int uniform = !(any & BODY_F_GSCALE) && !e->wind && !e->forces && !e->springs;
-    in.ax0 = force_sum(e->gx, 1, e->wx, 0, 0) + -RG_R(0.0);
-    in.ay0 = force_sum(e->gy, 1, e->wy, 0, 0) + -RG_R(0.0);
+    int uniform = e->plain && !(any & BODY_F_GSCALE);
     /* A slow block's accelerations are written again by euler_body. */
     rg_real *oax = b->ax + i0, *oay = b->ay + i0;
     if (!(any & BODY_F_DISSIPATIVE)) {
@@ -384,6 +384,9 @@ static int32_t euler_step(rg_world *w, rg_real h, int explicit_euler)
     e->forces = w->forces_applied;
     e->wind = e->wx != 0 || e->wy != 0;
     e->gscaled = w->gscale_count > 0;
+    e->plain = !e->wind && !e->forces && !e->springs;
+    e->ax0 = force_sum(e->gx, 1, e->wx, 0, 0) + -RG_R(0.0);
+    e->ay0 = force_sum(e->gy, 1, e->wy, 0, 0) + -RG_R(0.0);
     /* the springs at the start state come from the forces stage (force_begin) */
     e->sax = w->scratch.sax;
     e->say = w->scratch.say;
