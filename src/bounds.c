@@ -12,6 +12,7 @@
 #include "arg.h"
 #include "query.h"
 #include "state.h"
+#include "task.h"
 #include "vec2.h"
 
 static rg_real bounds_clamp(rg_real v, rg_real start, rg_real lim)
@@ -28,22 +29,44 @@ void bounds_begin(rg_world *w)
     w->stopped_any = 0;
 }
 
-void bounds_guard(rg_world *w, const rg_real *x0, const rg_real *y0)
+typedef struct bounds_task {
+    rg_world *w;
+    const rg_real *x0, *y0;
+    int32_t stopped[RG_MAX_WORKERS]; /* the worker stopped a body */
+} bounds_task;
+
+/* Active bodies [begin, end): each changes only its own state. */
+static void bounds_range(int32_t begin, int32_t end, int32_t worker, void *context)
 {
-    body_store *b = &w->b;
-    int32_t n = b->n_active;
+    bounds_task *t = context;
+    body_store *b = &t->w->b;
     const rg_real c = (rg_real)RG_MAX_COORD;
-    for (int32_t i = 0; i < n; i++) {
+    for (int32_t i = begin; i < end; i++) {
         if (!bounds_out(b->x[i], b->y[i], b->vx[i], b->vy[i])) continue;
         /* From a start in range Euler cannot overflow (see above), so a non-finite
          * coordinate without a kept start is out of reach; 0 keeps it defined. */
-        b->x[i] = bounds_clamp(b->x[i], x0 != NULL ? x0[i] : 0, c);
-        b->y[i] = bounds_clamp(b->y[i], y0 != NULL ? y0[i] : 0, c);
+        b->x[i] = bounds_clamp(b->x[i], t->x0 != NULL ? t->x0[i] : 0, c);
+        b->y[i] = bounds_clamp(b->y[i], t->y0 != NULL ? t->y0[i] : 0, c);
         b->vx[i] = b->vy[i] = 0;
         b->ax[i] = b->ay[i] = 0;
         b->flags[i] |= BODY_F_STOPPED;
-        w->stopped_any = 1;
+        t->stopped[worker] = 1;
     }
+}
+
+/* Bodies per range: the test costs about a nanosecond. */
+#define BOUNDS_RANGE 2048
+
+void bounds_guard(rg_world *w, const rg_real *x0, const rg_real *y0)
+{
+    bounds_task t;
+    int32_t workers = task_workers(w);
+    t.w = w;
+    t.x0 = x0;
+    t.y0 = y0;
+    for (int32_t k = 0; k < workers; k++) t.stopped[k] = 0;
+    task_for(w, bounds_range, w->b.n_active, BOUNDS_RANGE, &t);
+    for (int32_t k = 0; k < workers; k++) w->stopped_any |= t.stopped[k];
 }
 
 RG_API int32_t rg_world_get_stopped(const rg_world *world, rg_body *out, int32_t capacity)

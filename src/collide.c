@@ -96,6 +96,7 @@ void collide_step_begin(rg_world *w, collide_step *x, rg_real dt)
     x->nimp = 0;
     x->woke = 0;
     x->unite = cw->sleeping && cw->island.near_sleep;
+    x->late = NULL;
     x->p.dt = dt;
     x->p.inv_dt = 1 / dt;
     x->p.slop = cw->slop;

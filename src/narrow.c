@@ -279,7 +279,7 @@ static void narrow_measure_decide_range(int32_t begin, int32_t end, int32_t work
 
 /* What a contact's decision does to the rest of the world, in contact order on the stepping
  * thread: its solver row, events, grounded flags, islands, waking. */
-static void narrow_commit(rg_world *w, int32_t id, collide_step *x, uint32_t bits, int stage)
+static void narrow_commit(rg_world *w, int32_t id, collide_step *x, uint32_t bits, int stage, int *woke)
 {
     collide_world *cw = &w->coll;
     contact_store *cs = &cw->contacts;
@@ -313,10 +313,10 @@ static void narrow_commit(rg_world *w, int32_t id, collide_step *x, uint32_t bit
         int now = (bits & ND_NOW) != 0;
         if (pa_ == BODY_PART_ASLEEP && pb_ == BODY_PART_ACTIVE && narrow_pusher(b, ib, now)) {
             island_wake(w, c->sa);
-            x->woke = 1;
+            *woke = 1;
         } else if (pb_ == BODY_PART_ASLEEP && pa_ == BODY_PART_ACTIVE && narrow_pusher(b, ia, now)) {
             island_wake(w, c->sb);
-            x->woke = 1;
+            *woke = 1;
         }
     }
 }
@@ -406,6 +406,18 @@ static void narrow_stage(rg_world *w, narrow_task *t, int32_t n)
     x->nimp = imp;
 }
 
+/* The commits of a step in which nothing can wake, the rows staged already: in contact
+ * order, as narrow_run's walk would make them. */
+static void narrow_commit_late(rg_world *w, collide_step *x)
+{
+    const contact_store *cs = &w->coll.contacts;
+    int woke = 0;
+    for (int32_t k = 0; k < cs->n_awake; k++) {
+        int32_t id = cs->awake[k];
+        narrow_commit(w, id, x, cs->c[id].decided, 0, &woke);
+    }
+}
+
 void narrow_run(rg_world *w, collide_step *x)
 {
     contact_store *cs = &w->coll.contacts;
@@ -419,7 +431,15 @@ void narrow_run(rg_world *w, collide_step *x)
     /* with workers and without a contact decided in order, the rows are staged in parallel
      * (the same rows in the same order as the walk below stages them on one thread) */
     int serial = in_order || workers < 2;
-    if (!serial) narrow_stage(w, &t, measured);
+    if (!serial) {
+        narrow_stage(w, &t, measured);
+        /* No body asleep: nothing wakes (a static body never does), so the walk below would
+         * only commit, and the solve runs that beside its own first part. */
+        if (w->b.n_moving == w->b.n_active) {
+            x->late = narrow_commit_late;
+            return;
+        }
+    }
     /* waking appends the contacts of the bodies it wakes: they are measured, decided and
      * staged as they come */
     for (int32_t k = 0; k < cs->n_awake; k++) {
@@ -427,6 +447,6 @@ void narrow_run(rg_world *w, collide_step *x)
         contact *c = &cs->c[id];
         int here = k >= measured || narrow_in_order(w, c);
         uint32_t bits = here ? narrow_decide_here(w, id, x, k >= measured) : c->decided;
-        narrow_commit(w, id, x, bits, serial || k >= measured);
+        narrow_commit(w, id, x, bits, serial || k >= measured, &x->woke);
     }
 }

@@ -116,7 +116,8 @@ enum {
     RESOLVE_LOAD, RESOLVE_MOVE, RESOLVE_PUSH,         /* solver bodies 1..ns */
     RESOLVE_UNPACK, RESOLVE_UNPACK_POSITION, RESOLVE_PREPARE, RESOLVE_PACK_POSITION,
     RESOLVE_KEEP,                                     /* rows of c */
-    RESOLVE_CLEAR_POSITION                            /* all wide rows */
+    RESOLVE_CLEAR_POSITION,                           /* all wide rows */
+    RESOLVE_PACK                                      /* blocks of the solving order */
 };
 
 typedef struct resolve_task {
@@ -184,6 +185,10 @@ static void resolve_range(int32_t begin, int32_t end, int32_t worker, void *cont
     case RESOLVE_UNPACK: solver_unpack(t->sb, t->con, b0, b1, 0); break;
     case RESOLVE_UNPACK_POSITION: solver_unpack(t->sb, t->con, b0, b1, 1); break;
     case RESOLVE_PACK_POSITION: solver_pack_position(t->sb, t->con, b0, b1); break;
+    case RESOLVE_PACK:
+        solver_pack_rows(t->con, t->w->coll.rows.ord, t->x->nc, t->w->coll.rows.color, t->w->coll.rows.lanes, b0,
+                         b1, t->sb);
+        break;
     case RESOLVE_PREPARE:
         t->pushing[worker] += solver_prepare_position(t->con + b0, b1 - b0, t->v, &t->x->p);
         break;
@@ -198,9 +203,10 @@ static void resolve_range(int32_t begin, int32_t end, int32_t worker, void *cont
     }
 }
 
-/* Items per range: wide rows (64 lanes), or rows and bodies. */
+/* Items per range: wide rows (64 lanes), rows and bodies, or packing blocks. */
 #define RESOLVE_WIDE_RANGE 8
 #define RESOLVE_RANGE 512
+#define RESOLVE_PACK_RANGE 2
 
 /* One pass: `count` items from r0 (wide rows, rows of c, or solver bodies). */
 static void resolve_pass(resolve_task *t, int what, int32_t r0, int32_t count)
@@ -208,7 +214,8 @@ static void resolve_pass(resolve_task *t, int what, int32_t r0, int32_t count)
     t->what = what;
     t->r0 = r0;
     int wide = what <= RESOLVE_POSITION || what == RESOLVE_CLEAR_POSITION;
-    task_for(t->w, resolve_range, count, wide ? RESOLVE_WIDE_RANGE : RESOLVE_RANGE, t);
+    int32_t min_range = what == RESOLVE_PACK ? RESOLVE_PACK_RANGE : wide ? RESOLVE_WIDE_RANGE : RESOLVE_RANGE;
+    task_for(t->w, resolve_range, count, min_range, t);
 }
 
 /* A pass over the wide rows, colour by colour. */
@@ -218,6 +225,48 @@ static void resolve_wide(resolve_task *t, int what)
         resolve_pass(t, what, t->sb->cstart[col], t->sb->cstart[col + 1] - t->sb->cstart[col]);
 }
 
+/* The solve's first part, one thread's work: the solving order, the bodies the rows meet,
+ * the colours. */
+typedef struct resolve_head {
+    rg_world *w;
+    collide_step *x;
+    rg_real gx, gy;
+    int shock;
+} resolve_head;
+
+static void resolve_head_run(resolve_head *h)
+{
+    rg_world *w = h->w;
+    collide_world *cw = &w->coll;
+    resolve_state *rs = &cw->resolve;
+    solver_rows *rows = &cw->rows;
+    const solver_constraint *con = rows->stage;
+    int32_t nc = h->x->nc;
+    h->shock = resolve_order(w, nc, &h->gx, &h->gy);
+    /* the solver's bodies: 0 is the ground, 1..ns the awake bodies; stamped, those the
+     * rows meet */
+    resolve_next_gen(rs, cw->scap);
+    for (int32_t k = 0; k < nc; k++) {
+        if (con[k].a > 0) rs->sstamp[con[k].a - 1] = rs->gen;
+        if (con[k].b > 0) rs->sstamp[con[k].b - 1] = rs->gen;
+    }
+    solver_pack(con, rows->ord, nc, h->x->ns + 1, rs->cmask, rows->color, rows->lanes, &rows->batch);
+}
+
+/* Item 0: the solve's first part; item 1: what the narrowphase left (x->late), which shares
+ * nothing with it, so the two may run at once. */
+static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    resolve_head *h = context;
+    (void)worker;
+    for (int32_t k = begin; k < end; k++) {
+        if (k == 0)
+            resolve_head_run(h);
+        else
+            h->x->late(h->w, h->x);
+    }
+}
+
 void resolve_run(rg_world *w, collide_step *x)
 {
     collide_world *cw = &w->coll;
@@ -225,19 +274,24 @@ void resolve_run(rg_world *w, collide_step *x)
     solver_rows *rows = &cw->rows;
     if (x->woke) resolve_restage(w, x);
     int32_t nc = x->nc;
-    if (nc == 0) return;
-    solver_constraint *con = rows->stage;
-    rg_real gx, gy;
-    int shock = resolve_order(w, nc, &gx, &gy);
-    const int32_t *ord = rows->ord;
-    /* the solver's bodies: 0 is the ground, 1..ns the awake bodies; stamped, those the
-     * rows meet */
-    int32_t ns = x->ns;
-    resolve_next_gen(rs, cw->scap);
-    for (int32_t k = 0; k < nc; k++) {
-        if (con[k].a > 0) rs->sstamp[con[k].a - 1] = rs->gen;
-        if (con[k].b > 0) rs->sstamp[con[k].b - 1] = rs->gen;
+    resolve_head h;
+    h.w = w;
+    h.x = x;
+    if (nc == 0) {
+        if (x->late != NULL) x->late(w, x);
+        x->late = NULL;
+        return;
     }
+    if (x->late != NULL)
+        task_for(w, resolve_head_range, 2, 1, &h);
+    else
+        resolve_head_run(&h);
+    x->late = NULL;
+    solver_constraint *con = rows->stage;
+    rg_real gx = h.gx, gy = h.gy;
+    int shock = h.shock;
+    const int32_t *ord = rows->ord;
+    int32_t ns = x->ns;
     rg_real *v = rs->sv;
     solver_batch *sb = &rows->batch;
     resolve_task t;
@@ -250,7 +304,7 @@ void resolve_run(rg_world *w, collide_step *x)
     t.timed = continuous_time_impacts(w, x);
     v[0] = v[1] = 0;
     resolve_pass(&t, RESOLVE_LOAD, 1, ns);
-    solver_pack(con, ord, nc, ns + 1, rs->cmask, rows->color, sb);
+    resolve_pass(&t, RESOLVE_PACK, 0, SOLVER_PACK_BLOCKS(nc));
     resolve_wide(&t, RESOLVE_WARM);
     solver_warm_start(con, sb->over, sb->nover, v);
     for (int32_t it = 0; it < cw->iterations; it++) {

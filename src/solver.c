@@ -170,14 +170,17 @@ void solver_iterate_position(solver_constraint *c, const int32_t *list, int32_t 
 /* ---------------------------------------------------------------- eight lanes */
 
 void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, int32_t nbodies,
-                 uint32_t *mask, int32_t *color, solver_batch *out)
+                 uint32_t *mask, int32_t *color, int32_t *lanes, solver_batch *out)
 {
     const int32_t ground = 0;
     int32_t count[33];
     memset(count, 0, sizeof count);
     memset(mask, 0, (size_t)nbodies * sizeof *mask);
-    /* greedy: the first colour neither movable body is in yet */
+    out->nover = 0;
+    /* greedy: the first colour neither movable body is in yet; at the start of each block,
+     * how many rows of each colour came before it */
     for (int32_t j = 0; j < n; j++) {
+        if (j % SOLVER_PACK_BLOCK == 0) memcpy(lanes + j / SOLVER_PACK_BLOCK * 32, count, 32 * sizeof *count);
         int32_t k = order[j];
         const solver_constraint *q = &c[k];
         int ma = q->ima > 0, mb = q->imb > 0;
@@ -192,26 +195,30 @@ void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, in
 #endif
             if (ma) mask[q->a] |= 1u << col;
             if (mb) mask[q->b] |= 1u << col;
+        } else {
+            out->map[k] = -1;
+            out->over[out->nover++] = k;
         }
         color[k] = col;
         count[col]++;
     }
     /* each colour takes whole wide rows; the lanes it leaves over are padding that acts on
      * the ground with zero mass */
-    int32_t start[33], lane_of[33];
+    int32_t start[32];
     int32_t rows = 0;
     for (int col = 0; col < 32; col++) {
         start[col] = rows;
         out->cstart[col] = rows;
-        lane_of[col] = 0;
         rows += (count[col] + SOLVER_LANES - 1) / SOLVER_LANES;
     }
     out->cstart[32] = rows;
     out->nrows = rows;
-    out->nover = 0;
+    /* a block's first slot in each colour */
+    for (int32_t blk = 0; blk < SOLVER_PACK_BLOCKS(n); blk++)
+        for (int col = 0; col < 32; col++) lanes[blk * 32 + col] += start[col] * SOLVER_LANES;
     solver_wide *w = out->rows;
-    /* padding: the lanes after the last row of each colour (every other lane is filled below;
-     * pmin and pp are set by solver_pack_position) */
+    /* padding: the lanes after the last row of each colour (every other lane is filled by
+     * solver_pack_rows; pmin and pp are set by solver_pack_position) */
     for (int col = 0; col < 32; col++) {
         int used = count[col] % SOLVER_LANES;
         if (used == 0) continue;
@@ -222,30 +229,37 @@ void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, in
             q->vmin[l] = q->pn[l] = q->pt[l] = q->pmin[l] = q->pp[l] = 0;
         }
     }
-    for (int32_t j = 0; j < n; j++) {
-        int32_t k = order[j];
-        int col = color[k];
-        if (col == 32) {
-            out->map[k] = -1;
-            out->over[out->nover++] = k;
-            continue;
+}
+
+void solver_pack_rows(const solver_constraint *c, const int32_t *order, int32_t n, const int32_t *color,
+                      const int32_t *lanes, int32_t blk0, int32_t blk1, solver_batch *out)
+{
+    solver_wide *w = out->rows;
+    for (int32_t blk = blk0; blk < blk1; blk++) {
+        int32_t next[32];
+        memcpy(next, lanes + blk * 32, sizeof next);
+        int32_t j1 = (blk + 1) * SOLVER_PACK_BLOCK < n ? (blk + 1) * SOLVER_PACK_BLOCK : n;
+        for (int32_t j = blk * SOLVER_PACK_BLOCK; j < j1; j++) {
+            int32_t k = order[j];
+            int col = color[k];
+            if (col == 32) continue; /* the overflow list (solver_pack) */
+            int32_t slot = next[col]++;
+            out->map[k] = slot;
+            solver_wide *q = &w[slot / SOLVER_LANES];
+            int l = slot % SOLVER_LANES;
+            const solver_constraint *r = &c[k];
+            q->a[l] = r->a;
+            q->b[l] = r->b;
+            q->nx[l] = r->nx;
+            q->ny[l] = r->ny;
+            q->m[l] = r->m;
+            q->mu[l] = r->mu;
+            q->ima[l] = r->ima;
+            q->imb[l] = r->imb;
+            q->vmin[l] = r->vmin;
+            q->pn[l] = r->pn;
+            q->pt[l] = r->pt;
         }
-        int32_t slot = start[col] * SOLVER_LANES + lane_of[col]++;
-        out->map[k] = slot;
-        solver_wide *q = &w[slot / SOLVER_LANES];
-        int l = slot % SOLVER_LANES;
-        const solver_constraint *r = &c[k];
-        q->a[l] = r->a;
-        q->b[l] = r->b;
-        q->nx[l] = r->nx;
-        q->ny[l] = r->ny;
-        q->m[l] = r->m;
-        q->mu[l] = r->mu;
-        q->ima[l] = r->ima;
-        q->imb[l] = r->imb;
-        q->vmin[l] = r->vmin;
-        q->pn[l] = r->pn;
-        q->pt[l] = r->pt;
     }
 }
 
@@ -572,6 +586,7 @@ static void solver_rows_layout(mem_layout *l, void *ctx)
     r->batch.over = mem_take(l, n, sizeof(int32_t));
     r->color = mem_take(l, n, sizeof(int32_t));
     r->imp = mem_take(l, n, sizeof(int32_t));
+    r->lanes = mem_take(l, (size_t)SOLVER_PACK_BLOCKS(r->cap) * 32, sizeof(int32_t));
     r->key = mem_take(l, n, sizeof(uint16_t));
     r->tkey = mem_take(l, n, sizeof(uint16_t));
 }

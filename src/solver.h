@@ -157,12 +157,20 @@ typedef struct solver_batch {
     int32_t nover;
 } solver_batch;
 
-/* Colours and packs rows c[order[0..n)] (in that order) over solver bodies [0, nbodies),
- * body 0 being the ground (padding lanes act on it with zero mass): `mask` (nbodies words)
- * and `color` (n) are scratch; rows, map and over must hold SOLVER_WIDE_ROWS(n), n and n.
- * map and over are indexed by row of c. */
+/* Colours rows c[order[0..n)] (in that order) over solver bodies [0, nbodies), body 0
+ * being the ground (padding lanes act on it with zero mass), lays out the wide rows, pads
+ * them and lists the overflow; solver_pack_rows then copies the rows into their lanes, block
+ * by block of SOLVER_PACK_BLOCK rows of `order` (blocks write disjoint lanes: they may run
+ * at once).  `mask` (nbodies words), `color` (n) and `lanes` (SOLVER_PACK_BLOCKS(n) * 32:
+ * each block's first lane in each colour) are scratch kept from one call to the other;
+ * rows, map and over must hold SOLVER_WIDE_ROWS(n), n and n.  map and over are indexed by
+ * row of c. */
+#define SOLVER_PACK_BLOCK 512
+#define SOLVER_PACK_BLOCKS(n) (((n) + SOLVER_PACK_BLOCK - 1) / SOLVER_PACK_BLOCK)
 void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, int32_t nbodies,
-                 uint32_t *mask, int32_t *color, solver_batch *out);
+                 uint32_t *mask, int32_t *color, int32_t *lanes, solver_batch *out);
+void solver_pack_rows(const solver_constraint *c, const int32_t *order, int32_t n, const int32_t *color,
+                      const int32_t *lanes, int32_t blk0, int32_t blk1, solver_batch *out);
 /* The wide calls take rows [r0, r1): within a colour the rows share no movable body, so its
  * rows may run in any split and order, at once on several threads, with the same results
  * (lanes on immovable bodies store back the velocity they loaded, which the caller makes
@@ -187,6 +195,7 @@ typedef struct solver_rows {
     int32_t *ord, *tord;      /* [0, cap): staged rows in solving order, radix scratch */
     uint16_t *key, *tkey;     /* [0, cap): their sort keys, radix scratch */
     int32_t *color;           /* [0, cap): colouring scratch */
+    int32_t *lanes;           /* [0, SOLVER_PACK_BLOCKS(cap) * 32): packing scratch */
     int32_t *imp;             /* [0, cap): staged rows that are impacts (toi > 0) */
     void *block;
     size_t block_size;

@@ -265,6 +265,10 @@ typedef struct collide_step {
     int32_t nimp;       /* staged impact rows (rows.imp) */
     int woke;           /* the pair search or the narrowphase woke bodies: rows restaged */
     int unite;          /* join islands in the narrowphase (sleeping is near) */
+    /* What the narrowphase left to do after the rows are staged, which neither reads nor
+     * writes what the solve's first serial part does (events, grounded flags, islands): the
+     * solve runs it beside that part (resolve_run), or NULL */
+    void (*late)(struct rg_world *w, struct collide_step *x);
     solver_params p;
 } collide_step;
 

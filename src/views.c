@@ -17,14 +17,15 @@ void views_layout(mem_layout *l, views_state *s, int32_t n)
     s->refresh = mem_take(l, (size_t)n, sizeof(uint8_t));
 }
 
-void views_record_start(rg_world *w)
+/* Awake shaped bodies [begin, end) of the broadphase's list: each writes its own start. */
+static void views_start_range(int32_t begin, int32_t end, int32_t worker, void *context)
 {
-    collide_world *cw = &w->coll;
-    views_state *ns = &cw->views;
-    if (cw->shape_count == 0) return;
-    const broadphase *bp = &cw->bp;
+    rg_world *w = context;
+    views_state *ns = &w->coll.views;
+    const broadphase *bp = &w->coll.bp;
     const body_store *b = &w->b;
-    for (int32_t k = 0; k < bp->n_active; k++) {
+    (void)worker;
+    for (int32_t k = begin; k < end; k++) {
         int32_t i = body_dense(w, bp->active[k]);
         ns->adense[k] = i;
         ns->sx0[k] = b->x[i];
@@ -32,6 +33,15 @@ void views_record_start(rg_world *w)
         ns->svx0[k] = b->vx[i];
         ns->svy0[k] = b->vy[i];
     }
+}
+
+/* Bodies per range of the cheap per-body passes (a few ns each). */
+#define VIEWS_START_RANGE 1024
+
+void views_record_start(rg_world *w)
+{
+    if (w->coll.shape_count == 0) return;
+    task_for(w, views_start_range, w->coll.bp.n_active, VIEWS_START_RANGE, w);
 }
 
 typedef struct views_task {

@@ -614,7 +614,7 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
     (void)state;
     enum { N = 700, BODIES = 40, ITERS = 8 };
     static solver_constraint rows[N], ref[N];
-    static int32_t order[N], color[N], map[N], over[N];
+    static int32_t order[N], color[N], map[N], over[N], lanes[SOLVER_PACK_BLOCKS(N) * 32];
     static uint32_t mask[BODIES + 1];
     static solver_wide wide[SOLVER_WIDE_ROWS(N)];
     rg_real v0[2 * (BODIES + 1)], va[2 * (BODIES + 1)], vb[2 * (BODIES + 1)];
@@ -648,7 +648,8 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
     sb.rows = wide;
     sb.map = map;
     sb.over = over;
-    solver_pack(rows, order, N, BODIES + 1, mask, color, &sb);
+    solver_pack(rows, order, N, BODIES + 1, mask, color, lanes, &sb);
+    solver_pack_rows(rows, order, N, color, lanes, 0, SOLVER_PACK_BLOCKS(N), &sb);
     assert_true(sb.nover > 0); /* the overflow list is exercised too */
     memcpy(va, v0, sizeof v0);
     solver_wide_warm_start(&sb, 0, sb.nrows, va);
@@ -676,10 +677,14 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
         assert_memory_equal(&rows[k].pt, &ref[k].pt, sizeof(rg_real));
     }
     /* Any split of a colour's wide rows, in any order, gives the same bytes (what lets the
-     * step spread a colour over threads): each colour's rows one at a time, last first. */
+     * step spread a colour over threads): each colour's rows one at a time, last first; and
+     * the packing's blocks (two here) in any order give the same lanes. */
     static solver_constraint again[N];
     memcpy(again, ref0, sizeof again);
-    solver_pack(again, order, N, BODIES + 1, mask, color, &sb);
+    assert_true(SOLVER_PACK_BLOCKS(N) >= 2);
+    solver_pack(again, order, N, BODIES + 1, mask, color, lanes, &sb);
+    for (int32_t blk = SOLVER_PACK_BLOCKS(N) - 1; blk >= 0; blk--)
+        solver_pack_rows(again, order, N, color, lanes, blk, blk + 1, &sb);
     rg_real vc[2 * (BODIES + 1)];
     memcpy(vc, v0, sizeof v0);
     for (int col = 0; col < 32; col++)
