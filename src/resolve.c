@@ -122,7 +122,7 @@ enum {
 
 typedef struct resolve_task {
     rg_world *w;
-    const collide_step *x;
+    collide_step *x; /* read only, but for x->late's call */
     solver_batch *sb;
     solver_constraint *con;
     rg_real *v, *pv;
@@ -132,7 +132,7 @@ typedef struct resolve_task {
 } resolve_task;
 
 /* Solver bodies q in [q0, q1) (1-based), one of the body passes. */
-static void resolve_bodies(const resolve_task *t, int32_t q0, int32_t q1)
+static void resolve_bodies(const resolve_task *t, int what, int32_t q0, int32_t q1)
 {
     body_store *b = &t->w->b;
     const resolve_state *rs = &t->w->coll.resolve;
@@ -140,13 +140,13 @@ static void resolve_bodies(const resolve_task *t, int32_t q0, int32_t q1)
     for (int32_t q = q0; q < q1; q++) {
         int32_t i = q - 1;
         if (rs->sstamp[i] != rs->gen) continue; /* no row meets it */
-        if (t->what == RESOLVE_LOAD) {
+        if (what == RESOLVE_LOAD) {
             /* an immovable body's zero velocity as +0: the rows store it back unchanged, in
              * whatever order they run (solver.h) */
             rg_real z = b->inv_mass[i] > 0 ? -RG_R(0.0) : 0;
             v[2 * q] = b->vx[i] + z;
             v[2 * q + 1] = b->vy[i] + z;
-        } else if (t->what == RESOLVE_PUSH) {
+        } else if (what == RESOLVE_PUSH) {
             b->x[i] += t->pv[2 * q] * dt;
             b->y[i] += t->pv[2 * q + 1] * dt;
         } else {
@@ -199,7 +199,7 @@ static void resolve_range(int32_t begin, int32_t end, int32_t worker, void *cont
             c->pt = rg_max(rg_min(t->con[k].pt, CONTACT_MAX_IMPULSE), -CONTACT_MAX_IMPULSE);
         }
         break;
-    default: resolve_bodies(t, b0, b1); break;
+    default: resolve_bodies(t, t->what, b0, b1); break;
     }
 }
 
@@ -225,45 +225,43 @@ static void resolve_wide(resolve_task *t, int what)
         resolve_pass(t, what, t->sb->cstart[col], t->sb->cstart[col + 1] - t->sb->cstart[col]);
 }
 
-/* The solve's first part, one thread's work: the solving order, the bodies the rows meet,
- * the colours. */
+/* The solve's first part in two halves that share nothing, so that they may run at once:
+ * item 0 the solving order and the colours; item 1 what the narrowphase left (x->late), the
+ * bodies the rows meet (stamped) and their velocities loaded. */
 typedef struct resolve_head {
-    rg_world *w;
-    collide_step *x;
+    resolve_task *t;
     rg_real gx, gy;
     int shock;
 } resolve_head;
 
-static void resolve_head_run(resolve_head *h)
-{
-    rg_world *w = h->w;
-    collide_world *cw = &w->coll;
-    resolve_state *rs = &cw->resolve;
-    solver_rows *rows = &cw->rows;
-    const solver_constraint *con = rows->stage;
-    int32_t nc = h->x->nc;
-    h->shock = resolve_order(w, nc, &h->gx, &h->gy);
-    /* the solver's bodies: 0 is the ground, 1..ns the awake bodies; stamped, those the
-     * rows meet */
-    resolve_next_gen(rs, cw->scap);
-    for (int32_t k = 0; k < nc; k++) {
-        if (con[k].a > 0) rs->sstamp[con[k].a - 1] = rs->gen;
-        if (con[k].b > 0) rs->sstamp[con[k].b - 1] = rs->gen;
-    }
-    solver_pack(con, rows->ord, nc, h->x->ns + 1, rs->cmask, rows->color, rows->lanes, &rows->batch);
-}
-
-/* Item 0: the solve's first part; item 1: what the narrowphase left (x->late), which shares
- * nothing with it, so the two may run at once. */
 static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void *context)
 {
     resolve_head *h = context;
+    resolve_task *t = h->t;
+    rg_world *w = t->w;
+    collide_step *x = t->x;
+    collide_world *cw = &w->coll;
+    resolve_state *rs = &cw->resolve;
+    solver_rows *rows = &cw->rows;
+    const solver_constraint *con = t->con;
+    int32_t nc = x->nc;
     (void)worker;
     for (int32_t k = begin; k < end; k++) {
-        if (k == 0)
-            resolve_head_run(h);
-        else
-            h->x->late(h->w, h->x);
+        if (k == 0) {
+            h->shock = resolve_order(w, nc, &h->gx, &h->gy);
+            solver_pack(con, rows->ord, nc, x->ns + 1, rs->cmask, rows->color, rows->lanes, &rows->batch);
+            continue;
+        }
+        if (x->late != NULL) x->late(w, x);
+        /* the solver's bodies: 0 is the ground, 1..ns the awake bodies; stamped, those the
+         * rows meet */
+        resolve_next_gen(rs, cw->scap);
+        for (int32_t r = 0; r < nc; r++) {
+            if (con[r].a > 0) rs->sstamp[con[r].a - 1] = rs->gen;
+            if (con[r].b > 0) rs->sstamp[con[r].b - 1] = rs->gen;
+        }
+        t->v[0] = t->v[1] = 0;
+        resolve_bodies(t, RESOLVE_LOAD, 1, x->ns + 1);
     }
 }
 
@@ -274,23 +272,12 @@ void resolve_run(rg_world *w, collide_step *x)
     solver_rows *rows = &cw->rows;
     if (x->woke) resolve_restage(w, x);
     int32_t nc = x->nc;
-    resolve_head h;
-    h.w = w;
-    h.x = x;
     if (nc == 0) {
         if (x->late != NULL) x->late(w, x);
         x->late = NULL;
         return;
     }
-    if (x->late != NULL)
-        task_for(w, resolve_head_range, 2, 1, &h);
-    else
-        resolve_head_run(&h);
-    x->late = NULL;
     solver_constraint *con = rows->stage;
-    rg_real gx = h.gx, gy = h.gy;
-    int shock = h.shock;
-    const int32_t *ord = rows->ord;
     int32_t ns = x->ns;
     rg_real *v = rs->sv;
     solver_batch *sb = &rows->batch;
@@ -302,8 +289,13 @@ void resolve_run(rg_world *w, collide_step *x)
     t.v = v;
     t.pv = rs->spv;
     t.timed = continuous_time_impacts(w, x);
-    v[0] = v[1] = 0;
-    resolve_pass(&t, RESOLVE_LOAD, 1, ns);
+    resolve_head h;
+    h.t = &t;
+    task_for(w, resolve_head_range, 2, 1, &h);
+    x->late = NULL;
+    rg_real gx = h.gx, gy = h.gy;
+    int shock = h.shock;
+    const int32_t *ord = rows->ord;
     resolve_pass(&t, RESOLVE_PACK, 0, SOLVER_PACK_BLOCKS(nc));
     resolve_wide(&t, RESOLVE_WARM);
     solver_warm_start(con, sb->over, sb->nover, v);
