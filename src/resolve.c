@@ -74,6 +74,35 @@ static void resolve_radix_sort16(uint16_t *key, int32_t *val, uint16_t *tkey, in
     }
 }
 
+/* (resolve.h) */
+int resolve_resort(const uint16_t *key, int32_t *ord, int32_t n)
+{
+    int64_t budget = 4 * (int64_t)n + 64;
+    uint32_t mk = 0; /* the prefix's last row (its largest) and its key */
+    int32_t mv = -1;
+    for (int32_t i = 0; i < n; i++) {
+        int32_t v = ord[i];
+        if (v < 0 || v >= n) return 0;
+        uint32_t kv = key[v];
+        if (mk < kv || (mk == kv && mv < v)) { /* in place: the common case */
+            mk = kv;
+            mv = v;
+            continue;
+        }
+        if (mk == kv && mv == v) return 0; /* a row met twice */
+        int32_t j = i;
+        while (j > 0 && (key[ord[j - 1]] > kv || (key[ord[j - 1]] == kv && ord[j - 1] > v))) {
+            ord[j] = ord[j - 1];
+            j--;
+            if (--budget < 0) return 0;
+        }
+        /* the prefix is strictly increasing in (key, row): a row met twice sits at j - 1 */
+        if (j > 0 && ord[j - 1] == v) return 0;
+        ord[j] = v;
+    }
+    return 1;
+}
+
 /* Under gravity, rows bottom-up by the height of the contact point: Gauss-Seidel then
  * carries support up a stack within a sweep, and the shock sweep needs the order.  Returns
  * whether there is gravity, with its unit direction in *ux, *uy. */
@@ -97,11 +126,17 @@ static int resolve_order(rg_world *w, int32_t nc, rg_real *ux, rg_real *uy)
         for (int32_t k = 0; k < nc; k++) {
             rg_real q = (h[k] - hmin) * scale;
             rows->key[k] = (uint16_t)(q >= 0 && q <= RG_R(65535) ? q : 0);
-            rows->ord[k] = k;
         }
-        resolve_radix_sort16(rows->key, rows->ord, rows->tkey, rows->tord, nc);
+        /* the last step's order, repaired, when it held as many rows (a pile at rest keeps
+         * its rows and nearly their order); else sorted afresh */
+        if (!(rows->nord == nc && resolve_resort(rows->key, rows->ord, nc))) {
+            for (int32_t k = 0; k < nc; k++) rows->ord[k] = k;
+            resolve_radix_sort16(rows->key, rows->ord, rows->tkey, rows->tord, nc);
+        }
+        rows->nord = nc;
     } else {
         for (int32_t k = 0; k < nc; k++) rows->ord[k] = k;
+        rows->nord = 0;
     }
     *ux = gx;
     *uy = gy;

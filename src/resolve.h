@@ -1,6 +1,6 @@
 /* resolve.h: the solve driver: rows staged by the narrowphase, ordered bottom-up along
- * gravity (a radix sort of the contact heights) and handed to the solver (solver.h) in
- * lanes; timed impacts (continuous.h); the solved velocities and the position pass applied
+ * gravity (a radix sort of the contact heights, or the last step's order repaired) and
+ * handed to the solver (solver.h) in lanes; timed impacts (continuous.h); the solved velocities and the position pass applied
  * to the bodies; the impulses kept on the contacts for the next step's warm start. */
 #ifndef RG_RESOLVE_H
 #define RG_RESOLVE_H
@@ -54,6 +54,13 @@ static inline void resolve_stage(rg_world *w, collide_step *x, int32_t id, int32
     resolve_row(w, x, k, id, ia, ib, ima, imb);
     if (w->coll.contacts.c[id].toi > 0) w->coll.rows.imp[x->nimp++] = k;
 }
+
+/* The order of n rows by (key, row) -- what the stable radix sort of the solving order gives
+ * -- from the order held in ord, when that is a permutation of [0, n) close to it (the last
+ * step's, in a pile that moved little): an insertion sort, given up (returning 0, ord then
+ * scrambled) past some 4n moves or on finding ord is no permutation.  Whatever ord held,
+ * success means ord is the one order of distinct rows by (key, row): the sort's result. */
+int resolve_resort(const uint16_t *key, int32_t *ord, int32_t n);
 
 /* Solves the staged rows (restaged first when bodies woke) and moves the bodies. */
 void resolve_run(struct rg_world *w, collide_step *x);

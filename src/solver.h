@@ -193,6 +193,8 @@ typedef struct solver_rows {
     solver_constraint *stage; /* [0, cap): rows in contact order, before sorting */
     rg_real *hgt, *hgx;       /* [0, cap): their contact points, then heights along gravity */
     int32_t *ord, *tord;      /* [0, cap): staged rows in solving order, radix scratch */
+    int32_t nord;             /* rows ord held in order after the last solve (a hint only:
+                               * resolve.c checks it), 0 when none */
     uint16_t *key, *tkey;     /* [0, cap): their sort keys, radix scratch */
     int32_t *color;           /* [0, cap): colouring scratch */
     int32_t *lanes;           /* [0, SOLVER_PACK_BLOCKS(cap) * 32): packing scratch */

@@ -5,6 +5,7 @@
 
 #include <string.h>
 
+#include "resolve.h"
 #include "solver.h"
 
 /* ---------------------------------------------------------------- 1D collisions */
@@ -703,6 +704,65 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
     }
 }
 
+/* ---------------------------------------------------------------- the solving order */
+
+static const uint16_t *resort_keys;
+
+static int resort_cmp(const void *p, const void *q)
+{
+    int32_t a = *(const int32_t *)p, b = *(const int32_t *)q;
+    if (resort_keys[a] != resort_keys[b]) return resort_keys[a] < resort_keys[b] ? -1 : 1;
+    return a < b ? -1 : a > b;
+}
+
+/* The repair of the last step's order gives the stable sort's order by (key, row) exactly,
+ * from any permutation near it, and refuses (so the step sorts afresh) what is no
+ * permutation or too far from it: 2000 rows with keys of many ties (the reference: qsort by
+ * key then row). */
+static void test_the_solving_order_is_repaired_exactly_or_refused(void **state)
+{
+    (void)state;
+    enum { N = 2000 };
+    static uint16_t key[N];
+    static int32_t want[N], ord[N];
+    uint64_t seed = 99;
+#define RND() ((seed = seed * 6364136223846793005ull + 1442695040888963407ull) >> 33)
+    for (int k = 0; k < N; k++) key[k] = (uint16_t)(RND() % 300);
+    for (int k = 0; k < N; k++) want[k] = k;
+    resort_keys = key;
+    qsort(want, N, sizeof *want, resort_cmp);
+    /* already in order */
+    memcpy(ord, want, sizeof ord);
+    assert_int_equal(resolve_resort(key, ord, N), 1);
+    assert_memory_equal(ord, want, sizeof ord);
+    /* a few rows moved some places, ties included */
+    memcpy(ord, want, sizeof ord);
+    for (int s = 0; s < 60; s++) {
+        int32_t i = (int32_t)(RND() % (N - 8)), d = 1 + (int32_t)(RND() % 7), t = ord[i];
+        ord[i] = ord[i + d];
+        ord[i + d] = t;
+    }
+    assert_int_equal(resolve_resort(key, ord, N), 1);
+    assert_memory_equal(ord, want, sizeof ord);
+    /* the identity (contact order) of keys that change little: near enough, or refused */
+    for (int k = 0; k < N; k++) ord[k] = k;
+    if (resolve_resort(key, ord, N)) assert_memory_equal(ord, want, sizeof ord);
+    /* no permutation: a row twice, a row out of range, a negative one */
+    memcpy(ord, want, sizeof ord);
+    ord[N / 2] = ord[N / 3];
+    assert_int_equal(resolve_resort(key, ord, N), 0);
+    memcpy(ord, want, sizeof ord);
+    ord[N - 1] = N;
+    assert_int_equal(resolve_resort(key, ord, N), 0);
+    memcpy(ord, want, sizeof ord);
+    ord[7] = -1;
+    assert_int_equal(resolve_resort(key, ord, N), 0);
+    /* reversed: some N^2/2 moves, past the budget of about 4N */
+    for (int k = 0; k < N; k++) ord[k] = want[N - 1 - k];
+    assert_int_equal(resolve_resort(key, ord, N), 0);
+#undef RND
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -725,6 +785,7 @@ int main(void)
         cmocka_unit_test(test_static_bodies_never_move),
         cmocka_unit_test(test_position_correction_adds_no_energy),
         cmocka_unit_test(test_packed_lanes_match_row_by_row_sweeps),
+        cmocka_unit_test(test_the_solving_order_is_repaired_exactly_or_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
