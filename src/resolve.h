@@ -1,7 +1,8 @@
 /* resolve.h: the solve driver: rows staged by the narrowphase, ordered bottom-up along
  * gravity (a radix sort of the contact heights, or the last step's order repaired) and
- * handed to the solver (solver.h) in lanes; timed impacts (continuous.h); the solved velocities and the position pass applied
- * to the bodies; the impulses kept on the contacts for the next step's warm start. */
+ * handed to the solver (solver.h) in lanes; timed impacts (continuous.h); the solved
+ * velocities and the position pass applied to the bodies; the impulses kept on the contacts
+ * for the next step's warm start. */
 #ifndef RG_RESOLVE_H
 #define RG_RESOLVE_H
 
