@@ -48,17 +48,22 @@ rg_status body_scratch_reserve(struct rg_world *w);
 void body_store_release(struct rg_world *w);
 /* Moves the body at dense index i into partition part; returns its new dense index. */
 int32_t body_move_to_partition(struct rg_world *w, int32_t i, int part);
-/* The BODY_F_COUNTED flags dense index i's settings give it. */
+/* The BODY_F_COUNTED flags a body's settings give it; without branches (a restore computes
+ * them for every body, in loops the compiler vectorises). */
+static inline uint32_t body_flags_from(int32_t type, rg_real drag_lin, rg_real drag_quad, rg_real fric,
+                                       rg_real min_speed, rg_real max_speed, rg_real gscale)
+{
+    uint32_t dynamic = type == RG_BODY_DYNAMIC, moving = type != RG_BODY_STATIC;
+    uint32_t magnitude = (drag_quad > 0) | (fric > 0), dissipative = magnitude | (drag_lin > 0);
+    uint32_t limited = (min_speed > 0) | (max_speed > 0);
+    return (dynamic & dissipative) * BODY_F_DISSIPATIVE | (dynamic & magnitude) * BODY_F_MAGNITUDE |
+           (dynamic & limited) * BODY_F_LIMITED | (moving & (gscale != 1)) * BODY_F_GSCALE;
+}
+/* Those of dense index i. */
 static inline uint32_t body_flags_of(const body_store *b, int32_t i)
 {
-    uint32_t f = 0;
-    if (b->type[i] == RG_BODY_DYNAMIC) {
-        if (b->drag_lin[i] > 0 || b->drag_quad[i] > 0 || b->fric[i] > 0) f |= BODY_F_DISSIPATIVE;
-        if (b->drag_quad[i] > 0 || b->fric[i] > 0) f |= BODY_F_MAGNITUDE;
-        if (b->min_speed[i] > 0 || b->max_speed[i] > 0) f |= BODY_F_LIMITED;
-    }
-    if (b->type[i] != RG_BODY_STATIC && b->gscale[i] != 1) f |= BODY_F_GSCALE;
-    return f;
+    return body_flags_from(b->type[i], b->drag_lin[i], b->drag_quad[i], b->fric[i], b->min_speed[i], b->max_speed[i],
+                           b->gscale[i]);
 }
 /* Recomputes BODY_F_COUNTED of dense index i and the world's counts. */
 void body_update_flags(struct rg_world *w, int32_t i);

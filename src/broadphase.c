@@ -252,30 +252,18 @@ rg_status broadphase_reserve(broadphase *bp, const rg_mem *m, int32_t slots, int
 
 /* ---------------------------------------------------------------- restoring a snapshot */
 
-void broadphase_locate(rg_real lx, rg_real ly, rg_real ux, rg_real uy, int16_t *level, uint64_t *key)
+void broadphase_locate_boxes(const rg_real *box, int32_t n, int16_t *level, uint64_t *key)
 {
-    int li = level_of(lx, ly, ux, uy);
-    *level = (int16_t)li;
-    *key = 0;
-    if (li != BP_HUGE) {
-        rg_real inv = level_inv(li);
-        *key = cell_key(li, cell_coord(lx, inv), cell_coord(ly, inv));
-    }
-}
-
-void broadphase_locate_known(const broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_real ux, rg_real uy,
-                             int16_t *level, uint64_t *key)
-{
-    if (slot >= 0 && slot < bp->cap && bp->e[slot].member >= 0) {
-        const bp_entry *e = &bp->e[slot];
-        const rg_real box[4] = { lx, ly, ux, uy }, was[4] = { e->lx, e->ly, e->ux, e->uy };
-        if (memcmp(box, was, sizeof box) == 0) { /* the same bits: the same level and cell */
-            *level = e->level;
-            *key = e->key;
-            return;
+    for (int32_t k = 0; k < n; k++, box += 4) {
+        int li = level_of(box[0], box[1], box[2], box[3]);
+        uint64_t kk = 0;
+        if (li != BP_HUGE) {
+            rg_real inv = level_inv(li);
+            kk = cell_key(li, cell_coord(box[0], inv), cell_coord(box[1], inv));
         }
+        level[k] = (int16_t)li;
+        key[k] = kk;
     }
-    broadphase_locate(lx, ly, ux, uy, level, key);
 }
 
 uint32_t broadphase_bucket(int bits, uint64_t key)
@@ -297,12 +285,17 @@ void broadphase_clear(broadphase *bp, const rg_mem *m, int32_t *head, int bits, 
         bp->head = head;
         bp->bucket_bits = bits;
     }
-    /* the chains' heads are the members' buckets: reset those alone; only members' entries
-     * differ from an empty slot's, and those the caller rewrites whole are left to it */
+    /* the chains' heads are the members' buckets: reset those alone, or the whole table when
+     * the members are many (a pass over it costs less than a write per member to a bucket
+     * found through its entry); only members' entries differ from an empty slot's, and those
+     * the caller rewrites whole are left to it */
+    size_t nb = bp->head != NULL ? (size_t)1 << bp->bucket_bits : 0;
+    int whole = bp->head != NULL && (fresh || (size_t)bp->count * 8 >= nb);
+    int each = bp->head != NULL && !whole;
     for (int32_t i = 0; i < bp->count; i++) {
         int32_t s = bp->members[i];
         bp_entry *e = &bp->e[s];
-        if (!fresh && bp->head != NULL && e->level != BP_HUGE) bp->head[bucket_of(bp, e->key)] = -1;
+        if (each && e->level != BP_HUGE) bp->head[bucket_of(bp, e->key)] = -1;
         if (s < nrewritten && rewritten[s] != 0) continue;
         memset(e, 0, sizeof *e);
         e->member = -1;
@@ -310,30 +303,33 @@ void broadphase_clear(broadphase *bp, const rg_mem *m, int32_t *head, int bits, 
         e->lnext = e->lprev = -1;
         e->apos = -1;
     }
-    if (fresh && bp->head != NULL)
-        for (size_t k = 0; k < ((size_t)1 << bits); k++) bp->head[k] = -1;
+    if (whole) memset(bp->head, 0xFF, nb * sizeof *bp->head); /* -1 */
     bp->count = bp->n_huge = bp->n_moved = bp->n_active = 0;
     for (int li = 0; li <= BP_LEVELS; li++) bp->level_count[li] = 0;
     for (int li = 0; li < BP_LEVELS; li++) bp->level_head[li] = -1;
     bp->levels = 0;
 }
 
-void broadphase_restore_member(broadphase *bp, int32_t s)
+void broadphase_restore_members(broadphase *bp, int32_t count)
 {
-    bp_entry *e = &bp->e[s];
-    level_count_add(bp, e->level, 1);
-    if (e->apos >= 0) {
-        bp->active[e->apos] = s;
-        bp->n_active++;
+    for (int32_t k = 0; k < count; k++) {
+        int32_t s = bp->members[k];
+        bp_entry *e = &bp->e[s];
+        level_count_add(bp, e->level, 1);
+        if (e->apos >= 0) {
+            bp->active[e->apos] = s;
+            bp->n_active++;
+        }
+        if (e->level == BP_HUGE) {
+            bp->huge[e->next] = s;
+            bp->n_huge++;
+            e->prev = e->lnext = e->lprev = -1;
+            continue;
+        }
+        if (e->prev < 0) bp->head[bucket_of(bp, e->key)] = s;
+        if (e->lprev < 0) bp->level_head[e->level] = s;
     }
-    if (e->level == BP_HUGE) {
-        bp->huge[e->next] = s;
-        bp->n_huge++;
-        e->prev = e->lnext = e->lprev = -1;
-        return;
-    }
-    if (e->prev < 0) bp->head[bucket_of(bp, e->key)] = s;
-    if (e->lprev < 0) bp->level_head[e->level] = s;
+    bp->count = count;
 }
 
 void broadphase_release(broadphase *bp, const rg_mem *m)

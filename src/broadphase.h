@@ -96,12 +96,9 @@ static inline uint32_t broadphase_new_mark(broadphase *bp)
 /* ---- restoring a snapshot: the members' boxes and links are set from outside (restore.c
  * checks them), then the derived lists are rebuilt. */
 
-/* The level (or BP_HUGE) and cell key of a fat box, as insert and move compute them. */
-void broadphase_locate(rg_real lx, rg_real ly, rg_real ux, rg_real uy, int16_t *level, uint64_t *key);
-/* The same, taken from the slot's entry when the slot is a member with the same box bits
- * (the level and key are a function of them): a rollback finds most boxes where they were. */
-void broadphase_locate_known(const broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_real ux, rg_real uy,
-                             int16_t *level, uint64_t *key);
+/* The levels (or BP_HUGE) and cell keys of n fat boxes (box[4k .. 4k + 3]: lx, ly, ux, uy),
+ * as insert and move compute them; in one loop, whose iterations the processor overlaps. */
+void broadphase_locate_boxes(const rg_real *box, int32_t n, int16_t *level, uint64_t *key);
 /* The bucket of a key in a table of 2^bits buckets (bits >= 1). */
 uint32_t broadphase_bucket(int bits, uint64_t key);
 /* Room for slots [0, slots), nothing else changed; all-or-nothing. */
@@ -112,10 +109,10 @@ rg_status broadphase_reserve_slots(broadphase *bp, const rg_mem *m, int32_t slot
  * rewritten[slot] != 0 are left as they are, for the caller to set whole. */
 void broadphase_clear(broadphase *bp, const rg_mem *m, int32_t *head, int bits, const int32_t *rewritten,
                       int32_t nrewritten);
-/* After member slot's entry is set whole (box, level, key, member, chain and level links,
- * huge index in next, moved, apos, mark) and it is in members[]: its place in the bucket and
- * level heads, the huge and active lists and the level counts. */
-void broadphase_restore_member(broadphase *bp, int32_t slot);
+/* After the entries of members[0, count) are set whole (box, level, key, member, chain and
+ * level links, huge index in next, moved, apos, mark): their places in the bucket and level
+ * heads, the huge and active lists and the level counts; count becomes theirs. */
+void broadphase_restore_members(broadphase *bp, int32_t count);
 
 /* Calls visit(ctx, slot) once for every member whose fat box overlaps [lx, ux] x [ly, uy]. */
 typedef void (*bp_visit_fn)(void *ctx, int32_t slot);

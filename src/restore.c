@@ -96,16 +96,22 @@ static void restore_contacts(rg_world *w, const snap_in *in, int32_t *place)
     int same = in->l.stride[SNAP_F_mu] == 0 && in->l.stride[SNAP_F_rest] == 0 && b->count > 0;
     rg_real mu = same ? rg_sqrt(b->mu[0] * b->mu[0]) : 0, e = same ? b->rest[0] : 0;
     for (int32_t k = 0; k < s->clive; k++) {
-        snap_cursor q = { rec(in, in->l.contacts, SNAP_CONTACT, k) };
-        int32_t id = cur_i32(&q);
+        const uint8_t *p = rec(in, in->l.contacts, SNAP_CONTACT, k);
+        int32_t id = (int32_t)snap_get32(p);
         contact *c = &cs->c[id];
+#if SNAP_NATIVE /* the record's runs where they lie in the struct (snapshot.h) */
+        uint8_t *to = (uint8_t *)c;
+        memcpy(to + offsetof(contact, sa), p + SNAP_CONTACT_LINKS, 6 * 4);
+        memcpy(&c->flags, p + SNAP_CONTACT_FLAGS, 4);
+        memcpy(to + offsetof(contact, nx), p + SNAP_CONTACT_REALS, 10 * SNAP_REAL);
+#else
+        snap_cursor q = { p + 4 };
         c->sa = cur_i32(&q);
         c->sb = cur_i32(&q);
         c->na = cur_i32(&q);
         c->pa = cur_i32(&q);
         c->nb = cur_i32(&q);
         c->pb = cur_i32(&q);
-        c->awake = place[id];
         c->flags = cur_u32(&q);
         c->nx = cur_real(&q);
         c->ny = cur_real(&q);
@@ -117,6 +123,8 @@ static void restore_contacts(rg_world *w, const snap_in *in, int32_t *place)
         c->speed = cur_real(&q);
         c->pn = cur_real(&q);
         c->pt = cur_real(&q);
+#endif
+        c->awake = place[id];
         c->toi = 0;
         c->decided = 0;
         if (same) {
@@ -146,41 +154,92 @@ static void restore_contacts(rg_world *w, const snap_in *in, int32_t *place)
     cs->n_touching = s->n_touching;
 }
 
+/* The members' levels and keys come from the checks (restore_check_broadphase) or from a
+ * kept state's tail. */
 static void restore_broadphase(broadphase *bp, const snap_in *in, const restore_scratch *r)
 {
+    const int16_t *level = in->kept_level != NULL ? in->kept_level : r->level;
+    const uint64_t *key = in->kept_key != NULL ? in->kept_key : r->key;
     for (int32_t k = 0; k < in->s.members; k++) {
+        const uint8_t *p = rec(in, in->l.members, SNAP_MEMBER, k);
+        int32_t slot = (int32_t)snap_get32(p);
+        bp_entry *e = &bp->e[slot];
+#if SNAP_NATIVE /* the record's runs where they lie in the entry (snapshot.h) */
+        uint8_t *to = (uint8_t *)e;
+        memcpy(to + offsetof(bp_entry, lx), p + SNAP_MEMBER_BOX, 4 * SNAP_REAL);
+        memcpy(to + offsetof(bp_entry, next), p + SNAP_MEMBER_LINKS, 4 * 4);
+#else
         snap_member m;
         restore_member(in, k, &m);
-        bp_entry *e = &bp->e[m.slot];
-        int16_t level;
-        uint64_t key;
-        if (r->located) {
-            level = r->level[k];
-            key = r->key[k];
-        } else { /* from the entry's box, still there (broadphase_clear leaves it) */
-            broadphase_locate_known(bp, m.slot, m.lx, m.ly, m.ux, m.uy, &level, &key);
-        }
         e->lx = m.lx;
         e->ly = m.ly;
         e->ux = m.ux;
         e->uy = m.uy;
-        e->level = level;
-        e->key = key;
         e->next = m.next;
         e->prev = m.prev;
         e->lnext = m.lnext;
         e->lprev = m.lprev;
-        e->moved = (int16_t)m.moved;
-        e->apos = m.apos;
+#endif
+        e->moved = (int16_t)snap_get32(p + SNAP_MEMBER_LINKS + 16);
+        e->apos = (int32_t)snap_get32(p + SNAP_MEMBER_LINKS + 20);
+        e->level = level[k];
+        e->key = key[k];
         e->member = k;
         e->mark = 0;
-        bp->members[k] = m.slot;
-        broadphase_restore_member(bp, m.slot);
+        bp->members[k] = slot;
     }
-    bp->count = in->s.members;
+    broadphase_restore_members(bp, in->s.members);
     restore_array(bp->moved, in->p + in->l.moved, in->s.n_moved, 4, 4);
     bp->n_moved = in->s.n_moved;
     bp->mark = in->s.mark;
+}
+
+/* What the snapshot leaves out: inverse masses, flags (as body_update_flags makes them) and
+ * the step's displacements.  Without branches (one per body mispredicts on a mix of
+ * types): the inverse mass is d / (d m + 1 - d), d = 1 for a dynamic body (1 / m exactly)
+ * and 0 for the others (0 / 1), a mass being finite; in blocks of RESTORE_BLOCK (a loop of
+ * known length, which GCC vectorises at -O2; with the flags in it, it does not), then one
+ * by one. */
+#define RESTORE_BLOCK 16
+
+static void restore_inverse_masses(rg_real *restrict inv, const rg_real *restrict mass, const int32_t *restrict type,
+                                   int32_t n)
+{
+    int32_t i = 0;
+    for (; n - i >= RESTORE_BLOCK; i += RESTORE_BLOCK)
+        for (int k = 0; k < RESTORE_BLOCK; k++) {
+            rg_real d = (rg_real)(type[i + k] == RG_BODY_DYNAMIC);
+            inv[i + k] = d / (d * mass[i + k] + (1 - d));
+        }
+    for (; i < n; i++) {
+        rg_real d = (rg_real)(type[i] == RG_BODY_DYNAMIC);
+        inv[i] = d / (d * mass[i] + (1 - d));
+    }
+}
+
+static void restore_derived(rg_world *w)
+{
+    body_store *b = &w->b;
+    const int32_t *restrict type = b->type;
+    const rg_real *restrict dl = b->drag_lin, *restrict dq = b->drag_quad, *restrict fric = b->fric;
+    const rg_real *restrict lo = b->min_speed, *restrict hi = b->max_speed, *restrict gs = b->gscale;
+    uint32_t *restrict flags = b->flags;
+    int32_t n = b->count, dissipative = 0, limited = 0, gscaled = 0;
+    for (int32_t i = 0; i < n; i++) {
+        uint32_t fl = body_flags_from(type[i], dl[i], dq[i], fric[i], lo[i], hi[i], gs[i]);
+        flags[i] = fl;
+        dissipative += (fl & BODY_F_DISSIPATIVE) != 0;
+        limited += (fl & BODY_F_LIMITED) != 0;
+        gscaled += (fl & BODY_F_GSCALE) != 0;
+    }
+    restore_inverse_masses(b->inv_mass, b->mass, type, n);
+    if (n > 0) {
+        memset(b->dx, 0, (size_t)n * sizeof *b->dx);
+        memset(b->dy, 0, (size_t)n * sizeof *b->dy);
+    }
+    w->dissipative_count = dissipative;
+    w->limit_count = limited;
+    w->gscale_count = gscaled;
 }
 
 static void restore_load(rg_world *w, const snap_in *in, const restore_scratch *r)
@@ -218,21 +277,7 @@ static void restore_load(rg_world *w, const snap_in *in, const restore_scratch *
     b->count = s->count;
     b->n_active = s->n_active;
     b->n_moving = s->n_moving;
-    /* what the snapshot leaves out: inverse masses, flags (as body_update_flags makes them)
-     * and the step's displacements */
-    int32_t dissipative = 0, limited = 0, gscaled = 0;
-    for (int32_t i = 0; i < b->count; i++) {
-        b->inv_mass[i] = b->type[i] == RG_BODY_DYNAMIC ? 1 / b->mass[i] : 0;
-        b->dx[i] = b->dy[i] = 0;
-        uint32_t fl = body_flags_of(b, i);
-        b->flags[i] = fl;
-        dissipative += (fl & BODY_F_DISSIPATIVE) != 0;
-        limited += (fl & BODY_F_LIMITED) != 0;
-        gscaled += (fl & BODY_F_GSCALE) != 0;
-    }
-    w->dissipative_count = dissipative;
-    w->limit_count = limited;
-    w->gscale_count = gscaled;
+    restore_derived(w);
     w->stopped_any = 0; /* the flags above hold no BODY_F_STOPPED: a restore is no step */
     w->forces_applied = 1; /* the snapshot's fx, fy may hold forces applied before its step */
     restore_pool(&w->springs.pool, in, in->l.sgen, in->l.sindex, s->sslots, s->stag, s->smax_gen,
@@ -290,7 +335,7 @@ static const char *restore_check_values(const snap_in *in)
 }
 
 /* A state this world wrote itself (a kept slot): of the scratch the checks would fill, the
- * load needs the members' places (the levels and keys it finds itself). */
+ * load needs the members' places (the levels and keys are in the state's tail). */
 static void restore_fill_scratch(const snap_in *in, restore_scratch *r)
 {
     memset(r->member_of, 0, (size_t)in->s.bslots * sizeof *r->member_of);
@@ -309,12 +354,12 @@ static rg_status restore_state(rg_world *w, const char *fn, const snap_in *in, i
     restore_scratch r;
     size_t rsize = 0;
     r.s = s;
+    r.checked = checked;
     void *rblock = mem_block(m, restore_check_scratch_layout, &r, &rsize);
     if (rblock == NULL) return error_alloc(w, fn, RG_ERR_OUT_OF_MEMORY, "restore scratch", "RG_MAX_BODIES");
     rg_status st = RG_OK;
-    r.located = checked;
     if (checked) {
-        memset(rblock, 0, rsize);
+        memset(rblock, 0, r.zeroed);
         if (!restore_check_contacts(in, &r))
             st = restore_refuse(w, fn, "contacts");
         else if (!restore_check_broadphase(in, &r))
@@ -363,6 +408,9 @@ rg_status restore_kept(rg_world *w, const void *data, size_t size)
      * nothing), the rest is known good */
     if (!restore_check_header(w, &in, data, size, 0)) return RG_ERR_INVALID_ARGUMENT;
     if (!restore_check_scalars(&in)) return restore_refuse(w, "rg_world_restore_slot", "settings and counts");
+    const uint8_t *tail = in.p + size; /* snapshot.h: snap_kept_tail_size */
+    in.kept_key = (const uint64_t *)(const void *)tail;
+    in.kept_level = (const int16_t *)(const void *)(tail + (size_t)in.s.members * sizeof(uint64_t));
     return restore_state(w, "rg_world_restore_slot", &in, 0);
 }
 

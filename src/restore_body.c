@@ -112,49 +112,58 @@ int restore_check_body_values(const snap_in *in)
     /* the static bodies have no mass and no gravity; a moving body has a mass when dynamic */
     ok = ok && col_within(in, SNAP_F_mass, nm, n, 0, 0) && col_within(in, SNAP_F_gscale, nm, n, 0, 0);
     if (!ok) return 0;
-    int bad = 0;
+    /* the rules over several fields on the reals' bits (real_out, as col_within), without
+     * branches and in 32 bits: compares of reals and a branch per row made GCC keep flags in
+     * bytes on the stack, and a byte stored and read back as a word stalls the loop */
+    uint32_t wrong = 0;
     {
         snap_col type = col_of(in, SNAP_F_type), mass = col_of(in, SNAP_F_mass), gs = col_of(in, SNAP_F_gscale);
-        const rg_real lo = (rg_real)RG_MIN_MASS, hi = (rg_real)RG_MAX_MASS;
+        const real_sbits lo = real_magnitude((rg_real)RG_MIN_MASS), hi = real_magnitude((rg_real)RG_MAX_MASS);
         for (int32_t i = 0, end = rows_end(col_uniform(in, SNAP_F_type) && col_uniform(in, SNAP_F_mass) &&
                                                col_uniform(in, SNAP_F_gscale), 0, nm);
              i < end; i++) {
-            rg_real m = col_real(mass, i);
-            int dynamic = col_i32(type, i) == RG_BODY_DYNAMIC;
-            bad |= dynamic ? !(m >= lo) | !(m <= hi) : (m != 0) | (col_real(gs, i) != 0);
+            real_bits m = col_bits_at(mass, i), g = col_bits_at(gs, i);
+            uint32_t dynamic = 0u - (uint32_t)(col_i32(type, i) == RG_BODY_DYNAMIC);
+            uint32_t out = (uint32_t)real_out(m, lo, hi, -1), nonzero = ((m | g) << 1) != 0; /* +-0 alone */
+            wrong |= (dynamic & out) | (~dynamic & nonzero);
         }
     }
     {
+        /* both within [0, max speed] (or -0): a limit above 0 has its sign clear and a
+         * magnitude above 0, and magnitudes order them as their values */
         snap_col lo = col_of(in, SNAP_F_min_speed), hi = col_of(in, SNAP_F_max_speed);
         for (int32_t i = 0, end = rows_end(col_uniform(in, SNAP_F_min_speed) && col_uniform(in, SNAP_F_max_speed), 0, n);
              i < end; i++) {
-            rg_real l = col_real(lo, i), h = col_real(hi, i);
-            bad |= (h > 0) & (h < l);
+            real_bits l = col_bits_at(lo, i), h = col_bits_at(hi, i);
+            wrong |= (uint32_t)(((real_sbits)h > 0) & (real_bits_magnitude(h) < real_bits_magnitude(l)));
         }
     }
     {
         snap_col ox = col_of(in, SNAP_F_owx), oy = col_of(in, SNAP_F_owy);
         for (int32_t i = 0, end = rows_end(col_uniform(in, SNAP_F_owx) && col_uniform(in, SNAP_F_owy), 0, n); i < end; i++)
-            bad |= !restore_unit_or_zero(col_real(ox, i), col_real(oy, i));
+            wrong |= (uint32_t)!restore_unit_or_zero(col_real(ox, i), col_real(oy, i));
     }
-    /* a shape has sizes in range (a circle's two equal); no shape, no sizes and no contacts */
+    /* a shape has sizes in range (a circle's two equal: in range, equal bits); no shape, no
+     * sizes and no contacts */
     int32_t shaped = 0;
     {
         snap_col shape = col_of(in, SNAP_F_shape), hx = col_of(in, SNAP_F_hx), hy = col_of(in, SNAP_F_hy);
         snap_col chead = col_of(in, SNAP_F_chead);
-        const rg_real lo = (rg_real)RG_MIN_SHAPE_SIZE, hi = (rg_real)RG_MAX_SHAPE_SIZE;
+        const real_sbits lo = real_magnitude((rg_real)RG_MIN_SHAPE_SIZE), hi = real_magnitude((rg_real)RG_MAX_SHAPE_SIZE);
         int all = col_uniform(in, SNAP_F_shape) && col_uniform(in, SNAP_F_hx) && col_uniform(in, SNAP_F_hy) &&
                   col_uniform(in, SNAP_F_chead);
         for (int32_t i = 0, end = rows_end(all, 0, n); i < end; i++) {
             int32_t sh = col_i32(shape, i);
-            rg_real x = col_real(hx, i), y = col_real(hy, i);
-            int none = sh == RG_SHAPE_NONE;
-            bad |= none ? (x != 0) | (y != 0) | (col_i32(chead, i) != 0)
-                        : !(x >= lo) | !(x <= hi) | !(y >= lo) | !(y <= hi) | ((sh == RG_SHAPE_CIRCLE) & (x != y));
-            shaped += !none;
+            real_bits x = col_bits_at(hx, i), y = col_bits_at(hy, i);
+            uint32_t none = 0u - (uint32_t)(sh == RG_SHAPE_NONE);
+            uint32_t nonzero = (((x | y) << 1) != 0) | (col_i32(chead, i) != 0);
+            uint32_t out = (uint32_t)(real_out(x, lo, hi, -1) | real_out(y, lo, hi, -1) |
+                                      ((sh == RG_SHAPE_CIRCLE) & (x != y)));
+            wrong |= (none & nonzero) | (~none & out);
+            shaped += (int32_t)(none + 1); /* 0 for none (all ones), else 1 */
         }
         if (all && n > 0) shaped *= n;
     }
-    return !bad && shaped == s->members;
+    return !(wrong & 1) && shaped == s->members;
 }
 

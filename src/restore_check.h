@@ -1,6 +1,6 @@
 /* restore_check.h: a snapshot (snapshot.h) read where it lies, and the checks rg_world_restore
- * makes of it before anything of the world changes (restore_check.c, restore_body.c);
- * restore.c loads it. */
+ * makes of it before anything of the world changes (restore_check.c, restore_body.c,
+ * restore_links.c); restore.c loads it. */
 #ifndef RG_RESTORE_CHECK_H
 #define RG_RESTORE_CHECK_H
 
@@ -15,6 +15,8 @@ typedef struct snap_in {
     size_t size;
     snap_scalars s;
     snap_layout l;
+    const uint64_t *kept_key;  /* a kept state's tail (snapshot.h: snap_kept_tail_size), */
+    const int16_t *kept_level; /* else NULL */
 } snap_in;
 
 /* ---------------------------------------------------------------- reading */
@@ -119,6 +121,9 @@ static inline real_sbits real_magnitude(rg_real v)
     return real_bits_magnitude(u);
 }
 
+/* A real field's bits at element i. */
+static inline real_bits col_bits_at(snap_col c, int32_t i) { return real_get(c.p + c.stride * (size_t)i); }
+
 static inline int real_out(real_bits u, real_sbits pmin, real_sbits plim, real_sbits nlim)
 {
     real_sbits mag = real_bits_magnitude(u), neg = -(real_sbits)(u >> REAL_SIGN);
@@ -156,20 +161,36 @@ static inline void restore_member(const snap_in *in, int32_t k, snap_member *m)
     m->apos = cur_i32(&c);
 }
 
-/* What the contact and broadphase checks work with, kept for the load: per contact id its
- * record + 1 (live) or -1 (free); per slot its member index + 1; per member its level and
- * key (computed once); marks for the bucket heads, huge indices and active places. */
+/* What the contact and broadphase checks work with (restore_links.c), kept for the load:
+ * per contact id its record + 1 (live) or -1 (free); per slot its member index + 1; per
+ * member its level and key (computed once); marks for the bucket heads, huge indices and
+ * active places; what the walks of the lists follow.  The load of a kept state (checked 0)
+ * needs rec_of and member_of alone, and the rest is not made. */
 typedef struct restore_scratch {
     int32_t *rec_of;        /* [ccap] */
     int32_t *member_of;     /* [bslots] */
-    uint64_t *key;          /* [members] */
-    int16_t *level;         /* [members] */
     uint8_t *bucket_head;   /* [2^bucket_bits] */
     uint8_t *huge_used;     /* [n_huge] */
     uint8_t *active_used;   /* [n_bp_active] */
+    size_t zeroed;          /* the block's bytes up to here start at zero, the rest is written */
+    uint64_t *key;          /* [members] */
+    int16_t *level;         /* [members] */
+    uint8_t *body_bits;     /* [count]: what a body gives its contacts' flags */
+    uint8_t *wakes;         /* [clive]: the record has an awake body */
+    int32_t *node_next;     /* [2 clive]: each body list's next node (record 2k + side) */
+    int32_t *chain_next;    /* [members]: the next member along the chain, and the level */
+    int32_t *level_next;    /* [members] */
+    rg_real *box;           /* [4 members]: the members' boxes */
     const snap_scalars *s;
-    int located;            /* level and key filled (by the checks); else the load finds them */
+    int checked;
 } restore_scratch;
+
+/* Dense index of a live body slot, or -1. */
+static inline int32_t restore_dense(const snap_in *in, int32_t slot)
+{
+    if (slot < 0 || slot >= in->s.bslots) return -1;
+    return rd_i32(in, in->l.bindex, slot);
+}
 
 /* Each check returns 1, or 0 for a snapshot that breaks what it checks. */
 /* The header (magic, version, rg_real, size and, when sealed, the checksum), with the reason
@@ -186,7 +207,8 @@ int restore_check_bodies(const snap_in *in);
 int restore_check_body_values(const snap_in *in);
 int restore_check_springs(const snap_in *in);
 int restore_check_events(const snap_in *in, size_t off, int32_t n);
-/* The scratch the two checks below fill (sized from r->s) and the load reads. */
+/* The scratch the two checks below fill (sized from r->s and r->checked) and the load
+ * reads (restore_links.c). */
 void restore_check_scratch_layout(mem_layout *l, void *ctx);
 int restore_check_contacts(const snap_in *in, restore_scratch *r);
 int restore_check_broadphase(const snap_in *in, restore_scratch *r);

@@ -1,6 +1,7 @@
 /* slots.c: kept states (rg_world_save_slot, rg_world_restore_slot, rg_world_drop_slot): the
- * world's own snapshots, written unsealed into blocks of its allocator and loaded without
- * the checks a snapshot from outside needs (snapshot.h: snap_write_planned, restore_kept). */
+ * world's own snapshots, written unsealed with a tail of what a restore would derive into
+ * blocks of its allocator, and loaded without the checks a snapshot from outside needs
+ * (snapshot.h: snap_write_planned, snap_kept_tail_size, restore_kept). */
 #include "error.h"
 #include "snapshot.h"
 
@@ -16,11 +17,12 @@ RG_API rg_status rg_world_save_slot(rg_world *world, int32_t slot)
     snap_plan plan;
     snap_plan_of(world, &plan);
     uint8_t *p = world->kept[slot].p;
-    if (plan.size > world->kept[slot].cap) {
+    size_t need = plan.size + snap_kept_tail_size(&plan); /* the snapshot and its tail */
+    if (need > world->kept[slot].cap) {
         /* an eighth more than now, so that a state that grows a little does not grow the
          * block at every save (the size itself where that would wrap) */
-        size_t cap = plan.size + plan.size / 8;
-        if (cap < plan.size) cap = plan.size;
+        size_t cap = need + need / 8;
+        if (cap < need) cap = need;
         p = mem_alloc(&world->mem, cap);
         if (p == NULL)
             return error_alloc(world, "rg_world_save_slot", RG_ERR_OUT_OF_MEMORY, "the kept state", "RG_MAX_BODIES");

@@ -40,11 +40,41 @@ static inline uint64_t snap_word(const uint8_t *p)
 #define SNAP_BLOCK (8 * SNAP_LANES)
 typedef char snap_eight_lanes[SNAP_LANES == 8 ? 1 : -1]; /* snap_blocks has eight */
 
+/* On x86-64 with GCC or clang the blocks also run with the eight lanes in one AVX-512
+ * register (one multiply for all, VPMULLQ, where the scalar loop waits on eight in turn),
+ * picked per call from the CPU: the same operations on each lane, so the same hash.
+ * RG_NO_DISPATCH builds the scalar loop alone. */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(RG_NO_DISPATCH)
+#define SNAP_AVX512 1
+#include <immintrin.h>
+#else
+#define SNAP_AVX512 0
+#endif
+
+#if SNAP_AVX512
+__attribute__((target("avx512f,avx512dq"))) static void snap_blocks_avx512(snap_hasher *h, const uint8_t *p, size_t n)
+{
+    __m512i l = _mm512_loadu_si512((const void *)h->lane); /* lane k: word k of each block */
+    const __m512i k1 = _mm512_set1_epi64((long long)SNAP_K1);
+    for (; n >= SNAP_BLOCK; p += SNAP_BLOCK, n -= SNAP_BLOCK) {
+        l = _mm512_mullo_epi64(_mm512_xor_si512(l, _mm512_loadu_si512((const void *)p)), k1);
+        l = _mm512_xor_si512(l, _mm512_srli_epi64(l, 29));
+    }
+    _mm512_storeu_si512((void *)h->lane, l);
+}
+#endif
+
 /* Whole blocks: one word into each lane.  The eight lanes are eight scalars, so that they
  * stay in registers and each takes one 64-bit multiply (GCC vectorised an array of them
  * into SSE2's 32-bit multiplies, three a word, with the lanes going through the stack). */
 static void snap_blocks(snap_hasher *h, const uint8_t *p, size_t n)
 {
+#if SNAP_AVX512
+    if (n >= SNAP_BLOCK && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq")) {
+        snap_blocks_avx512(h, p, n);
+        return;
+    }
+#endif
     uint64_t l0 = h->lane[0], l1 = h->lane[1], l2 = h->lane[2], l3 = h->lane[3];
     uint64_t l4 = h->lane[4], l5 = h->lane[5], l6 = h->lane[6], l7 = h->lane[7];
     for (; n >= SNAP_BLOCK; p += SNAP_BLOCK, n -= SNAP_BLOCK) {
@@ -128,6 +158,8 @@ typedef struct snap_out {
     snap_hasher *hash;  /* NULL: a kept state (slots.c), written unsealed */
     int anonymous;      /* the world tag left out (rg_world_hash) */
     const int *uniform; /* per body field: all its values equal */
+    uint64_t *kept_key; /* a kept state's tail (snap_kept_tail_size), or NULL */
+    int16_t *kept_level;
     size_t nchunk;
     uint8_t chunk[SNAP_CHUNK];
 } snap_out;
@@ -389,11 +421,19 @@ static void snap_write_contacts(snap_out *o, const contact_store *cs)
         const contact *c = &cs->c[k];
         if (c->sa < 0) continue;
         uint8_t *q = snap_record(o, SNAP_CONTACT);
+#if SNAP_NATIVE
+        const uint8_t *from = (const uint8_t *)c;
+        memcpy(q, &k, 4);
+        memcpy(q + SNAP_CONTACT_LINKS, from + offsetof(contact, sa), 6 * 4);
+        memcpy(q + SNAP_CONTACT_FLAGS, &c->flags, 4);
+        memcpy(q + SNAP_CONTACT_REALS, from + offsetof(contact, nx), 10 * SNAP_REAL);
+#else
         const int32_t ints[8] = { k, c->sa, c->sb, c->na, c->pa, c->nb, c->pb, (int32_t)c->flags };
         for (int f = 0; f < 8; f++) snap_put32(q + 4 * f, (uint32_t)ints[f]);
         q += 32;
         const rg_real reals[10] = { c->nx, c->ny, c->px, c->py, c->s0, c->vn0, c->depth, c->speed, c->pn, c->pt };
         for (int f = 0; f < 10; f++) snap_put_real(q + SNAP_REAL * (size_t)f, reals[f]);
+#endif
     }
     snap_pad(o);
     for (int32_t id = cs->free_head; id >= 0; id = cs->c[id].na) snap_i32(o, id);
@@ -434,6 +474,13 @@ static void snap_write(const rg_world *w, snap_out *o, const snap_scalars *s)
         const bp_entry *e = &cw->bp.e[slot];
         uint8_t *q = snap_record(o, SNAP_MEMBER);
         snap_put32(q, (uint32_t)slot);
+#if SNAP_NATIVE
+        const uint8_t *from = (const uint8_t *)e;
+        memcpy(q + SNAP_MEMBER_BOX, from + offsetof(bp_entry, lx), 4 * SNAP_REAL);
+        memcpy(q + SNAP_MEMBER_LINKS, from + offsetof(bp_entry, next), 4 * 4);
+        snap_put32(q + SNAP_MEMBER_LINKS + 16, (uint32_t)(int32_t)e->moved);
+        snap_put32(q + SNAP_MEMBER_LINKS + 20, (uint32_t)e->apos);
+#else
         q += 4;
         snap_put_real(q, e->lx);
         snap_put_real(q + SNAP_REAL, e->ly);
@@ -442,6 +489,11 @@ static void snap_write(const rg_world *w, snap_out *o, const snap_scalars *s)
         q += 4 * SNAP_REAL;
         const int32_t ints[6] = { e->next, e->prev, e->lnext, e->lprev, e->moved, e->apos };
         for (int f = 0; f < 6; f++) snap_put32(q + 4 * f, (uint32_t)ints[f]);
+#endif
+        if (o->kept_key != NULL) {
+            o->kept_key[k] = e->key;
+            o->kept_level[k] = e->level;
+        }
     }
     snap_array(o, cw->bp.moved, s->n_moved, 4);
     snap_pad(o);
@@ -492,6 +544,12 @@ void snap_plan_of(const rg_world *w, snap_plan *plan)
     plan->size = snap_size(&plan->s, plan->uniform);
 }
 
+size_t snap_kept_tail_size(const snap_plan *plan)
+{
+    size_t n = (size_t)plan->s.members;
+    return (n * (sizeof(uint64_t) + sizeof(int16_t)) + 7u) & ~(size_t)7u;
+}
+
 void snap_write_planned(const rg_world *w, const snap_plan *plan, uint8_t *p, int sealed)
 {
     memcpy(p, SNAP_MAGIC, 8);
@@ -509,6 +567,9 @@ void snap_write_planned(const rg_world *w, const snap_plan *plan, uint8_t *p, in
     o.anonymous = 0;
     o.uniform = plan->uniform;
     o.nchunk = 0;
+    /* the tail: p and plan->size are multiples of 8, the allocator's blocks aligned */
+    o.kept_key = sealed ? NULL : (uint64_t *)(void *)(p + plan->size);
+    o.kept_level = sealed ? NULL : (int16_t *)(void *)(p + plan->size + (size_t)plan->s.members * sizeof(uint64_t));
     snap_write(w, &o, &plan->s);
     if (!sealed) return;
     snap_hash_bytes(&h, p + o.hashed, plan->size - o.hashed);
@@ -550,6 +611,8 @@ RG_API rg_status rg_world_hash(const rg_world *world, uint64_t *out_hash)
     o.anonymous = 1;
     o.uniform = uniform;
     o.nchunk = 0;
+    o.kept_key = NULL;
+    o.kept_level = NULL;
     uint8_t real_size[4];
     snap_put32(real_size, (uint32_t)sizeof(rg_real));
     snap_emit(&o, real_size, 4);

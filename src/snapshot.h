@@ -100,6 +100,23 @@ typedef struct snap_layout {
 #define SNAP_EVENT (2 * 8 + 6 * SNAP_REAL + 2 * 4)       /* a, b, normal, point, depth, speed, kind, sensor */
 #define SNAP_MEMBER (4 + 4 * SNAP_REAL + 6 * 4)          /* slot, box, next, prev, lnext, lprev, moved, apos */
 
+/* Where the machine's order is the file's (SNAP_NATIVE, below), a contact record is three
+ * runs of its struct and a member record two runs of its entry, copied whole: sa .. pb and
+ * nx .. pt of a contact, the box and next .. lprev of an entry lie in the file's order. */
+#define SNAP_CONTACT_LINKS 4     /* sa, sb, na, pa, nb, pb: 6 int32 at this offset in a record */
+#define SNAP_CONTACT_FLAGS 28
+#define SNAP_CONTACT_REALS 32    /* nx .. pt: 10 reals */
+#define SNAP_MEMBER_BOX 4        /* lx, ly, ux, uy */
+#define SNAP_MEMBER_LINKS (4 + 4 * SNAP_REAL) /* next, prev, lnext, lprev: 4 int32 */
+typedef char snap_contact_runs[offsetof(contact, pb) == offsetof(contact, sa) + 5 * 4 &&
+                                       offsetof(contact, pt) == offsetof(contact, nx) + 9 * sizeof(rg_real)
+                                   ? 1
+                                   : -1];
+typedef char snap_member_runs[offsetof(bp_entry, uy) == offsetof(bp_entry, lx) + 3 * sizeof(rg_real) &&
+                                      offsetof(bp_entry, lprev) == offsetof(bp_entry, next) + 3 * 4
+                                  ? 1
+                                  : -1];
+
 /* The scalars' size in the file. */
 size_t snap_scalars_size(void);
 
@@ -112,12 +129,18 @@ typedef struct snap_plan {
 } snap_plan;
 void snap_plan_of(const rg_world *w, snap_plan *plan);
 /* Writes the planned snapshot (plan->size bytes at p).  sealed: with its checksum, as
- * rg_world_save; else checksum 0, for a state the world keeps for itself (slots.c), which
- * only rg_world_restore_slot reads. */
+ * rg_world_save; else checksum 0 and followed by the kept tail (below), for a state the
+ * world keeps for itself (slots.c), which only rg_world_restore_slot reads. */
 void snap_write_planned(const rg_world *w, const snap_plan *plan, uint8_t *p, int sealed);
-/* restore.c: a state written unsealed by this world (slots.c), loaded as rg_world_restore
- * loads a snapshot but without the checks of its values and structure (the header and
- * scalars are checked all the same). */
+/* A kept state's tail, at p + plan->size (a multiple of 8): each member's cell key
+ * (uint64_t) and then its level (int16_t), in member order and the machine's own order
+ * (the state never leaves the process), as the world holds them.  A level and key are a
+ * function of the member's box, which a restore would otherwise compute again for every
+ * box; this size in bytes, a multiple of 8. */
+size_t snap_kept_tail_size(const snap_plan *plan);
+/* restore.c: a state written unsealed by this world (slots.c), size bytes and its tail,
+ * loaded as rg_world_restore loads a snapshot but without the checks of its values and
+ * structure (the header and scalars are checked all the same). */
 rg_status restore_kept(rg_world *w, const void *data, size_t size);
 
 /* ---- little-endian encoding (plain copies where the machine is little-endian) */

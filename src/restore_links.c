@@ -1,0 +1,286 @@
+/* restore_links.c: the checks of a snapshot's linked structures (restore_check.h): the
+ * contacts with their bodies' lists and the awake list, the broadphase's members with their
+ * bucket chains and level lists.
+ *
+ * A list is checked link by link where it lies (each next link leads to a node of the same
+ * list that links back), then walked from its head along indices gathered by that pass: the
+ * walk is a chain of dependent loads, kept short (an index in a small array, not a record
+ * found through a slot).  That is the walk's full check: no two links lead to one node (it
+ * links back to one), none to a head (it links back to nothing), so walks from the heads
+ * never repeat a node, and walks that count every node once leave no node out and no
+ * cycle. */
+#include "body.h"
+#include "broadphase.h"
+#include "contact.h"
+#include "snapshot.h"
+#include "restore_check.h"
+
+#define BAD 0
+
+/* A body's bit, beside its contacts' flags, for a body no contact may have. */
+#define RESTORE_SHAPELESS 0x80u
+typedef char restore_shapeless_is_no_contact_flag[(RESTORE_SHAPELESS &
+                                                   (CT_TOUCHING | CT_SENSOR | CT_SOLVE | CT_CLOSING |
+                                                    CT_ONEWAY | CT_PASS)) == 0 ? 1 : -1];
+
+void restore_check_scratch_layout(mem_layout *l, void *ctx)
+{
+    restore_scratch *r = ctx;
+    const snap_scalars *s = r->s;
+    size_t checked = r->checked != 0; /* a kept state needs the places alone */
+    /* first what starts at zero (restore_state clears it), then what is written whole */
+    r->rec_of = mem_take(l, (size_t)s->ccap, sizeof(int32_t));
+    r->member_of = mem_take(l, (size_t)s->bslots, sizeof(int32_t));
+    r->bucket_head = mem_take(l, checked * (s->bucket_bits > 0 ? (size_t)1 << s->bucket_bits : 0), 1);
+    r->huge_used = mem_take(l, checked * (size_t)s->n_huge, 1);
+    r->active_used = mem_take(l, checked * (size_t)s->n_bp_active, 1);
+    r->zeroed = l->size;
+    r->key = mem_take(l, checked * (size_t)s->members, sizeof(uint64_t));
+    r->level = mem_take(l, checked * (size_t)s->members, sizeof(int16_t));
+    r->body_bits = mem_take(l, checked * (size_t)s->count, 1);
+    r->wakes = mem_take(l, checked * (size_t)s->clive, 1);
+    r->node_next = mem_take(l, checked * 2 * (size_t)s->clive, sizeof(int32_t));
+    r->chain_next = mem_take(l, checked * (size_t)s->members, sizeof(int32_t));
+    r->level_next = mem_take(l, checked * (size_t)s->members, sizeof(int32_t));
+    r->box = mem_take(l, checked * 4 * (size_t)s->members, sizeof(rg_real));
+}
+
+/* ---------------------------------------------------------------- contacts */
+
+/* The int fields of a live contact record. */
+enum { CT_ID, CT_SA, CT_SB, CT_NA, CT_PA, CT_NB, CT_PB, CT_FLAGS };
+
+static inline const uint8_t *ct_rec(const snap_in *in, int32_t k) { return rec(in, in->l.contacts, SNAP_CONTACT, k); }
+static inline int32_t ct_at(const uint8_t *q, int field) { return (int32_t)snap_get32(q + 4 * field); }
+
+static uint64_t restore_handle(const snap_in *in, int32_t slot)
+{
+    return ((uint64_t)in->s.btag << (POOL_SLOT_BITS + POOL_GEN_BITS)) |
+           ((uint64_t)rd_u32(in, in->l.bgen, slot) << POOL_SLOT_BITS) | (uint64_t)slot;
+}
+
+/* Per body what its contacts take from it (their sensor and one-way flags) and whether it
+ * has no shape: one byte to read per body of a contact instead of four fields. */
+static void restore_body_bits(const snap_in *in, uint8_t *bits)
+{
+    snap_col cf = col_of(in, SNAP_F_cflags), ox = col_of(in, SNAP_F_owx), oy = col_of(in, SNAP_F_owy);
+    snap_col shape = col_of(in, SNAP_F_shape);
+    for (int32_t i = 0; i < in->s.count; i++) {
+        uint32_t sensor = (snap_get32(cf.p + cf.stride * (size_t)i) & CF_SENSOR) != 0;
+        rg_real x = col_real(ox, i), y = col_real(oy, i);
+        uint32_t one_way = (x != 0) | (y != 0);
+        uint32_t none = col_i32(shape, i) == RG_SHAPE_NONE;
+        bits[i] = (uint8_t)(sensor * CT_SENSOR | one_way * CT_ONEWAY | none * RESTORE_SHAPELESS);
+    }
+}
+
+/* The live records: ascending ids, bodies that exist, have shapes and are in handle order,
+ * flags as the bodies make them, links in range, reals finite, impulses bounded. */
+static int restore_check_records(const snap_in *in, restore_scratch *r)
+{
+    const snap_scalars *s = &in->s;
+    const uint32_t valid = CT_TOUCHING | CT_SENSOR | CT_SOLVE | CT_CLOSING | CT_ONEWAY | CT_PASS;
+    const real_sbits impulse = real_magnitude((rg_real)CONTACT_MAX_IMPULSE), big = real_magnitude((rg_real)REAL_MAX);
+    int32_t touching = 0, should_wake = 0, last = -1;
+    for (int32_t k = 0; k < s->clive; k++) {
+        const uint8_t *q = ct_rec(in, k);
+        int32_t id = ct_at(q, CT_ID), sa = ct_at(q, CT_SA), sb = ct_at(q, CT_SB);
+        if (id <= last || id >= s->ccap) return BAD; /* ascending ids */
+        last = id;
+        r->rec_of[id] = k + 1;
+        int32_t ia = restore_dense(in, sa), ib = restore_dense(in, sb);
+        if (ia < 0 || ib < 0 || sa == sb || !(restore_handle(in, sa) < restore_handle(in, sb))) return BAD;
+        uint32_t flags = (uint32_t)ct_at(q, CT_FLAGS), from_bodies = (uint32_t)r->body_bits[ia] | r->body_bits[ib];
+        uint32_t bad = (flags & ~valid) != 0;
+        bad |= (from_bodies & RESTORE_SHAPELESS) != 0;
+        bad |= (flags & (CT_SENSOR | CT_ONEWAY)) != from_bodies;
+        for (int f = CT_NA; f <= CT_PB; f++) {
+            int32_t link = ct_at(q, f);
+            bad |= (link < -1) | (link >= s->ccap);
+        }
+        /* the reals finite, the warm start's impulses within what the solve keeps (state.h) */
+        const uint8_t *reals = q + 32;
+        for (int f = 0; f < 8; f++) bad |= (uint32_t)real_out(real_get(reals + SNAP_REAL * (size_t)f), 0, big, big);
+        bad |= (uint32_t)real_out(real_get(reals + SNAP_REAL * 8), 0, impulse, 0);
+        bad |= (uint32_t)real_out(real_get(reals + SNAP_REAL * 9), 0, impulse, impulse);
+        if (bad) return BAD;
+        uint8_t wakes = (ia < s->n_active) | (ib < s->n_active);
+        r->wakes[k] = wakes;
+
+        touching += (flags & CT_TOUCHING) != 0;
+        should_wake += wakes;
+    }
+    return touching == s->n_touching && should_wake == s->n_awake;
+}
+
+/* Each body's list: its contacts, each once, linked both ways; all lists together hold every
+ * live contact twice.  Node 2k + side is record k in the list of its body a (side 0) or b
+ * (side 1). */
+static int restore_check_lists(const snap_in *in, restore_scratch *r)
+{
+    const snap_scalars *s = &in->s;
+    int32_t *next = r->node_next;
+    for (int32_t k = 0; k < s->clive; k++) {
+        const uint8_t *q = ct_rec(in, k);
+        int32_t id = ct_at(q, CT_ID);
+        for (int side = 0; side < 2; side++) {
+            int32_t slot = ct_at(q, side ? CT_SB : CT_SA), n = ct_at(q, side ? CT_NB : CT_NA), to = -1;
+            if (n >= 0) { /* in range (restore_check_records) */
+                int32_t rn = r->rec_of[n];
+                if (rn <= 0) return BAD;
+                const uint8_t *d = ct_rec(in, rn - 1);
+                int32_t da = ct_at(d, CT_SA), db = ct_at(d, CT_SB), dside = db == slot;
+                if ((da != slot && db != slot) || ct_at(d, dside ? CT_PB : CT_PA) != id) return BAD;
+                to = 2 * (rn - 1) + dside;
+            }
+            next[2 * k + side] = to;
+        }
+    }
+    int64_t visits = 0, nodes = 2 * (int64_t)s->clive;
+    for (int32_t i = 0; i < s->count; i++) {
+        int32_t head = BF_I(in, chead, i) - 1;
+        if (head < 0) continue;
+        int32_t slot = BF_I(in, slot, i), rh = r->rec_of[head];
+        if (rh <= 0) return BAD;
+        const uint8_t *d = ct_rec(in, rh - 1);
+        int32_t da = ct_at(d, CT_SA), db = ct_at(d, CT_SB), side = db == slot;
+        if ((da != slot && db != slot) || ct_at(d, side ? CT_PB : CT_PA) != -1) return BAD;
+        for (int32_t node = 2 * (rh - 1) + side; node >= 0; node = next[node])
+            if (++visits > nodes) return BAD;
+    }
+    return visits == nodes;
+}
+
+int restore_check_contacts(const snap_in *in, restore_scratch *r)
+{
+    const snap_scalars *s = &in->s;
+    restore_body_bits(in, r->body_bits);
+    if (!restore_check_records(in, r)) return BAD;
+    /* the free ids: the rest, each once */
+    for (int32_t k = 0; k < s->ccap - s->clive; k++) {
+        int32_t id = rd_i32(in, in->l.free, k);
+        if (id < 0 || id >= s->ccap || r->rec_of[id] != 0) return BAD;
+        r->rec_of[id] = -1;
+    }
+    /* the awake list: every contact with an awake body (as many as there are), each once */
+    for (int32_t k = 0; k < s->n_awake; k++) {
+        int32_t id = rd_i32(in, in->l.awake, k);
+        if (id < 0 || id >= s->ccap || r->rec_of[id] <= 0 || !r->wakes[r->rec_of[id] - 1]) return BAD;
+        r->rec_of[id] = -r->rec_of[id] - 2; /* listed; a second listing finds it negative */
+    }
+    for (int32_t k = 0; k < s->n_awake; k++) {
+        int32_t id = rd_i32(in, in->l.awake, k);
+        r->rec_of[id] = -(r->rec_of[id] + 2);
+    }
+    return restore_check_lists(in, r);
+}
+
+/* ---------------------------------------------------------------- the broadphase */
+
+/* A member's link (0 next, 1 prev, 2 lnext, 3 lprev, 4 moved) without reading the rest. */
+static inline int32_t restore_link(const snap_in *in, int32_t k, int which)
+{
+    return (int32_t)snap_get32(rec(in, in->l.members, SNAP_MEMBER, k) + 4 + 4 * SNAP_REAL + 4 * (size_t)which);
+}
+
+/* Member k's next link along its chain (level_list 0) or level (1): the end (any negative),
+ * or a member that is not huge, of k's bucket or level, linking back to k; its index, -1 at
+ * the end, -2 when broken. */
+static int32_t restore_next_member(const snap_in *in, const restore_scratch *r, int32_t k, int32_t slot,
+                                   int level_list)
+{
+    int32_t n = restore_link(in, k, level_list ? 2 : 0);
+    if (n < 0) return -1;
+    if (n >= in->s.bslots || r->member_of[n] <= 0) return -2;
+    int32_t kn = r->member_of[n] - 1;
+    if (r->level[kn] == BP_HUGE || restore_link(in, kn, level_list ? 3 : 1) != slot) return -2;
+    if (level_list) return r->level[kn] == r->level[k] ? kn : -2;
+    int bits = in->s.bucket_bits;
+    return broadphase_bucket(bits, r->key[kn]) == broadphase_bucket(bits, r->key[k]) ? kn : -2;
+}
+
+/* The members of the chains and level lists, walked from their heads; -1 when a walk runs
+ * past them all. */
+static int32_t restore_count_lists(const snap_in *in, const int32_t *next, int which_prev)
+{
+    int32_t n = 0;
+    for (int32_t k = 0; k < in->s.members; k++) {
+        if (next[k] == -3 || restore_link(in, k, which_prev) != -1) continue; /* huge, or not a head */
+        for (int32_t at = k; at >= 0; at = next[at])
+            if (++n > in->s.members) return -1;
+    }
+    return n;
+}
+
+/* The broadphase: members are the shaped bodies, each once, awake ones in the active list;
+ * every bucket chain and level list is a consistent doubly linked list of members of that
+ * bucket or level, at most one per bucket or level, together holding each member once; the
+ * huge indices, the active places and the move buffer are permutations of their members. */
+int restore_check_broadphase(const snap_in *in, restore_scratch *r)
+{
+    const snap_scalars *s = &in->s;
+    int32_t huge = 0, moved = 0, active = 0;
+    uint32_t level_seen = 0;
+    /* the boxes first, finite and ordered, and their levels and keys in one loop */
+    rg_real *box = r->box;
+    for (int32_t k = 0; k < s->members; k++) {
+        const uint8_t *q = rec(in, in->l.members, SNAP_MEMBER, k) + 4;
+        rg_real lx = snap_get_real(q), ly = snap_get_real(q + SNAP_REAL);
+        rg_real ux = snap_get_real(q + 2 * SNAP_REAL), uy = snap_get_real(q + 3 * SNAP_REAL);
+        if (!(rg_finite(lx) && rg_finite(ly) && rg_finite(ux) && rg_finite(uy) && lx <= ux && ly <= uy)) return BAD;
+        box[4 * k] = lx;
+        box[4 * k + 1] = ly;
+        box[4 * k + 2] = ux;
+        box[4 * k + 3] = uy;
+    }
+    broadphase_locate_boxes(box, s->members, r->level, r->key);
+    for (int32_t k = 0; k < s->members; k++) {
+        snap_member m;
+        restore_member(in, k, &m);
+        int32_t i = restore_dense(in, m.slot);
+        if (i < 0 || BF_I(in, shape, i) == RG_SHAPE_NONE || r->member_of[m.slot] != 0) return BAD;
+        r->member_of[m.slot] = k + 1;
+        if ((m.moved & ~1) != 0) return BAD;
+        moved += m.moved;
+        if ((m.apos >= 0) != (i < s->n_active) || m.apos < -1 || m.apos >= s->n_bp_active) return BAD;
+        if (m.apos >= 0) {
+            if (r->active_used[m.apos]++) return BAD;
+            active++;
+        }
+        if (r->level[k] == BP_HUGE) {
+            if (m.next < 0 || m.next >= s->n_huge || r->huge_used[m.next]++) return BAD;
+            huge++;
+            continue;
+        }
+        if (m.prev == -1 && r->bucket_head[broadphase_bucket(s->bucket_bits, r->key[k])]++) return BAD;
+        if (m.lprev == -1) {
+            if (level_seen & (1u << r->level[k])) return BAD; /* two lists of one level */
+            level_seen |= 1u << r->level[k];
+        }
+    }
+    if (huge != s->n_huge || moved != s->n_moved || active != s->n_bp_active) return BAD;
+    /* every next link where it lies (-3: huge, in no list), then the walks */
+    for (int32_t k = 0; k < s->members; k++) {
+        if (r->level[k] == BP_HUGE) {
+            r->chain_next[k] = r->level_next[k] = -3;
+            continue;
+        }
+        int32_t slot = (int32_t)snap_get32(rec(in, in->l.members, SNAP_MEMBER, k));
+        int32_t c = restore_next_member(in, r, k, slot, 0), l = restore_next_member(in, r, k, slot, 1);
+        if (c == -2 || l == -2) return BAD;
+        r->chain_next[k] = c;
+        r->level_next[k] = l;
+    }
+    if (restore_count_lists(in, r->chain_next, 1) != s->members - s->n_huge ||
+        restore_count_lists(in, r->level_next, 3) != s->members - s->n_huge)
+        return BAD;
+    /* the move buffer: members marked moved, each listed once (a listing flips the sign of
+     * member_of; the load reads it through its absolute value) */
+    for (int32_t k = 0; k < s->n_moved; k++) {
+        int32_t slot = rd_i32(in, in->l.moved, k);
+        if (slot < 0 || slot >= s->bslots || r->member_of[slot] <= 0) return BAD;
+        if (restore_link(in, r->member_of[slot] - 1, 4) != 1) return BAD;
+        r->member_of[slot] = -r->member_of[slot];
+    }
+    return 1;
+}
