@@ -77,6 +77,60 @@ static int col_bits(const snap_in *in, int f, int32_t b, int32_t e, uint32_t all
 /* The end of rows [b, e) of a rule over several fields: b + 1 when all are uniform. */
 static int32_t rows_end(int all_uniform, int32_t b, int32_t e) { return all_uniform && e > b ? b + 1 : e; }
 
+/* The rules over several fields, on the reals' bits (real_out, as col_within) and without
+ * branches: compares of reals and a branch per row made GCC keep flags in bytes on the
+ * stack, and a byte stored and read back as a word stalls the loop.  Rows [0, end) in
+ * blocks of COL_BLOCK, then one by one; inlined, with the strides known where no field is
+ * uniform, they vectorise.  Each returns the rows' breaks in bit 0. */
+
+/* A dynamic body's mass in [RG_MIN_MASS, RG_MAX_MASS]; a kinematic one's mass and gravity
+ * scale 0. */
+static inline uint32_t row_mass(snap_col type, snap_col mass, snap_col gs, int32_t i)
+{
+    const real_sbits lo = real_magnitude((rg_real)RG_MIN_MASS), hi = real_magnitude((rg_real)RG_MAX_MASS);
+    real_bits m = col_bits_at(mass, i), g = col_bits_at(gs, i);
+    uint32_t dynamic = 0u - (uint32_t)(col_i32(type, i) == RG_BODY_DYNAMIC);
+    uint32_t out = (uint32_t)real_out(m, lo, hi, -1), nonzero = ((m | g) << 1) != 0; /* +-0 alone */
+    return (dynamic & out) | (~dynamic & nonzero);
+}
+
+static inline uint32_t rows_mass(snap_col type, snap_col mass, snap_col gs, int32_t end)
+{
+    uint32_t wrong = 0;
+    int32_t i = 0;
+    for (; end - i >= COL_BLOCK; i += COL_BLOCK)
+        for (int k = 0; k < COL_BLOCK; k++) wrong |= row_mass(type, mass, gs, i + k);
+    for (; i < end; i++) wrong |= row_mass(type, mass, gs, i);
+    return wrong;
+}
+
+/* A shape has sizes in range (a circle's two equal: in range, equal bits); no shape, no
+ * sizes and no contacts.  *shaped counts the rows with a shape. */
+static inline uint32_t row_shape(snap_col shape, snap_col hx, snap_col hy, snap_col chead, int32_t i, int32_t *shaped)
+{
+    const real_sbits lo = real_magnitude((rg_real)RG_MIN_SHAPE_SIZE), hi = real_magnitude((rg_real)RG_MAX_SHAPE_SIZE);
+    int32_t sh = col_i32(shape, i);
+    real_bits x = col_bits_at(hx, i), y = col_bits_at(hy, i);
+    uint32_t none = 0u - (uint32_t)(sh == RG_SHAPE_NONE);
+    uint32_t nonzero = (((x | y) << 1) != 0) | (col_i32(chead, i) != 0);
+    uint32_t out =
+        (uint32_t)(real_out(x, lo, hi, -1) | real_out(y, lo, hi, -1) | ((sh == RG_SHAPE_CIRCLE) & (x != y)));
+    *shaped += (int32_t)(none + 1); /* 0 for none (all ones), else 1 */
+    return (none & nonzero) | (~none & out);
+}
+
+static inline uint32_t rows_shape(snap_col shape, snap_col hx, snap_col hy, snap_col chead, int32_t end,
+                                  int32_t *shaped)
+{
+    uint32_t wrong = 0;
+    int32_t i = 0, count = 0;
+    for (; end - i >= COL_BLOCK; i += COL_BLOCK)
+        for (int k = 0; k < COL_BLOCK; k++) wrong |= row_shape(shape, hx, hy, chead, i + k, &count);
+    for (; i < end; i++) wrong |= row_shape(shape, hx, hy, chead, i, &count);
+    *shaped += count;
+    return wrong;
+}
+
 /* Each rule as the setter it enters by checks it (rigid.h), over the partition it holds in
  * (active [0, n_active), asleep [n_active, n_moving), static [n_moving, count)). */
 int restore_check_body_values(const snap_in *in)
@@ -112,20 +166,18 @@ int restore_check_body_values(const snap_in *in)
     /* the static bodies have no mass and no gravity; a moving body has a mass when dynamic */
     ok = ok && col_within(in, SNAP_F_mass, nm, n, 0, 0) && col_within(in, SNAP_F_gscale, nm, n, 0, 0);
     if (!ok) return 0;
-    /* the rules over several fields on the reals' bits (real_out, as col_within), without
-     * branches and in 32 bits: compares of reals and a branch per row made GCC keep flags in
-     * bytes on the stack, and a byte stored and read back as a word stalls the loop */
+    /* the rules over several fields (rows_mass, rows_shape above) */
     uint32_t wrong = 0;
     {
         snap_col type = col_of(in, SNAP_F_type), mass = col_of(in, SNAP_F_mass), gs = col_of(in, SNAP_F_gscale);
-        const real_sbits lo = real_magnitude((rg_real)RG_MIN_MASS), hi = real_magnitude((rg_real)RG_MAX_MASS);
-        for (int32_t i = 0, end = rows_end(col_uniform(in, SNAP_F_type) && col_uniform(in, SNAP_F_mass) &&
-                                               col_uniform(in, SNAP_F_gscale), 0, nm);
-             i < end; i++) {
-            real_bits m = col_bits_at(mass, i), g = col_bits_at(gs, i);
-            uint32_t dynamic = 0u - (uint32_t)(col_i32(type, i) == RG_BODY_DYNAMIC);
-            uint32_t out = (uint32_t)real_out(m, lo, hi, -1), nonzero = ((m | g) << 1) != 0; /* +-0 alone */
-            wrong |= (dynamic & out) | (~dynamic & nonzero);
+        if (!col_uniform(in, SNAP_F_type) && !col_uniform(in, SNAP_F_mass) && !col_uniform(in, SNAP_F_gscale)) {
+            type.stride = 4; /* known, so that the loop vectorises */
+            mass.stride = gs.stride = SNAP_REAL;
+            wrong |= rows_mass(type, mass, gs, nm);
+        } else {
+            wrong |= rows_mass(type, mass, gs,
+                               rows_end(col_uniform(in, SNAP_F_type) && col_uniform(in, SNAP_F_mass) &&
+                                            col_uniform(in, SNAP_F_gscale), 0, nm));
         }
     }
     {
@@ -143,24 +195,19 @@ int restore_check_body_values(const snap_in *in)
         for (int32_t i = 0, end = rows_end(col_uniform(in, SNAP_F_owx) && col_uniform(in, SNAP_F_owy), 0, n); i < end; i++)
             wrong |= (uint32_t)!restore_unit_or_zero(col_real(ox, i), col_real(oy, i));
     }
-    /* a shape has sizes in range (a circle's two equal: in range, equal bits); no shape, no
-     * sizes and no contacts */
     int32_t shaped = 0;
     {
         snap_col shape = col_of(in, SNAP_F_shape), hx = col_of(in, SNAP_F_hx), hy = col_of(in, SNAP_F_hy);
         snap_col chead = col_of(in, SNAP_F_chead);
-        const real_sbits lo = real_magnitude((rg_real)RG_MIN_SHAPE_SIZE), hi = real_magnitude((rg_real)RG_MAX_SHAPE_SIZE);
         int all = col_uniform(in, SNAP_F_shape) && col_uniform(in, SNAP_F_hx) && col_uniform(in, SNAP_F_hy) &&
                   col_uniform(in, SNAP_F_chead);
-        for (int32_t i = 0, end = rows_end(all, 0, n); i < end; i++) {
-            int32_t sh = col_i32(shape, i);
-            real_bits x = col_bits_at(hx, i), y = col_bits_at(hy, i);
-            uint32_t none = 0u - (uint32_t)(sh == RG_SHAPE_NONE);
-            uint32_t nonzero = (((x | y) << 1) != 0) | (col_i32(chead, i) != 0);
-            uint32_t out = (uint32_t)(real_out(x, lo, hi, -1) | real_out(y, lo, hi, -1) |
-                                      ((sh == RG_SHAPE_CIRCLE) & (x != y)));
-            wrong |= (none & nonzero) | (~none & out);
-            shaped += (int32_t)(none + 1); /* 0 for none (all ones), else 1 */
+        if (!col_uniform(in, SNAP_F_shape) && !col_uniform(in, SNAP_F_hx) && !col_uniform(in, SNAP_F_hy) &&
+            !col_uniform(in, SNAP_F_chead)) {
+            shape.stride = chead.stride = 4; /* known, so that the loop vectorises */
+            hx.stride = hy.stride = SNAP_REAL;
+            wrong |= rows_shape(shape, hx, hy, chead, n, &shaped);
+        } else {
+            wrong |= rows_shape(shape, hx, hy, chead, rows_end(all, 0, n), &shaped);
         }
         if (all && n > 0) shaped *= n;
     }

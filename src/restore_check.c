@@ -1,6 +1,7 @@
 /* restore_check.c: the checks of rg_world_restore (restore_check.h): every structural
- * invariant of a snapshot checked while it is still in its buffer, and every value against
- * the range of the setter it would enter by (the body fields' in restore_body.c). */
+ * invariant of a snapshot checked while it is still in its buffer (the lists' in
+ * restore_links.c), and every value against the range of the setter it would enter by (the
+ * body fields' in restore_body.c). */
 #include "body.h"
 #include "broadphase.h"
 #include "contact.h"
