@@ -1,18 +1,20 @@
 /* thread_pool.c: rg_thread_pool, a ready task system for games without one (POSIX threads).
  *
- * One task at a time.  enqueue publishes it in `state`, the task's generation (high 32 bits)
- * and the start of the next range to hand out (low 32 bits), takes ranges itself, and returns
- * when every item is done: it never waits for a thread that is asleep or descheduled, which
- * simply finds no range left when it comes.  A thread claims a range by a compare-and-swap of
- * the state, so it runs a range of the current task only (a stale generation fails), and the
- * task cannot end, nor the next one be written, before that range is done.  Before it writes
- * the next task, enqueue closes the last one's generation: a thread late from the last task,
- * holding its spent state, may read the next task's count (larger than where the last one's
- * ranges ran out), and its claim must then fail rather than run a range of the next task
- * under the last one's generation (those items would run twice, and the task could end
- * before they were done).  An idle thread
- * spins a while on the state (the stages of a step follow each other within microseconds),
- * then sleeps on a condition variable until the next task. */
+ * One task at a time, its items split into one part per thread: thread t takes ranges from
+ * part t first, then from the others (so that, stage after stage, a thread meets the same
+ * bodies, which stay in its core's caches), and enqueue returns when every item is done: it
+ * never waits for a thread that is asleep or descheduled, which simply finds no range left
+ * when it comes.  Each part has its cursor, the task's generation (high 32 bits) and the
+ * start of the part's next range (low 32 bits); a thread claims a range by a compare-and-swap
+ * of the cursor, so it runs a range of the current task only (a stale generation fails), and
+ * the task cannot end, nor the next one be written, before that range is done.  Before it
+ * writes the next task, enqueue closes the last one's generation in every part: a thread late
+ * from the last task, holding a spent cursor, may read the next task's count (larger than
+ * where the last one's ranges ran out), and its claim must then fail rather than run a range
+ * of the next task under the last one's generation (those items would run twice, and the
+ * task could end before they were done).  `state` publishes the generation to idle threads,
+ * which spin a while on it (the stages of a step follow each other within microseconds),
+ * then sleep on a condition variable until the next task. */
 #undef _POSIX_C_SOURCE /* whatever the build set: this file needs threads */
 #define _POSIX_C_SOURCE 200809L
 #include <pthread.h>
@@ -33,6 +35,12 @@
 
 /* The start of a closed generation's next range: past any count, so nothing is claimed. */
 #define POOL_CLOSED 0x7FFFFFFFu
+
+/* A part's cursor on its own cache line. */
+typedef struct pool_part {
+    uint64_t cursor;             /* atomic: generation << 32 | the part's next range's start */
+    char pad[64 - sizeof(uint64_t)];
+} pool_part;
 
 /* Spins of an idle thread before it sleeps (a pause each: some 0.1-1 ms). */
 #define POOL_SPINS 20000
@@ -64,30 +72,53 @@ struct rg_thread_pool {
      * and then fails its claim) */
     rg_task_fn *fn;
     void *context;
-    int32_t count, chunk;
-    uint64_t state;              /* atomic: generation << 32 | next range's start */
+    int32_t count, least, parts; /* least: min_range; parts: up to threads, each at least
+                                  * least items */
+    uint64_t state;              /* atomic: generation << 32 */
     int32_t done;                /* atomic: items done */
+    pool_part *part;             /* threads */
 };
 
-/* Claims and runs ranges of the task of generation gen until none is left. */
-static void pool_work(rg_thread_pool *p, uint32_t gen, int32_t worker)
+/* Where part k of a task of count items in `parts` parts ends (it begins where part k - 1
+ * ends). */
+static inline int32_t pool_part_end(int32_t count, int32_t parts, int32_t k)
 {
+    return (int32_t)((int64_t)count * (k + 1) / parts);
+}
+
+/* Claims and runs ranges of part k of the task of generation gen until none is left there;
+ * returns 0 when the generation has passed. */
+static int pool_work_part(rg_thread_pool *p, uint32_t gen, int32_t k, int32_t worker)
+{
+    uint64_t *cur = &p->part[k].cursor;
     for (;;) {
-        uint64_t st = POOL_LOAD(&p->state);
-        if ((uint32_t)(st >> 32) != gen) return;
+        uint64_t st = POOL_LOAD(cur);
+        if ((uint32_t)(st >> 32) != gen) return 0;
         /* acquire: a count written after the close of this generation makes the claim below
          * see the close, and fail */
-        int32_t begin = (int32_t)(uint32_t)st, count = POOL_LOAD(&p->count), chunk = POOL_LOAD(&p->chunk);
-        if (begin >= count) return;
-        int32_t end = count - begin > chunk ? begin + chunk : count;
+        int32_t begin = (int32_t)(uint32_t)st, count = POOL_LOAD(&p->count), least = POOL_LOAD(&p->least);
+        int32_t pend = pool_part_end(count, POOL_LOAD(&p->parts), k);
+        if (begin >= pend) return 1;
+        /* half of what is left of the part (guided: the ranges shrink toward the end, so
+         * the threads finish together), at least `least`, and all of it when less than
+         * `least` would remain */
+        int32_t left = pend - begin, take = left / 2 > least ? left / 2 : least;
+        int32_t end = left - take < least ? pend : begin + take;
         uint64_t claimed = ((uint64_t)gen << 32) | (uint32_t)end;
-        if (!__atomic_compare_exchange_n(&p->state, &st, claimed, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE))
-            continue;
+        if (!__atomic_compare_exchange_n(cur, &st, claimed, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) continue;
         /* the claim holds the task: it cannot end before this range is counted done */
         rg_task_fn *fn = POOL_RELAXED(&p->fn);
         fn(begin, end, worker, POOL_RELAXED(&p->context));
         POOL_ADD(&p->done, end - begin);
     }
+}
+
+/* The worker's own part, then the others'. */
+static void pool_work(rg_thread_pool *p, uint32_t gen, int32_t worker)
+{
+    int32_t parts = POOL_LOAD(&p->parts);
+    for (int32_t k = 0; k < parts; k++)
+        if (!pool_work_part(p, gen, (worker + k) % parts, worker)) return;
 }
 
 static void *pool_main(void *arg)
@@ -126,22 +157,27 @@ static void *pool_enqueue(rg_task_fn *fn, int32_t count, int32_t min_range, void
         return NULL;
     }
     pthread_mutex_lock(&p->task_lock);
-    /* about four ranges per thread, for balance, and none below min_range */
-    int32_t per = p->threads * 4;
-    int32_t chunk = count / per + (count % per != 0);
-    if (chunk < min_range) chunk = min_range;
-    if (chunk < 1) chunk = 1;
+    /* a part per thread, fewer when a part would hold less than min_range */
+    if (min_range < 1) min_range = 1;
+    int32_t parts = count / min_range < p->threads ? count / min_range : p->threads;
+    if (parts < 1) parts = 1;
     /* the last task's generation closed first (the file's opening comment), then the fields,
      * then the task under a generation of its own */
     uint32_t gen = (uint32_t)(POOL_RELAXED(&p->state) >> 32) + 1u;
-    POOL_STORE(&p->state, ((uint64_t)gen << 32) | POOL_CLOSED);
+    for (int32_t k = 0; k < p->threads; k++) POOL_STORE(&p->part[k].cursor, ((uint64_t)gen << 32) | POOL_CLOSED);
     gen++;
     POOL_SET(&p->fn, fn);
     POOL_SET(&p->context, context);
     POOL_STORE(&p->count, count);
-    POOL_STORE(&p->chunk, chunk);
+    POOL_STORE(&p->least, min_range);
+    POOL_STORE(&p->parts, parts);
     POOL_SET(&p->done, 0);
-    POOL_STORE(&p->state, (uint64_t)gen << 32); /* publishes the fields above */
+    /* each cursor publishes the fields above to the threads that claim from it */
+    for (int32_t k = 0; k < parts; k++) {
+        uint32_t start = k > 0 ? (uint32_t)pool_part_end(count, parts, k - 1) : 0u;
+        POOL_STORE(&p->part[k].cursor, ((uint64_t)gen << 32) | start);
+    }
+    POOL_STORE(&p->state, (uint64_t)gen << 32);
     pthread_mutex_lock(&p->lock);
     if (p->sleepers > 0) pthread_cond_broadcast(&p->wake);
     pthread_mutex_unlock(&p->lock);
@@ -179,15 +215,17 @@ RG_API rg_status rg_thread_pool_create(int32_t threads, rg_thread_pool **out_poo
     rg_thread_pool *p = calloc(1, sizeof *p);
     if (p == NULL) return RG_ERR_OUT_OF_MEMORY;
     p->threads = threads;
+    p->part = calloc((size_t)threads, sizeof *p->part);
     if (threads > 1) {
         p->th = calloc((size_t)(threads - 1), sizeof *p->th);
         p->pt = calloc((size_t)(threads - 1), sizeof *p->pt);
-        if (p->th == NULL || p->pt == NULL) {
-            free(p->th);
-            free(p->pt);
-            free(p);
-            return RG_ERR_OUT_OF_MEMORY;
-        }
+    }
+    if (p->part == NULL || (threads > 1 && (p->th == NULL || p->pt == NULL))) {
+        free(p->part);
+        free(p->th);
+        free(p->pt);
+        free(p);
+        return RG_ERR_OUT_OF_MEMORY;
     }
     pthread_mutex_init(&p->task_lock, NULL);
     pthread_mutex_init(&p->lock, NULL);
@@ -200,6 +238,7 @@ RG_API rg_status rg_thread_pool_create(int32_t threads, rg_thread_pool **out_poo
             pthread_cond_destroy(&p->wake);
             pthread_mutex_destroy(&p->lock);
             pthread_mutex_destroy(&p->task_lock);
+            free(p->part);
             free(p->th);
             free(p->pt);
             free(p);
@@ -217,6 +256,7 @@ RG_API void rg_thread_pool_destroy(rg_thread_pool *pool)
     pthread_cond_destroy(&pool->wake);
     pthread_mutex_destroy(&pool->lock);
     pthread_mutex_destroy(&pool->task_lock);
+    free(pool->part);
     free(pool->th);
     free(pool->pt);
     free(pool);
