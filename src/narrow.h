@@ -21,7 +21,10 @@ struct rg_world;
 
 /* Updates every awake contact from the step's motion (the views, views.h) and stages the
  * rows to solve: manifolds measured and decisions taken in parallel, what must happen in
- * order (the pre-solve hook, one-way decisions, events, islands, waking) on this thread. */
+ * order (the pre-solve hook, one-way decisions, events, islands, waking) on this thread;
+ * when nothing can wake (no body asleep) and no pair was decided in order, the commits in
+ * contact order (events, grounded flags, islands) are left in x->late, for the solve to run
+ * beside its own first part. */
 void narrow_run(struct rg_world *w, collide_step *x);
 
 #endif
