@@ -262,11 +262,13 @@ static void resolve_wide(resolve_task *t, int what)
 
 /* The solve's first part in two halves that share nothing, so that they may run at once:
  * item 0 the solving order and the colours; item 1 what the narrowphase left (x->late), the
- * bodies the rows meet (stamped) and their velocities loaded. */
+ * bodies the rows meet (stamped), their velocities loaded, and the rows against an immovable
+ * body listed. */
 typedef struct resolve_head {
     resolve_task *t;
     rg_real gx, gy;
     int shock;
+    int32_t nfixed; /* rows against an immovable body (rows.fixed) */
 } resolve_head;
 
 static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void *context)
@@ -297,6 +299,7 @@ static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void 
         }
         t->v[0] = t->v[1] = 0;
         resolve_bodies(t, RESOLVE_LOAD, 1, x->ns + 1);
+        h->nfixed = solver_fixed_list(con, nc, rows->fixed);
     }
 }
 
@@ -340,7 +343,7 @@ void resolve_run(rg_world *w, collide_step *x)
     }
     resolve_pass(&t, RESOLVE_UNPACK, 0, nc);
     if (shock) solver_shock(con, ord, nc, v, gx, gy);
-    solver_fixed_rows(con, nc, v, 0);
+    solver_fixed_rows(con, rows->fixed, h.nfixed, v, 0);
     /* positions move with the solved velocities, then by the pseudo-velocities of the
      * position pass, which leave the velocities alone */
     resolve_pass(&t, RESOLVE_MOVE, 1, ns);
@@ -362,7 +365,7 @@ void resolve_run(rg_world *w, collide_step *x)
         }
         resolve_pass(&t, RESOLVE_UNPACK_POSITION, 0, nc);
         if (shock) solver_shock_position(con, ord, nc, pv, gx, gy);
-        solver_fixed_rows(con, nc, pv, 1);
+        solver_fixed_rows(con, rows->fixed, h.nfixed, pv, 1);
         rs->pv_valid = 1;
         resolve_pass(&t, RESOLVE_PUSH, 1, ns);
     }

@@ -120,16 +120,20 @@ void solver_shock_position(solver_constraint *c, const int32_t *order, int32_t n
     }
 }
 
-void solver_fixed_rows(solver_constraint *c, int32_t n, rg_real *v, int position)
+void solver_fixed_rows(solver_constraint *c, const int32_t *list, int32_t k, rg_real *v, int position)
 {
-    for (int32_t k = 0; k < n; k++) {
-        solver_constraint *q = &c[k];
-        if (q->ima > 0 && q->imb > 0) continue;
-        if (position)
-            solver_iterate_position(c, &k, 1, v);
-        else
-            solver_iterate(c, &k, 1, v);
-    }
+    if (position)
+        solver_iterate_position(c, list, k, v);
+    else
+        solver_iterate(c, list, k, v);
+}
+
+int32_t solver_fixed_list(const solver_constraint *c, int32_t n, int32_t *list)
+{
+    int32_t k = 0;
+    for (int32_t r = 0; r < n; r++)
+        if (!(c[r].ima > 0 && c[r].imb > 0)) list[k++] = r;
+    return k;
 }
 
 int32_t solver_prepare_position(solver_constraint *c, int32_t n, const rg_real *v,
@@ -586,6 +590,7 @@ static void solver_rows_layout(mem_layout *l, void *ctx)
     r->batch.over = mem_take(l, n, sizeof(int32_t));
     r->color = mem_take(l, n, sizeof(int32_t));
     r->imp = mem_take(l, n, sizeof(int32_t));
+    r->fixed = mem_take(l, n, sizeof(int32_t));
     r->lanes = mem_take(l, (size_t)SOLVER_PACK_BLOCKS(r->cap) * 32, sizeof(int32_t));
     r->key = mem_take(l, n, sizeof(uint16_t));
     r->tkey = mem_take(l, n, sizeof(uint16_t));

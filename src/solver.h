@@ -115,9 +115,12 @@ void solver_shock_position(solver_constraint *c, const int32_t *order, int32_t n
                            rg_real gx, rg_real gy);
 /* One last sweep over the rows against an immovable body (static, kinematic, sleeping), so
  * that these win over what the other rows left: a light body squeezed by a far heavier one
- * may end inside it, but not pushed through a wall.  Velocity rows on v, or position rows on
- * pseudo-velocities pv. */
-void solver_fixed_rows(solver_constraint *c, int32_t n, rg_real *v, int position);
+ * may end inside it, but not pushed through a wall.  `list` (k of them, in row order) holds
+ * those rows (solver_fixed_list).  Velocity rows on v, or position rows on pseudo-velocities
+ * pv. */
+void solver_fixed_rows(solver_constraint *c, const int32_t *list, int32_t k, rg_real *v, int position);
+/* Lists the rows of c[0..n) against an immovable body, in row order; returns how many. */
+int32_t solver_fixed_list(const solver_constraint *c, int32_t n, int32_t *list);
 /* Position rows from the penetration the velocities v leave; returns how many rows need a
  * push (0: the position pass can be skipped). */
 int32_t solver_prepare_position(solver_constraint *c, int32_t n, const rg_real *v,
@@ -199,6 +202,7 @@ typedef struct solver_rows {
     int32_t *color;           /* [0, cap): colouring scratch */
     int32_t *lanes;           /* [0, SOLVER_PACK_BLOCKS(cap) * 32): packing scratch */
     int32_t *imp;             /* [0, cap): staged rows that are impacts (toi > 0) */
+    int32_t *fixed;           /* [0, cap): rows against an immovable body (solver_fixed_list) */
     void *block;
     size_t block_size;
     int32_t cap;
