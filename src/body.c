@@ -120,6 +120,7 @@ void body_update_flags(rg_world *w, int32_t i)
     w->dissipative_count += (int32_t)((f & BODY_F_DISSIPATIVE) != 0) - (int32_t)((old & BODY_F_DISSIPATIVE) != 0);
     w->limit_count += (int32_t)((f & BODY_F_LIMITED) != 0) - (int32_t)((old & BODY_F_LIMITED) != 0);
     w->gscale_count += (int32_t)((f & BODY_F_GSCALE) != 0) - (int32_t)((old & BODY_F_GSCALE) != 0);
+    w->magnitude_count += (int32_t)((f & BODY_F_MAGNITUDE) != 0) - (int32_t)((old & BODY_F_MAGNITUDE) != 0);
     b->flags[i] = f;
 }
 

@@ -87,6 +87,8 @@ typedef struct euler_env {
     int forces; /* some body may have an applied force (rg_world.forces_applied) */
     int wind;    /* the wind is not zero */
     int gscaled; /* some body has BODY_F_GSCALE */
+    int linear;  /* every moving body has BODY_F_DISSIPATIVE, none BODY_F_MAGNITUDE or
+                  * BODY_F_GSCALE: every block's flags are known without reading them */
     /* the one acceleration of a uniform block (euler_in): force_sum with the gravity scale
      * 1, (wind + f) = +0 times an inverse mass of +0, and the spring term -0 */
     rg_real ax0, ay0;
@@ -295,7 +297,9 @@ static EULER_INLINE int euler_block(const body_store *b, int32_t i0, const euler
 {
     const uint32_t *restrict fl = b->flags + i0;
     uint32_t all = ~0u, any = 0;
-    if (e->dissipative || e->gscaled) {
+    if (e->linear) {
+        all = any = BODY_F_DISSIPATIVE;
+    } else if (e->dissipative || e->gscaled) {
         for (int j = 0; j < EULER_BLOCK; j++) {
             all &= fl[j];
             any |= fl[j];
@@ -384,6 +388,8 @@ static int32_t euler_step(rg_world *w, rg_real h, int explicit_euler)
     e->forces = w->forces_applied;
     e->wind = e->wx != 0 || e->wy != 0;
     e->gscaled = w->gscale_count > 0;
+    /* dissipative bodies are dynamic, so as many as the moving ones means every one */
+    e->linear = w->dissipative_count == w->b.n_moving && w->magnitude_count == 0 && !e->gscaled;
     e->plain = !e->wind && !e->forces && !e->springs;
     e->ax0 = force_sum(e->gx, 1, e->wx, 0, 0) + -RG_R(0.0);
     e->ay0 = force_sum(e->gy, 1, e->wy, 0, 0) + -RG_R(0.0);

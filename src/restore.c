@@ -224,13 +224,14 @@ static void restore_derived(rg_world *w)
     const rg_real *restrict dl = b->drag_lin, *restrict dq = b->drag_quad, *restrict fric = b->fric;
     const rg_real *restrict lo = b->min_speed, *restrict hi = b->max_speed, *restrict gs = b->gscale;
     uint32_t *restrict flags = b->flags;
-    int32_t n = b->count, dissipative = 0, limited = 0, gscaled = 0;
+    int32_t n = b->count, dissipative = 0, limited = 0, gscaled = 0, magnitude = 0;
     for (int32_t i = 0; i < n; i++) {
         uint32_t fl = body_flags_from(type[i], dl[i], dq[i], fric[i], lo[i], hi[i], gs[i]);
         flags[i] = fl;
         dissipative += (fl & BODY_F_DISSIPATIVE) != 0;
         limited += (fl & BODY_F_LIMITED) != 0;
         gscaled += (fl & BODY_F_GSCALE) != 0;
+        magnitude += (fl & BODY_F_MAGNITUDE) != 0;
     }
     restore_inverse_masses(b->inv_mass, b->mass, type, n);
     if (n > 0) {
@@ -240,6 +241,7 @@ static void restore_derived(rg_world *w)
     w->dissipative_count = dissipative;
     w->limit_count = limited;
     w->gscale_count = gscaled;
+    w->magnitude_count = magnitude;
 }
 
 static void restore_load(rg_world *w, const snap_in *in, const restore_scratch *r)

@@ -289,6 +289,7 @@ struct rg_world {
     int32_t dissipative_count; /* dynamic bodies with drag or surface friction */
     int32_t limit_count;       /* dynamic bodies with speed limits */
     int32_t gscale_count;      /* bodies with BODY_F_GSCALE */
+    int32_t magnitude_count;   /* bodies with BODY_F_MAGNITUDE (quadratic drag or friction) */
     int32_t stopped_any;       /* some body may carry BODY_F_STOPPED (bounds.c) */
     int32_t forces_applied;    /* some dynamic body may hold an applied force (fx, fy other than
                                   +0): set by rg_body_apply_force and a restore, cleared with
