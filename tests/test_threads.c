@@ -9,8 +9,8 @@
  *     worker indices, and defers them to finish (it exercises what threads would do to the
  *     split and the order, deterministically),
  *   - rg_thread_pool with 1 to 4 threads (real threads; this machine may have fewer cores).
- * And the pool's and the task system's bad input, and the pool's own promise: every item of
- * every task runs once, inside its task. */
+ * And the pool's and the task system's bad input, and the pool's own promises: every item of
+ * every task runs once, inside its task, in ranges of at least min_range. */
 #include "testutil.h"
 #include "shuffler.h"
 
@@ -312,6 +312,52 @@ static void test_the_pool_runs_each_item_of_each_task_once(void **state)
     free(runs);
 }
 
+/* The task system's promise on ranges (rigid.h: "in ranges of at least min_range"): every
+ * range the pool hands out holds at least min_range items, but where the task itself is
+ * smaller, and the ranges cover [0, count) once; counts 1-300 against min_range 1-17, at 2,
+ * 3 and 4 threads (a part per thread, fewer when a part would be short of min_range). */
+typedef struct range_log {
+    int32_t min_range, count;
+    int32_t short_ranges;  /* atomic */
+    uint8_t runs[300];
+} range_log;
+
+static void log_range(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    range_log *l = context;
+    (void)worker;
+    int32_t least = l->min_range < l->count ? l->min_range : l->count;
+    if (end - begin < least) __atomic_fetch_add(&l->short_ranges, 1, __ATOMIC_RELAXED);
+    for (int32_t i = begin; i < end; i++) __atomic_fetch_add(&l->runs[i], 1, __ATOMIC_RELAXED);
+}
+
+static void test_the_pool_keeps_ranges_at_least_min_range(void **state)
+{
+    (void)state;
+    for (int32_t threads = 2; threads <= 4; threads++) {
+        rg_thread_pool *pool;
+        rg_task_system ts;
+        assert_ok(rg_thread_pool_create(threads, &pool));
+        assert_ok(rg_thread_pool_task_system(pool, &ts));
+        long short_ranges = 0, wrong = 0;
+        for (int32_t count = 1; count <= 300; count++) {
+            for (int32_t min_range = 1; min_range <= 17; min_range++) {
+                range_log l;
+                memset(&l, 0, sizeof l);
+                l.min_range = min_range;
+                l.count = count;
+                void *h = ts.enqueue(log_range, count, min_range, &l, ts.user);
+                if (h != NULL) ts.finish(h, ts.user);
+                short_ranges += l.short_ranges;
+                for (int32_t i = 0; i < count; i++) wrong += l.runs[i] != 1;
+            }
+        }
+        rg_thread_pool_destroy(pool);
+        assert_int_equal(short_ranges, 0);
+        assert_int_equal(wrong, 0);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -320,6 +366,7 @@ int main(void)
         cmocka_unit_test(test_bad_task_systems_and_pools_are_refused),
         cmocka_unit_test(test_two_worlds_on_two_threads_share_a_pool),
         cmocka_unit_test(test_the_pool_runs_each_item_of_each_task_once),
+        cmocka_unit_test(test_the_pool_keeps_ranges_at_least_min_range),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
