@@ -277,8 +277,9 @@ static void narrow_measure_decide_range(int32_t begin, int32_t end, int32_t work
     }
 }
 
-/* What a contact's decision does to the rest of the world, in contact order on the stepping
- * thread: its solver row, events, grounded flags, islands, waking. */
+/* What a contact's decision does to the rest of the world, in contact order: its solver row,
+ * events, grounded flags, islands, waking (on the stepping thread, or, where nothing wakes
+ * and the rows are staged, beside the solve's first part: narrow_commit_late). */
 static void narrow_commit(rg_world *w, int32_t id, collide_step *x, uint32_t bits, int stage, int *woke)
 {
     collide_world *cw = &w->coll;

@@ -202,19 +202,19 @@ static void restore_broadphase(broadphase *bp, const snap_in *in, const restore_
  * by one. */
 #define RESTORE_BLOCK 16
 
+static inline rg_real restore_inverse_mass(int32_t type, rg_real mass)
+{
+    rg_real d = (rg_real)(type == RG_BODY_DYNAMIC);
+    return d / (d * mass + (1 - d));
+}
+
 static void restore_inverse_masses(rg_real *restrict inv, const rg_real *restrict mass, const int32_t *restrict type,
                                    int32_t n)
 {
     int32_t i = 0;
     for (; n - i >= RESTORE_BLOCK; i += RESTORE_BLOCK)
-        for (int k = 0; k < RESTORE_BLOCK; k++) {
-            rg_real d = (rg_real)(type[i + k] == RG_BODY_DYNAMIC);
-            inv[i + k] = d / (d * mass[i + k] + (1 - d));
-        }
-    for (; i < n; i++) {
-        rg_real d = (rg_real)(type[i] == RG_BODY_DYNAMIC);
-        inv[i] = d / (d * mass[i] + (1 - d));
-    }
+        for (int k = 0; k < RESTORE_BLOCK; k++) inv[i + k] = restore_inverse_mass(type[i + k], mass[i + k]);
+    for (; i < n; i++) inv[i] = restore_inverse_mass(type[i], mass[i]);
 }
 
 static void restore_derived(rg_world *w)

@@ -108,12 +108,27 @@ typedef struct snap_layout {
 #define SNAP_CONTACT_REALS 32    /* nx .. pt: 10 reals */
 #define SNAP_MEMBER_BOX 4        /* lx, ly, ux, uy */
 #define SNAP_MEMBER_LINKS (4 + 4 * SNAP_REAL) /* next, prev, lnext, lprev: 4 int32 */
-typedef char snap_contact_runs[offsetof(contact, pb) == offsetof(contact, sa) + 5 * 4 &&
-                                       offsetof(contact, pt) == offsetof(contact, nx) + 9 * sizeof(rg_real)
+/* Each field where its run puts it, in the file's order. */
+#define SNAP_AT(type, f, first, k, size) (offsetof(type, f) == offsetof(type, first) + (k) * (size))
+typedef char snap_contact_runs[SNAP_AT(contact, sb, sa, 1, 4) && SNAP_AT(contact, na, sa, 2, 4) &&
+                                       SNAP_AT(contact, pa, sa, 3, 4) && SNAP_AT(contact, nb, sa, 4, 4) &&
+                                       SNAP_AT(contact, pb, sa, 5, 4) &&
+                                       SNAP_AT(contact, ny, nx, 1, sizeof(rg_real)) &&
+                                       SNAP_AT(contact, px, nx, 2, sizeof(rg_real)) &&
+                                       SNAP_AT(contact, py, nx, 3, sizeof(rg_real)) &&
+                                       SNAP_AT(contact, s0, nx, 4, sizeof(rg_real)) &&
+                                       SNAP_AT(contact, vn0, nx, 5, sizeof(rg_real)) &&
+                                       SNAP_AT(contact, depth, nx, 6, sizeof(rg_real)) &&
+                                       SNAP_AT(contact, speed, nx, 7, sizeof(rg_real)) &&
+                                       SNAP_AT(contact, pn, nx, 8, sizeof(rg_real)) &&
+                                       SNAP_AT(contact, pt, nx, 9, sizeof(rg_real))
                                    ? 1
                                    : -1];
-typedef char snap_member_runs[offsetof(bp_entry, uy) == offsetof(bp_entry, lx) + 3 * sizeof(rg_real) &&
-                                      offsetof(bp_entry, lprev) == offsetof(bp_entry, next) + 3 * 4
+typedef char snap_member_runs[SNAP_AT(bp_entry, ly, lx, 1, sizeof(rg_real)) &&
+                                      SNAP_AT(bp_entry, ux, lx, 2, sizeof(rg_real)) &&
+                                      SNAP_AT(bp_entry, uy, lx, 3, sizeof(rg_real)) &&
+                                      SNAP_AT(bp_entry, prev, next, 1, 4) && SNAP_AT(bp_entry, lnext, next, 2, 4) &&
+                                      SNAP_AT(bp_entry, lprev, next, 3, 4)
                                   ? 1
                                   : -1];
 

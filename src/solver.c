@@ -183,28 +183,31 @@ void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, in
     out->nover = 0;
     /* greedy: the first colour neither movable body is in yet; at the start of each block,
      * how many rows of each colour came before it */
-    for (int32_t j = 0; j < n; j++) {
-        if (j % SOLVER_PACK_BLOCK == 0) memcpy(lanes + j / SOLVER_PACK_BLOCK * 32, count, 32 * sizeof *count);
-        int32_t k = order[j];
-        const solver_constraint *q = &c[k];
-        int ma = q->ima > 0, mb = q->imb > 0;
-        uint32_t used = (ma ? mask[q->a] : 0) | (mb ? mask[q->b] : 0);
-        int col = 32;
-        if (used != 0xFFFFFFFFu) {
+    for (int32_t blk = 0; blk < SOLVER_PACK_BLOCKS(n); blk++) {
+        memcpy(lanes + blk * 32, count, 32 * sizeof *count);
+        int32_t j1 = (blk + 1) * SOLVER_PACK_BLOCK < n ? (blk + 1) * SOLVER_PACK_BLOCK : n;
+        for (int32_t j = blk * SOLVER_PACK_BLOCK; j < j1; j++) {
+            int32_t k = order[j];
+            const solver_constraint *q = &c[k];
+            int ma = q->ima > 0, mb = q->imb > 0;
+            uint32_t used = (ma ? mask[q->a] : 0) | (mb ? mask[q->b] : 0);
+            int col = 32;
+            if (used != 0xFFFFFFFFu) {
 #ifdef __GNUC__
-            col = __builtin_ctz(~used);
+                col = __builtin_ctz(~used);
 #else
-            col = 0;
-            while (used & (1u << col)) col++;
+                col = 0;
+                while (used & (1u << col)) col++;
 #endif
-            if (ma) mask[q->a] |= 1u << col;
-            if (mb) mask[q->b] |= 1u << col;
-        } else {
-            out->map[k] = -1;
-            out->over[out->nover++] = k;
+                if (ma) mask[q->a] |= 1u << col;
+                if (mb) mask[q->b] |= 1u << col;
+            } else {
+                out->map[k] = -1;
+                out->over[out->nover++] = k;
+            }
+            color[k] = col;
+            count[col]++;
         }
-        color[k] = col;
-        count[col]++;
     }
     /* each colour takes whole wide rows; the lanes it leaves over are padding that acts on
      * the ground with zero mass */
