@@ -47,19 +47,15 @@ void views_record_start(rg_world *w)
 typedef struct views_task {
     rg_world *w;
     collide_step *x;
-    rg_real dt;
 } views_task;
 
-/* The fat box upkeep of awake body k (dense i) from its box after integration. */
-static inline void views_fat_box(const rg_world *w, int32_t k, int32_t i, rg_real dt, rg_real *box,
-                                  rg_real *motion)
+/* The fat box of a body at (x1, y1) with half extents (hx, hy) that moved by (mx, my) this
+ * step: its box, swept back over the motion when the collision is continuous. */
+static inline void views_box(rg_real x1, rg_real y1, rg_real hx, rg_real hy, rg_real mx, rg_real my,
+                             int continuous, rg_real *box)
 {
-    const views_state *ns = &w->coll.views;
-    const body_store *b = &w->b;
-    rg_real x1 = b->x[i], y1 = b->y[i], hx = b->hx[i], hy = b->hy[i];
-    rg_real mx = x1 - ns->sx0[k], my = y1 - ns->sy0[k];
     rg_real lx = x1 - hx, ly = y1 - hy, ux = x1 + hx, uy = y1 + hy;
-    if (w->coll.continuous) {
+    if (continuous) {
         lx = rg_min(lx, lx - mx);
         ly = rg_min(ly, ly - my);
         ux = rg_max(ux, ux - mx);
@@ -69,10 +65,6 @@ static inline void views_fat_box(const rg_world *w, int32_t k, int32_t i, rg_rea
     box[1] = ly;
     box[2] = ux;
     box[3] = uy;
-    motion[0] = mx;
-    motion[1] = my;
-    motion[2] = (b->vx[i] - ns->svx0[k]) * dt;
-    motion[3] = (b->vy[i] - ns->svy0[k]) * dt;
 }
 
 /* Awake bodies [begin, end): views, displacements and whether the fat box must be refreshed
@@ -84,29 +76,44 @@ static void views_range(int32_t begin, int32_t end, int32_t worker, void *contex
     collide_world *cw = &w->coll;
     views_state *ns = &cw->views;
     body_store *b = &w->b;
+    /* the arrays in locals: the stores below cannot move them, so they are read once */
     cbody *cb = ns->cb;
+    const int32_t *adense = ns->adense;
+    const rg_real *sx0 = ns->sx0, *sy0 = ns->sy0, *svx0 = ns->svx0, *svy0 = ns->svy0;
+    const rg_real *x = b->x, *y = b->y, *hx = b->hx, *hy = b->hy;
+    const rg_real *gscale = b->gscale, *inv_mass = b->inv_mass;
+    const int32_t *type = b->type, *shape = b->shape, *slot = b->slot;
+    rg_real *dx = b->dx, *dy = b->dy;
+    uint32_t *cflags = b->cflags;
+    uint8_t *refresh = ns->refresh;
+    int32_t *uf = t->x->unite ? cw->island.uf : NULL;
+    const bp_entry *e = cw->bp.e;
+    int continuous = cw->continuous;
     (void)worker;
     for (int32_t k = begin; k < end; k++) {
-        int32_t i = ns->adense[k];
-        rg_real box[4], mo[4];
-        views_fat_box(w, k, i, t->dt, box, mo);
-        b->dx[i] = mo[0];
-        b->dy[i] = mo[1];
-        b->cflags[i] &= ~CF_GROUNDED; /* set again by the touching contacts */
-        cb[i].sx = ns->sx0[k];
-        cb[i].sy = ns->sy0[k];
-        cb[i].dx = mo[0];
-        cb[i].dy = mo[1];
-        cb[i].vx = ns->svx0[k];
-        cb[i].vy = ns->svy0[k];
-        cb[i].hx = b->hx[i];
-        cb[i].hy = b->hy[i];
-        cb[i].gs = b->type[i] == RG_BODY_DYNAMIC ? b->gscale[i] : 0;
-        cb[i].im = b->inv_mass[i];
-        cb[i].kind = b->shape[i];
-        cb[i].pad = 0;
-        ns->refresh[k] = (uint8_t)!pairs_inside(&cw->bp.e[b->slot[i]], box);
-        if (t->x->unite) cw->island.uf[k] = k;
+        int32_t i = adense[k];
+        rg_real x1 = x[i], y1 = y[i], h0 = hx[i], h1 = hy[i];
+        rg_real mx = x1 - sx0[k], my = y1 - sy0[k], box[4];
+        views_box(x1, y1, h0, h1, mx, my, continuous, box);
+        dx[i] = mx;
+        dy[i] = my;
+        cflags[i] &= ~CF_GROUNDED; /* set again by the touching contacts */
+        cbody v;
+        v.sx = sx0[k];
+        v.sy = sy0[k];
+        v.dx = mx;
+        v.dy = my;
+        v.vx = svx0[k];
+        v.vy = svy0[k];
+        v.hx = h0;
+        v.hy = h1;
+        v.gs = type[i] == RG_BODY_DYNAMIC ? gscale[i] : 0;
+        v.im = inv_mass[i];
+        v.kind = shape[i];
+        v.pad = 0;
+        cb[i] = v;
+        refresh[k] = (uint8_t)!pairs_inside(&e[slot[i]], box);
+        if (uf != NULL) uf[k] = k;
     }
 }
 
@@ -115,16 +122,18 @@ static void views_range(int32_t begin, int32_t end, int32_t worker, void *contex
 
 void views_build(rg_world *w, collide_step *x, rg_real dt)
 {
-    views_task t = { w, x, dt };
+    views_task t = { w, x };
     views_state *ns = &w->coll.views;
+    const body_store *b = &w->b;
     task_for(w, views_range, x->na, VIEWS_RANGE, &t);
     /* the broadphase changes in order, on this thread */
     for (int32_t k = 0; k < x->na; k++) {
         if (!ns->refresh[k]) continue;
         int32_t i = ns->adense[k];
-        rg_real box[4], mo[4];
-        views_fat_box(w, k, i, dt, box, mo);
-        pairs_refresh_now(w, i, box[0], box[1], box[2], box[3], mo[0], mo[1], mo[2], mo[3]);
+        rg_real mx = b->x[i] - ns->sx0[k], my = b->y[i] - ns->sy0[k], box[4];
+        views_box(b->x[i], b->y[i], b->hx[i], b->hy[i], mx, my, w->coll.continuous, box);
+        pairs_refresh_now(w, i, box[0], box[1], box[2], box[3], mx, my, (b->vx[i] - ns->svx0[k]) * dt,
+                          (b->vy[i] - ns->svy0[k]) * dt);
     }
 }
 
