@@ -277,6 +277,17 @@ static void narrow_measure_decide_range(int32_t begin, int32_t end, int32_t work
     }
 }
 
+/* Joins the islands of a touching pair of awake dynamic bodies (dense ia, ib). */
+static void narrow_unite(rg_world *w, const contact *c, const collide_step *x, int32_t ia, int32_t ib)
+{
+    collide_world *cw = &w->coll;
+    const body_store *b = &w->b;
+    int32_t pa = cw->bp.e[c->sa].apos, pb = cw->bp.e[c->sb].apos;
+    if (pa >= 0 && pb >= 0 && pa < x->na && pb < x->na && b->type[ia] == RG_BODY_DYNAMIC &&
+        b->type[ib] == RG_BODY_DYNAMIC)
+        island_unite(cw->island.uf, pa, pb);
+}
+
 /* What a contact's decision does to the rest of the world, in contact order: its solver row,
  * events, grounded flags, islands, waking (on the stepping thread, or, where nothing wakes
  * and the rows are staged, beside the solve's first part: narrow_commit_late). */
@@ -302,12 +313,7 @@ static void narrow_commit(rg_world *w, int32_t id, collide_step *x, uint32_t bit
     if (c->flags & CT_SENSOR) return;
     if (bits & ND_GROUND_A) b->cflags[ia] |= CF_GROUNDED;
     if (bits & ND_GROUND_B) b->cflags[ib] |= CF_GROUNDED;
-    if ((bits & ND_NOW) && x->unite) {
-        int32_t pa = cw->bp.e[c->sa].apos, pb = cw->bp.e[c->sb].apos;
-        if (pa >= 0 && pb >= 0 && pa < x->na && pb < x->na && b->type[ia] == RG_BODY_DYNAMIC &&
-            b->type[ib] == RG_BODY_DYNAMIC)
-            island_unite(cw->island.uf, pa, pb);
-    }
+    if ((bits & ND_NOW) && x->unite) narrow_unite(w, c, x, ia, ib);
     /* a sleeping body (dense index past the awake ones) touched by a pusher wakes */
     if ((bits & (ND_NOW | ND_WAS)) && (ia >= b->n_active || ib >= b->n_active)) {
         int pa_ = body_partition(w, ia), pb_ = body_partition(w, ib);
@@ -339,8 +345,20 @@ static uint32_t narrow_decide_here(rg_world *w, int32_t id, const collide_step *
 /* Staging in parallel: the awake contacts in fixed blocks, whose rows (and impacts) are
  * counted, summed in block order, then written at those offsets: the rows of the serial
  * walk, in its order.  rows.color and rows.tord (scratch of the solve, unused until then)
- * hold each block's first row and first impact. */
+ * hold each block's first row and first impact.  The same passes list, for the commit, the
+ * bodies that the touching contacts ground and the contacts with an event (rows.late, in
+ * contact order; rows.lanes, the packing's scratch, holds each block's first of both). */
 #define NARROW_BLOCK 256
+/* rows.lanes holds 32 per packing block, two per staging block are asked */
+typedef char narrow_lanes_hold_the_blocks[2 * SOLVER_PACK_BLOCK <= 32 * NARROW_BLOCK ? 1 : -1];
+
+/* A decision's events (begin or end) and the bodies it grounds (none for a sensor). */
+static inline int32_t narrow_events(uint32_t bits) { return (bits & (ND_BEGIN | ND_END)) != 0; }
+static inline int32_t narrow_grounds(const contact *c, uint32_t bits)
+{
+    if (c->flags & CT_SENSOR) return 0;
+    return ((bits & ND_GROUND_A) != 0) + ((bits & ND_GROUND_B) != 0);
+}
 
 static void narrow_count_range(int32_t begin, int32_t end, int32_t worker, void *context)
 {
@@ -350,15 +368,20 @@ static void narrow_count_range(int32_t begin, int32_t end, int32_t worker, void 
     (void)worker;
     for (int32_t blk = begin; blk < end; blk++) {
         int32_t k1 = (blk + 1) * NARROW_BLOCK < t->n ? (blk + 1) * NARROW_BLOCK : t->n;
-        int32_t nrow = 0, nimp = 0;
+        int32_t nrow = 0, nimp = 0, nground = 0, nevent = 0;
         for (int32_t k = blk * NARROW_BLOCK; k < k1; k++) {
             const contact *c = &cs->c[cs->awake[k]];
-            if (!(c->decided & ND_STAGE)) continue;
+            uint32_t bits = c->decided;
+            nground += narrow_grounds(c, bits);
+            nevent += narrow_events(bits);
+            if (!(bits & ND_STAGE)) continue;
             nrow++;
             nimp += c->toi > 0;
         }
         rows->color[blk] = nrow;
         rows->tord[blk] = nimp;
+        rows->lanes[2 * blk] = nground;
+        rows->lanes[2 * blk + 1] = nevent;
     }
 }
 
@@ -374,11 +397,20 @@ static void narrow_stage_range(int32_t begin, int32_t end, int32_t worker, void 
     for (int32_t blk = begin; blk < end; blk++) {
         int32_t k1 = (blk + 1) * NARROW_BLOCK < t->n ? (blk + 1) * NARROW_BLOCK : t->n;
         int32_t row = rows->color[blk], imp = rows->tord[blk];
+        int32_t *ground = rows->late + rows->lanes[2 * blk];
+        int32_t *event = rows->late + 2 * (size_t)rows->cap + rows->lanes[2 * blk + 1];
         for (int32_t k = blk * NARROW_BLOCK; k < k1; k++) {
             int32_t id = cs->awake[k];
             const contact *c = &cs->c[id];
-            if (!(c->decided & ND_STAGE)) continue;
+            uint32_t bits = c->decided;
+            if (!(bits & (ND_STAGE | ND_BEGIN | ND_END | ND_GROUND_A | ND_GROUND_B))) continue;
             int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
+            if (narrow_events(bits)) *event++ = id;
+            if (narrow_grounds(c, bits)) {
+                if (bits & ND_GROUND_A) *ground++ = ia;
+                if (bits & ND_GROUND_B) *ground++ = ib;
+            }
+            if (!(bits & ND_STAGE)) continue;
             resolve_row(w, x, row, id, ia, ib, ia < x->n ? cb[ia].im : 0, ib < x->n ? cb[ib].im : 0);
             if (c->toi > 0) rows->imp[imp++] = row;
             row++;
@@ -394,28 +426,50 @@ static void narrow_stage(rg_world *w, narrow_task *t, int32_t n)
     int32_t blocks = (n + NARROW_BLOCK - 1) / NARROW_BLOCK;
     t->n = n;
     task_for(w, narrow_count_range, blocks, 1, t);
-    int32_t row = 0, imp = 0;
+    int32_t row = 0, imp = 0, ground = 0, event = 0;
     for (int32_t blk = 0; blk < blocks; blk++) {
-        int32_t r = rows->color[blk], m = rows->tord[blk];
+        int32_t r = rows->color[blk], m = rows->tord[blk], g = rows->lanes[2 * blk], e = rows->lanes[2 * blk + 1];
         rows->color[blk] = row;
         rows->tord[blk] = imp;
+        rows->lanes[2 * blk] = ground;
+        rows->lanes[2 * blk + 1] = event;
         row += r;
         imp += m;
+        ground += g;
+        event += e;
     }
     task_for(w, narrow_stage_range, blocks, 1, t);
     x->nc = row;
     x->nimp = imp;
+    x->nground = ground;
+    x->nevent = event;
 }
 
-/* The commits of a step in which nothing can wake, the rows staged already: in contact
- * order, as narrow_run's walk would make them. */
+/* The commits of a step in which nothing can wake, the rows staged already, as narrow_run's
+ * walk would make them: the grounded flags and the events from the staging's lists (the
+ * events in contact order), then the islands, joined in contact order. */
 static void narrow_commit_late(rg_world *w, collide_step *x)
 {
-    const contact_store *cs = &w->coll.contacts;
-    int woke = 0;
+    contact_store *cs = &w->coll.contacts;
+    const solver_rows *rows = &w->coll.rows;
+    uint32_t *cflags = w->b.cflags;
+    const int32_t *ground = rows->late, *event = rows->late + 2 * (size_t)rows->cap;
+    for (int32_t k = 0; k < x->nground; k++) cflags[ground[k]] |= CF_GROUNDED;
+    for (int32_t k = 0; k < x->nevent; k++) {
+        const contact *c = &cs->c[event[k]];
+        if (c->decided & ND_BEGIN) {
+            cs->n_touching++;
+            events_emit(w, c, RG_CONTACT_BEGIN);
+        } else {
+            cs->n_touching--;
+            events_emit(w, c, RG_CONTACT_END);
+        }
+    }
+    if (!x->unite) return;
     for (int32_t k = 0; k < cs->n_awake; k++) {
-        int32_t id = cs->awake[k];
-        narrow_commit(w, id, x, cs->c[id].decided, 0, &woke);
+        const contact *c = &cs->c[cs->awake[k]];
+        if ((c->decided & ND_NOW) && !(c->flags & CT_SENSOR))
+            narrow_unite(w, c, x, body_dense(w, c->sa), body_dense(w, c->sb));
     }
 }
 

@@ -203,6 +203,9 @@ typedef struct solver_rows {
     int32_t *lanes;           /* [0, SOLVER_PACK_BLOCKS(cap) * 32): packing scratch */
     int32_t *imp;             /* [0, cap): staged rows that are impacts (toi > 0) */
     int32_t *fixed;           /* [0, cap): rows against an immovable body (solver_fixed_list) */
+    int32_t *late;            /* [0, 3 cap): what the parallel staging leaves for the commit
+                               * (narrow.c): bodies to ground [0, 2 cap), contacts with an
+                               * event [2 cap, 3 cap) */
     void *block;
     size_t block_size;
     int32_t cap;
