@@ -480,6 +480,10 @@ void narrow_run(rg_world *w, collide_step *x)
     t.w = w;
     t.x = x;
     int32_t measured = cs->n_awake, workers = task_workers(w), in_order = 0;
+    /* One thread and no body asleep (so nothing wakes, and no commit changes what a later
+     * decision reads): each contact is measured, decided and committed in the one visit of
+     * the walk below, the same work in the same order as a pass of its own before it. */
+    if (workers < 2 && w->b.n_moving == w->b.n_active) measured = 0;
     for (int32_t k = 0; k < workers; k++) t.in_order[k] = 0;
     task_for(w, narrow_measure_decide_range, measured, NARROW_RANGE, &t);
     for (int32_t k = 0; k < workers; k++) in_order |= t.in_order[k];
