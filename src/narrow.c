@@ -453,10 +453,9 @@ static void narrow_commit_late(rg_world *w, collide_step *x)
     contact_store *cs = &w->coll.contacts;
     const solver_rows *rows = &w->coll.rows;
     uint32_t *cflags = w->b.cflags;
-    const int32_t *ground = rows->late, *event = rows->late + 2 * (size_t)rows->cap;
-    for (int32_t k = 0; k < x->nground; k++) cflags[ground[k]] |= CF_GROUNDED;
-    for (int32_t k = 0; k < x->nevent; k++) {
-        const contact *c = &cs->c[event[k]];
+    for (int32_t k = 0; k < x->nground; k++) cflags[rows->late[k]] |= CF_GROUNDED;
+    for (int32_t k = 0; k < x->nevent; k++) { /* (rows.late is NULL while there are no contacts) */
+        const contact *c = &cs->c[rows->late[2 * (size_t)rows->cap + (size_t)k]];
         if (c->decided & ND_BEGIN) {
             cs->n_touching++;
             events_emit(w, c, RG_CONTACT_BEGIN);
