@@ -288,6 +288,19 @@ static void narrow_unite(rg_world *w, const contact *c, const collide_step *x, i
         island_unite(cw->island.uf, pa, pb);
 }
 
+/* The contact's begin or end (if its decision has one): the event and the touching count. */
+static void narrow_events_of(rg_world *w, const contact *c, uint32_t bits)
+{
+    contact_store *cs = &w->coll.contacts;
+    if (bits & ND_BEGIN) {
+        cs->n_touching++;
+        events_emit(w, c, RG_CONTACT_BEGIN);
+    } else if (bits & ND_END) {
+        cs->n_touching--;
+        events_emit(w, c, RG_CONTACT_END);
+    }
+}
+
 /* What a contact's decision does to the rest of the world, in contact order: its solver row,
  * events, grounded flags, islands, waking (on the stepping thread, or, where nothing wakes
  * and the rows are staged, beside the solve's first part: narrow_commit_late). */
@@ -303,13 +316,7 @@ static void narrow_commit(rg_world *w, int32_t id, collide_step *x, uint32_t bit
         const cbody *cb = cw->views.cb;
         resolve_stage(w, x, id, ia, ib, ia < x->n ? cb[ia].im : 0, ib < x->n ? cb[ib].im : 0);
     }
-    if (bits & ND_BEGIN) {
-        cs->n_touching++;
-        events_emit(w, c, RG_CONTACT_BEGIN);
-    } else if (bits & ND_END) {
-        cs->n_touching--;
-        events_emit(w, c, RG_CONTACT_END);
-    }
+    narrow_events_of(w, c, bits);
     if (c->flags & CT_SENSOR) return;
     if (bits & ND_GROUND_A) b->cflags[ia] |= CF_GROUNDED;
     if (bits & ND_GROUND_B) b->cflags[ib] |= CF_GROUNDED;
@@ -456,13 +463,7 @@ static void narrow_commit_late(rg_world *w, collide_step *x)
     for (int32_t k = 0; k < x->nground; k++) cflags[rows->late[k]] |= CF_GROUNDED;
     for (int32_t k = 0; k < x->nevent; k++) { /* (rows.late is NULL while there are no contacts) */
         const contact *c = &cs->c[rows->late[2 * (size_t)rows->cap + (size_t)k]];
-        if (c->decided & ND_BEGIN) {
-            cs->n_touching++;
-            events_emit(w, c, RG_CONTACT_BEGIN);
-        } else {
-            cs->n_touching--;
-            events_emit(w, c, RG_CONTACT_END);
-        }
+        narrow_events_of(w, c, c->decided);
     }
     if (!x->unite) return;
     for (int32_t k = 0; k < cs->n_awake; k++) {
