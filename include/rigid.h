@@ -629,7 +629,9 @@ RG_API rg_status rg_world_save(const rg_world *world, void *out, size_t capacity
    RG_ERR_OUT_OF_MEMORY when the world cannot grow to hold it (nothing changed either);
    RG_ERR_LOCKED from inside a step's callback.  Every structural invariant of the state is
    checked before anything is changed, so no snapshot, however forged, can make a later call
-   misbehave. */
+   misbehave.  With a task system (rg_world_set_task_system) the checks and the load of the
+   contacts and the broadphase run on its workers, and the checksum beside the other checks;
+   what is refused, and why, and what is loaded are the same as on one thread. */
 RG_API rg_status rg_world_restore(rg_world *world, const void *data, size_t size);
 
 /* A 64-bit hash of the simulation state: equal states give equal hashes, and the same

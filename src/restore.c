@@ -8,6 +8,7 @@
 #include "events.h"
 #include "snapshot.h"
 #include "spring.h"
+#include "task.h"
 #include "vec2.h"
 #include "restore_check.h"
 
@@ -83,8 +84,14 @@ static void restore_events(rg_contact_event *e, const snap_in *in, size_t off, i
 
 /* After the bodies: the contacts, their mixed materials from their bodies, the free list
  * in its order, the awake list and each contact's place in it (found through place[id],
- * scratch of ccap entries, so that the contacts are written in one pass by id). */
-static void restore_contacts(rg_world *w, const snap_in *in, int32_t *place)
+ * scratch of ccap entries, so that the contacts are written in one pass by id: in ranges of
+ * records, restore_load_range, between restore_contacts_start and _end). */
+typedef struct restore_materials {
+    int same; /* every body has the same: mu and e */
+    rg_real mu, e;
+} restore_materials;
+
+static void restore_contacts_start(rg_world *w, const snap_in *in, int32_t *place, restore_materials *mat)
 {
     contact_store *cs = &w->coll.contacts;
     const body_store *b = &w->b;
@@ -93,9 +100,17 @@ static void restore_contacts(rg_world *w, const snap_in *in, int32_t *place)
     restore_array(cs->awake, in->p + in->l.awake, s->n_awake, 4, 4);
     for (int32_t k = 0; k < s->n_awake; k++) place[cs->awake[k]] = k;
     /* the mixed materials once for all when every body has the same */
-    int same = in->l.stride[SNAP_F_mu] == 0 && in->l.stride[SNAP_F_rest] == 0 && b->count > 0;
-    rg_real mu = same ? rg_sqrt(b->mu[0] * b->mu[0]) : 0, e = same ? b->rest[0] : 0;
-    for (int32_t k = 0; k < s->clive; k++) {
+    mat->same = in->l.stride[SNAP_F_mu] == 0 && in->l.stride[SNAP_F_rest] == 0 && b->count > 0;
+    mat->mu = mat->same ? rg_sqrt(b->mu[0] * b->mu[0]) : 0;
+    mat->e = mat->same ? b->rest[0] : 0;
+}
+
+static void restore_contacts_range(rg_world *w, const snap_in *in, const int32_t *place,
+                                   const restore_materials *mat, int32_t k0, int32_t k1)
+{
+    contact_store *cs = &w->coll.contacts;
+    const body_store *b = &w->b;
+    for (int32_t k = k0; k < k1; k++) {
         const uint8_t *p = rec(in, in->l.contacts, SNAP_CONTACT, k);
         int32_t id = (int32_t)snap_get32(p);
         contact *c = &cs->c[id];
@@ -127,15 +142,21 @@ static void restore_contacts(rg_world *w, const snap_in *in, int32_t *place)
         c->awake = place[id];
         c->toi = 0;
         c->decided = 0;
-        if (same) {
-            c->mu = mu;
-            c->e = e;
+        if (mat->same) {
+            c->mu = mat->mu;
+            c->e = mat->e;
             continue;
         }
         int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
         c->mu = rg_sqrt(b->mu[ia] * b->mu[ib]);
         c->e = rg_max(b->rest[ia], b->rest[ib]);
     }
+}
+
+static void restore_contacts_end(rg_world *w, const snap_in *in)
+{
+    contact_store *cs = &w->coll.contacts;
+    const snap_scalars *s = &in->s;
     /* a free id holds what contact_destroy leaves that anything reads: no bodies, no links
      * but the free list's, no flags (its other fields are written whole when it is taken) */
     int32_t nfree = s->ccap - s->clive;
@@ -154,13 +175,14 @@ static void restore_contacts(rg_world *w, const snap_in *in, int32_t *place)
     cs->n_touching = s->n_touching;
 }
 
-/* The members' levels and keys come from the checks (restore_check_broadphase) or from a
- * kept state's tail. */
-static void restore_broadphase(broadphase *bp, const snap_in *in, const restore_scratch *r)
+/* Members k0..k1-1; their levels and keys come from the checks (restore_check_broadphase)
+ * or from a kept state's tail. */
+static void restore_members_range(broadphase *bp, const snap_in *in, const restore_scratch *r, int32_t k0,
+                                  int32_t k1)
 {
     const int16_t *level = in->kept_level != NULL ? in->kept_level : r->level;
     const uint64_t *key = in->kept_key != NULL ? in->kept_key : r->key;
-    for (int32_t k = 0; k < in->s.members; k++) {
+    for (int32_t k = k0; k < k1; k++) {
         const uint8_t *p = rec(in, in->l.members, SNAP_MEMBER, k);
         int32_t slot = (int32_t)snap_get32(p);
         bp_entry *e = &bp->e[slot];
@@ -188,10 +210,33 @@ static void restore_broadphase(broadphase *bp, const snap_in *in, const restore_
         e->mark = 0;
         bp->members[k] = slot;
     }
+}
+
+static void restore_broadphase_end(broadphase *bp, const snap_in *in)
+{
     broadphase_restore_members(bp, in->s.members);
     restore_array(bp->moved, in->p + in->l.moved, in->s.n_moved, 4, 4);
     bp->n_moved = in->s.n_moved;
     bp->mark = in->s.mark;
+}
+
+/* The contacts (items [0, clive)) and the broadphase's members (the rest) on the task
+ * system: every contact id and member slot is written by its one record (the checks, or
+ * the world that kept the state, make them distinct). */
+typedef struct restore_load_task {
+    rg_world *w;
+    const snap_in *in;
+    const restore_scratch *r;
+    restore_materials mat;
+} restore_load_task;
+
+static void restore_load_range(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    restore_load_task *t = context;
+    int32_t nc = t->in->s.clive;
+    (void)worker;
+    if (begin < nc) restore_contacts_range(t->w, t->in, t->r->rec_of, &t->mat, begin, end < nc ? end : nc);
+    if (end > nc) restore_members_range(&t->w->coll.bp, t->in, t->r, (begin > nc ? begin : nc) - nc, end - nc);
 }
 
 /* What the snapshot leaves out: inverse masses, flags (as body_update_flags makes them) and
@@ -297,14 +342,20 @@ static void restore_load(rg_world *w, const snap_in *in, const restore_scratch *
         sp->c = cur_real(&c);
     }
     w->springs.count = s->springs;
-    restore_contacts(w, in, r->rec_of); /* the checks are done with it */
+    restore_load_task t;
+    t.w = w;
+    t.in = in;
+    t.r = r;
+    restore_contacts_start(w, in, r->rec_of, &t.mat); /* the checks are done with rec_of */
+    task_for(w, restore_load_range, s->clive + s->members, 64, &t);
+    restore_contacts_end(w, in);
+    restore_broadphase_end(&cw->bp, in);
     event_store *es = &cw->events;
     restore_events(es->ev, in, in->l.ev, s->n_ev);
     restore_events(es->pend, in, in->l.pend, s->n_pend);
     es->n = es->base = s->n_ev;
     es->n_pend = s->n_pend;
     es->in_step = 0;
-    restore_broadphase(&cw->bp, in, r);
     cw->shape_count = s->members;
     cw->resolve.gen = 0;
     cw->resolve.pv_valid = 0;
@@ -345,14 +396,12 @@ static void restore_fill_scratch(const snap_in *in, restore_scratch *r)
         r->member_of[(int32_t)snap_get32(rec(in, in->l.members, SNAP_MEMBER, k))] = k + 1;
 }
 
-/* Checks the state unless it is the world's own (checked 0), then grows the world to hold
- * it and loads it. */
+/* Checks the state's contacts and broadphase unless it is the world's own (checked 0; the
+ * rest is checked before), then grows the world to hold it and loads it. */
 static rg_status restore_state(rg_world *w, const char *fn, const snap_in *in, int checked)
 {
     const snap_scalars *s = &in->s;
     const rg_mem *m = &w->mem;
-    const char *bad = checked ? restore_check_values(in) : NULL;
-    if (bad != NULL) return restore_refuse(w, fn, bad);
     restore_scratch r;
     size_t rsize = 0;
     r.s = s;
@@ -362,9 +411,9 @@ static rg_status restore_state(rg_world *w, const char *fn, const snap_in *in, i
     rg_status st = RG_OK;
     if (checked) {
         memset(rblock, 0, r.zeroed);
-        if (!restore_check_contacts(in, &r))
+        if (!restore_check_contacts(w, in, &r))
             st = restore_refuse(w, fn, "contacts");
-        else if (!restore_check_broadphase(in, &r))
+        else if (!restore_check_broadphase(w, in, &r))
             st = restore_refuse(w, fn, "broadphase");
     } else {
         restore_fill_scratch(in, &r);
@@ -402,6 +451,29 @@ static rg_status restore_state(rg_world *w, const char *fn, const snap_in *in, i
     return st;
 }
 
+/* The checksum (item 0) beside the checks of the settings, counts, bodies, springs and
+ * events (item 1), which read the bytes and the scalars alone and write only `in`'s layout:
+ * a checksum that fails is what rg_world_restore reports, whatever the checks found. */
+typedef struct restore_first {
+    snap_in *in;
+    int sum_ok, scalars_ok;
+    const char *bad;
+} restore_first;
+
+static void restore_first_range(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    restore_first *f = context;
+    (void)worker;
+    for (int32_t k = begin; k < end; k++) {
+        if (k == 0) {
+            f->sum_ok = restore_check_sum(f->in);
+            continue;
+        }
+        f->scalars_ok = restore_check_scalars(f->in);
+        f->bad = f->scalars_ok ? restore_check_values(f->in) : NULL;
+    }
+}
+
 rg_status restore_kept(rg_world *w, const void *data, size_t size)
 {
     snap_in in;
@@ -423,6 +495,11 @@ RG_API rg_status rg_world_restore(rg_world *world, const void *data, size_t size
     snap_in in;
     memset(&in, 0, sizeof in);
     if (!restore_check_header(world, &in, data, size, 1)) return RG_ERR_INVALID_ARGUMENT;
-    if (!restore_check_scalars(&in)) return restore_refuse(world, "rg_world_restore", "settings and counts");
+    restore_first f;
+    f.in = &in;
+    task_for(world, restore_first_range, 2, 1, &f);
+    if (!f.sum_ok) return error_set(world, RG_ERR_INVALID_ARGUMENT, "rg_world_restore", "checksum mismatch (the snapshot is corrupted)");
+    if (!f.scalars_ok) return restore_refuse(world, "rg_world_restore", "settings and counts");
+    if (f.bad != NULL) return restore_refuse(world, "rg_world_restore", f.bad);
     return restore_state(world, "rg_world_restore", &in, 1);
 }

@@ -154,12 +154,13 @@ int restore_check_header(const rg_world *w, snap_in *in, const void *data, size_
                   (unsigned long)size, (unsigned long long)snap_get64(in->p + 16));
         return 0;
     }
-    if (sealed && snap_get64(in->p + 24) != snap_hash(in->p + SNAP_HEADER, size - SNAP_HEADER)) {
-        error_set(w, RG_ERR_INVALID_ARGUMENT, f, "checksum mismatch (the snapshot is corrupted)");
-        return 0;
-    }
     restore_read_scalars(in);
     return 1;
+}
+
+int restore_check_sum(const snap_in *in)
+{
+    return snap_get64(in->p + 24) == snap_hash(in->p + SNAP_HEADER, in->size - SNAP_HEADER);
 }
 
 /* The largest bucket table a world with `slots` body slots can have grown: enough for twice

@@ -193,9 +193,13 @@ static inline int32_t restore_dense(const snap_in *in, int32_t slot)
 }
 
 /* Each check returns 1, or 0 for a snapshot that breaks what it checks. */
-/* The header (magic, version, rg_real, size and, when sealed, the checksum), with the reason
- * set on failure; it reads the scalars into in. */
+/* The header (magic, version, rg_real, size), with the reason set on failure (sealed: for
+ * rg_world_restore, else for a kept state); it reads the scalars into in, which the checks
+ * below may take before the checksum is known: they accept no bytes that break what they
+ * check, whatever the bytes are. */
 int restore_check_header(const rg_world *w, snap_in *in, const void *data, size_t size, int sealed);
+/* The checksum of a sealed snapshot (rg_world_save) over its bytes past the header. */
+int restore_check_sum(const snap_in *in);
 /* The settings and counts, each within the range of the setter it enters by. */
 int restore_check_scalars(snap_in *in);
 /* A pool's slots against the dense places that name them (slot_of, slot_stride). */
@@ -210,7 +214,8 @@ int restore_check_events(const snap_in *in, size_t off, int32_t n);
 /* The scratch the two checks below fill (sized from r->s and r->checked) and the load
  * reads (restore_links.c). */
 void restore_check_scratch_layout(mem_layout *l, void *ctx);
-int restore_check_contacts(const snap_in *in, restore_scratch *r);
-int restore_check_broadphase(const snap_in *in, restore_scratch *r);
+/* Both spread what they can over w's task system (nothing of w changes). */
+int restore_check_contacts(struct rg_world *w, const snap_in *in, restore_scratch *r);
+int restore_check_broadphase(struct rg_world *w, const snap_in *in, restore_scratch *r);
 
 #endif

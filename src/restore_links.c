@@ -14,6 +14,7 @@
 #include "contact.h"
 #include "snapshot.h"
 #include "restore_check.h"
+#include "task.h"
 
 #define BAD 0
 
@@ -45,6 +46,70 @@ void restore_check_scratch_layout(mem_layout *l, void *ctx)
     r->box = mem_take(l, checked * 4 * (size_t)s->members, sizeof(rg_real));
 }
 
+/* ---------------------------------------------------------------- on the task system */
+
+/* The passes that read the snapshot and write their items' own places alone run on the
+ * world's task system, each range reporting what it finds (a broken invariant, counts) in
+ * its worker's own slot, joined after; what marks a place that another item may name (a
+ * slot or an id taken once) stays on one thread, so that a forged snapshot cannot make two
+ * threads write one place.  What a check decides does not depend on the ranges. */
+enum { RESTORE_BODY_BITS, RESTORE_RECORDS, RESTORE_LIST_LINKS, RESTORE_BOXES, RESTORE_MEMBER_LINKS };
+#define RESTORE_RANGE 32
+
+typedef struct restore_pass {
+    const snap_in *in;
+    restore_scratch *r;
+    int what;
+    uint8_t bad[RG_MAX_WORKERS];
+    int32_t sums[RG_MAX_WORKERS][2]; /* RESTORE_RECORDS: touching, with an awake body */
+} restore_pass;
+
+static void restore_body_bits(const snap_in *in, uint8_t *bits, int32_t i0, int32_t i1);
+static int restore_records_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1, int32_t *touching,
+                                 int32_t *should_wake);
+static int restore_list_links_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1);
+static int restore_boxes_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1);
+static int restore_member_links_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1);
+
+static void restore_pass_range(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    restore_pass *p = context;
+    int bad = 0;
+    switch (p->what) {
+    case RESTORE_BODY_BITS: restore_body_bits(p->in, p->r->body_bits, begin, end); break;
+    case RESTORE_RECORDS:
+        bad = restore_records_range(p->in, p->r, begin, end, &p->sums[worker][0], &p->sums[worker][1]);
+        break;
+    case RESTORE_LIST_LINKS: bad = restore_list_links_range(p->in, p->r, begin, end); break;
+    case RESTORE_BOXES: bad = restore_boxes_range(p->in, p->r, begin, end); break;
+    default: bad = restore_member_links_range(p->in, p->r, begin, end); break;
+    }
+    if (bad) p->bad[worker] = 1;
+}
+
+/* Pass `what` over count items; 1 when no range found a broken invariant (and sums, when
+ * given, the records' counts). */
+static int restore_spread(rg_world *w, const snap_in *in, restore_scratch *r, int what, int32_t count, int32_t *sums)
+{
+    restore_pass p;
+    int32_t workers = task_workers(w);
+    p.in = in;
+    p.r = r;
+    p.what = what;
+    memset(p.bad, 0, (size_t)workers);
+    memset(p.sums, 0, (size_t)workers * sizeof p.sums[0]);
+    task_for(w, restore_pass_range, count, RESTORE_RANGE, &p);
+    int ok = 1;
+    for (int32_t k = 0; k < workers; k++) {
+        ok &= !p.bad[k];
+        if (sums != NULL) {
+            sums[0] += p.sums[k][0];
+            sums[1] += p.sums[k][1];
+        }
+    }
+    return ok;
+}
+
 /* ---------------------------------------------------------------- contacts */
 
 /* The int fields of a live contact record. */
@@ -61,11 +126,11 @@ static uint64_t restore_handle(const snap_in *in, int32_t slot)
 
 /* Per body what its contacts take from it (their sensor and one-way flags) and whether it
  * has no shape: one byte to read per body of a contact instead of four fields. */
-static void restore_body_bits(const snap_in *in, uint8_t *bits)
+static void restore_body_bits(const snap_in *in, uint8_t *bits, int32_t i0, int32_t i1)
 {
     snap_col cf = col_of(in, SNAP_F_cflags), ox = col_of(in, SNAP_F_owx), oy = col_of(in, SNAP_F_owy);
     snap_col shape = col_of(in, SNAP_F_shape);
-    for (int32_t i = 0; i < in->s.count; i++) {
+    for (int32_t i = i0; i < i1; i++) {
         uint32_t sensor = (snap_get32(cf.p + cf.stride * (size_t)i) & CF_SENSOR) != 0;
         rg_real x = col_real(ox, i), y = col_real(oy, i);
         uint32_t one_way = (x != 0) | (y != 0);
@@ -74,22 +139,24 @@ static void restore_body_bits(const snap_in *in, uint8_t *bits)
     }
 }
 
-/* The live records: ascending ids, bodies that exist, have shapes and are in handle order,
- * flags as the bodies make them, links in range, reals finite, impulses bounded. */
-static int restore_check_records(const snap_in *in, restore_scratch *r)
+/* Live records k0..k1-1: ascending ids (each above the one before it, record k0's above
+ * record k0 - 1's), bodies that exist, have shapes and are in handle order, flags as the
+ * bodies make them, links in range, reals finite, impulses bounded; 1 when one breaks them.
+ * Counts the touching records and those with an awake body (wakes). */
+static int restore_records_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1, int32_t *touching,
+                                 int32_t *should_wake)
 {
     const snap_scalars *s = &in->s;
     const uint32_t valid = CT_TOUCHING | CT_SENSOR | CT_SOLVE | CT_CLOSING | CT_ONEWAY | CT_PASS;
     const real_sbits impulse = real_magnitude((rg_real)CONTACT_MAX_IMPULSE), big = real_magnitude((rg_real)REAL_MAX);
-    int32_t touching = 0, should_wake = 0, last = -1;
-    for (int32_t k = 0; k < s->clive; k++) {
+    int32_t last = k0 > 0 ? ct_at(ct_rec(in, k0 - 1), CT_ID) : -1, nt = 0, nw = 0;
+    for (int32_t k = k0; k < k1; k++) {
         const uint8_t *q = ct_rec(in, k);
         int32_t id = ct_at(q, CT_ID), sa = ct_at(q, CT_SA), sb = ct_at(q, CT_SB);
-        if (id <= last || id >= s->ccap) return BAD; /* ascending ids */
+        if (id <= last || id >= s->ccap) return 1; /* ascending ids */
         last = id;
-        r->rec_of[id] = k + 1;
         int32_t ia = restore_dense(in, sa), ib = restore_dense(in, sb);
-        if (ia < 0 || ib < 0 || sa == sb || !(restore_handle(in, sa) < restore_handle(in, sb))) return BAD;
+        if (ia < 0 || ib < 0 || sa == sb || !(restore_handle(in, sa) < restore_handle(in, sb))) return 1;
         uint32_t flags = (uint32_t)ct_at(q, CT_FLAGS), from_bodies = (uint32_t)r->body_bits[ia] | r->body_bits[ib];
         uint32_t bad = (flags & ~valid) != 0;
         bad |= (from_bodies & RESTORE_SHAPELESS) != 0;
@@ -103,39 +170,48 @@ static int restore_check_records(const snap_in *in, restore_scratch *r)
         for (int f = 0; f < 8; f++) bad |= (uint32_t)real_out(real_get(reals + SNAP_REAL * (size_t)f), 0, big, big);
         bad |= (uint32_t)real_out(real_get(reals + SNAP_REAL * 8), 0, impulse, 0);
         bad |= (uint32_t)real_out(real_get(reals + SNAP_REAL * 9), 0, impulse, impulse);
-        if (bad) return BAD;
+        if (bad) return 1;
         uint8_t wakes = (ia < s->n_active) | (ib < s->n_active);
         r->wakes[k] = wakes;
-
-        touching += (flags & CT_TOUCHING) != 0;
-        should_wake += wakes;
+        nt += (flags & CT_TOUCHING) != 0;
+        nw += wakes;
     }
-    return touching == s->n_touching && should_wake == s->n_awake;
+    *touching += nt;
+    *should_wake += nw;
+    return 0;
 }
 
-/* Each body's list: its contacts, each once, linked both ways; all lists together hold every
- * live contact twice.  Node 2k + side is record k in the list of its body a (side 0) or b
- * (side 1). */
-static int restore_check_lists(const snap_in *in, restore_scratch *r)
+/* Records k0..k1-1's next nodes in their bodies' lists (node 2k + side is record k in the
+ * list of its body a, side 0, or b, side 1): each a node of the same body's list that links
+ * back; 1 when one is not. */
+static int restore_list_links_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1)
 {
-    const snap_scalars *s = &in->s;
     int32_t *next = r->node_next;
-    for (int32_t k = 0; k < s->clive; k++) {
+    for (int32_t k = k0; k < k1; k++) {
         const uint8_t *q = ct_rec(in, k);
         int32_t id = ct_at(q, CT_ID);
         for (int side = 0; side < 2; side++) {
             int32_t slot = ct_at(q, side ? CT_SB : CT_SA), n = ct_at(q, side ? CT_NB : CT_NA), to = -1;
-            if (n >= 0) { /* in range (restore_check_records) */
+            if (n >= 0) { /* in range (restore_records_range) */
                 int32_t rn = r->rec_of[n];
-                if (rn <= 0) return BAD;
+                if (rn <= 0) return 1;
                 const uint8_t *d = ct_rec(in, rn - 1);
                 int32_t da = ct_at(d, CT_SA), db = ct_at(d, CT_SB), dside = db == slot;
-                if ((da != slot && db != slot) || ct_at(d, dside ? CT_PB : CT_PA) != id) return BAD;
+                if ((da != slot && db != slot) || ct_at(d, dside ? CT_PB : CT_PA) != id) return 1;
                 to = 2 * (rn - 1) + dside;
             }
             next[2 * k + side] = to;
         }
     }
+    return 0;
+}
+
+/* Each body's list: its contacts, each once, linked both ways (restore_list_links_range);
+ * all lists together hold every live contact twice: the walks from the heads. */
+static int restore_check_lists(const snap_in *in, restore_scratch *r)
+{
+    const snap_scalars *s = &in->s;
+    const int32_t *next = r->node_next;
     int64_t visits = 0, nodes = 2 * (int64_t)s->clive;
     for (int32_t i = 0; i < s->count; i++) {
         int32_t head = BF_I(in, chead, i) - 1;
@@ -151,11 +227,16 @@ static int restore_check_lists(const snap_in *in, restore_scratch *r)
     return visits == nodes;
 }
 
-int restore_check_contacts(const snap_in *in, restore_scratch *r)
+int restore_check_contacts(rg_world *w, const snap_in *in, restore_scratch *r)
 {
     const snap_scalars *s = &in->s;
-    restore_body_bits(in, r->body_bits);
-    if (!restore_check_records(in, r)) return BAD;
+    int32_t sums[2] = { 0, 0 };
+    restore_spread(w, in, r, RESTORE_BODY_BITS, s->count, NULL);
+    if (!restore_spread(w, in, r, RESTORE_RECORDS, s->clive, sums)) return BAD;
+    if (sums[0] != s->n_touching || sums[1] != s->n_awake) return BAD;
+    /* the ids ascend below ccap: each record in its place, on one thread all the same (a
+     * place marked by two threads would be a race, were the ids forged) */
+    for (int32_t k = 0; k < s->clive; k++) r->rec_of[ct_at(ct_rec(in, k), CT_ID)] = k + 1;
     /* the free ids: the rest, each once */
     for (int32_t k = 0; k < s->ccap - s->clive; k++) {
         int32_t id = rd_i32(in, in->l.free, k);
@@ -172,7 +253,7 @@ int restore_check_contacts(const snap_in *in, restore_scratch *r)
         int32_t id = rd_i32(in, in->l.awake, k);
         r->rec_of[id] = -(r->rec_of[id] + 2);
     }
-    return restore_check_lists(in, r);
+    return restore_spread(w, in, r, RESTORE_LIST_LINKS, s->clive, NULL) && restore_check_lists(in, r);
 }
 
 /* ---------------------------------------------------------------- the broadphase */
@@ -212,28 +293,54 @@ static int32_t restore_count_lists(const snap_in *in, const int32_t *next, int w
     return n;
 }
 
-/* The broadphase: members are the shaped bodies, each once, awake ones in the active list;
- * every bucket chain and level list is a consistent doubly linked list of members of that
- * bucket or level, at most one per bucket or level, together holding each member once; the
- * huge indices, the active places and the move buffer are permutations of their members. */
-int restore_check_broadphase(const snap_in *in, restore_scratch *r)
+/* Members k0..k1-1's boxes, finite and ordered, with their levels and keys; 1 when one is
+ * not. */
+static int restore_boxes_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1)
 {
-    const snap_scalars *s = &in->s;
-    int32_t huge = 0, moved = 0, active = 0;
-    uint32_t level_seen = 0;
-    /* the boxes first, finite and ordered, and their levels and keys in one loop */
     rg_real *box = r->box;
-    for (int32_t k = 0; k < s->members; k++) {
+    for (int32_t k = k0; k < k1; k++) {
         const uint8_t *q = rec(in, in->l.members, SNAP_MEMBER, k) + 4;
         rg_real lx = snap_get_real(q), ly = snap_get_real(q + SNAP_REAL);
         rg_real ux = snap_get_real(q + 2 * SNAP_REAL), uy = snap_get_real(q + 3 * SNAP_REAL);
-        if (!(rg_finite(lx) && rg_finite(ly) && rg_finite(ux) && rg_finite(uy) && lx <= ux && ly <= uy)) return BAD;
+        if (!(rg_finite(lx) && rg_finite(ly) && rg_finite(ux) && rg_finite(uy) && lx <= ux && ly <= uy)) return 1;
         box[4 * k] = lx;
         box[4 * k + 1] = ly;
         box[4 * k + 2] = ux;
         box[4 * k + 3] = uy;
     }
-    broadphase_locate_boxes(box, s->members, r->level, r->key);
+    broadphase_locate_boxes(box + 4 * (size_t)k0, k1 - k0, r->level + k0, r->key + k0);
+    return 0;
+}
+
+/* Members k0..k1-1's next links where they lie (-3: huge, in no list); 1 when one is
+ * broken. */
+static int restore_member_links_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1)
+{
+    for (int32_t k = k0; k < k1; k++) {
+        if (r->level[k] == BP_HUGE) {
+            r->chain_next[k] = r->level_next[k] = -3;
+            continue;
+        }
+        int32_t slot = (int32_t)snap_get32(rec(in, in->l.members, SNAP_MEMBER, k));
+        int32_t c = restore_next_member(in, r, k, slot, 0), l = restore_next_member(in, r, k, slot, 1);
+        if (c == -2 || l == -2) return 1;
+        r->chain_next[k] = c;
+        r->level_next[k] = l;
+    }
+    return 0;
+}
+
+/* The broadphase: members are the shaped bodies, each once, awake ones in the active list;
+ * every bucket chain and level list is a consistent doubly linked list of members of that
+ * bucket or level, at most one per bucket or level, together holding each member once; the
+ * huge indices, the active places and the move buffer are permutations of their members. */
+int restore_check_broadphase(rg_world *w, const snap_in *in, restore_scratch *r)
+{
+    const snap_scalars *s = &in->s;
+    int32_t huge = 0, moved = 0, active = 0;
+    uint32_t level_seen = 0;
+    /* the boxes first, and their levels and keys */
+    if (!restore_spread(w, in, r, RESTORE_BOXES, s->members, NULL)) return BAD;
     for (int32_t k = 0; k < s->members; k++) {
         snap_member m;
         restore_member(in, k, &m);
@@ -259,18 +366,8 @@ int restore_check_broadphase(const snap_in *in, restore_scratch *r)
         }
     }
     if (huge != s->n_huge || moved != s->n_moved || active != s->n_bp_active) return BAD;
-    /* every next link where it lies (-3: huge, in no list), then the walks */
-    for (int32_t k = 0; k < s->members; k++) {
-        if (r->level[k] == BP_HUGE) {
-            r->chain_next[k] = r->level_next[k] = -3;
-            continue;
-        }
-        int32_t slot = (int32_t)snap_get32(rec(in, in->l.members, SNAP_MEMBER, k));
-        int32_t c = restore_next_member(in, r, k, slot, 0), l = restore_next_member(in, r, k, slot, 1);
-        if (c == -2 || l == -2) return BAD;
-        r->chain_next[k] = c;
-        r->level_next[k] = l;
-    }
+    /* every next link where it lies, then the walks */
+    if (!restore_spread(w, in, r, RESTORE_MEMBER_LINKS, s->members, NULL)) return BAD;
     if (restore_count_lists(in, r->chain_next, 1) != s->members - s->n_huge ||
         restore_count_lists(in, r->level_next, 3) != s->members - s->n_huge)
         return BAD;

@@ -5,7 +5,8 @@
  * rests (step 600).  Each engine restores into a second world built from the same scene, and
  * the restored world's hash must equal the saved one's.  Then the rollback a game makes: the
  * world saves, steps 8 frames and restores (for rigid also with a kept state, which v3 has
- * no counterpart of), the step not timed.  Medians of 31 timings each.
+ * no counterpart of), the step not timed.  Medians of 31 timings each.  Then rigid again
+ * with its pool of two threads (rigid-2w), which its restore spreads over.
  *   build/bench-snapshot [--v3 DIR|none] [N ...] */
 #define _GNU_SOURCE 1 /* mallopt */
 #include <malloc.h>
@@ -63,7 +64,7 @@ static int rollback(const bench_engine *e, void *w, void *buf, size_t size, int 
 }
 
 /* 0 when the engine cannot save or restore this world. */
-static int measure(const bench_engine *e, const bench_scene *s, int steps)
+static int measure(const bench_engine *e, const char *name, const bench_scene *s, int steps)
 {
     void *w = e->create(s), *target = e->create(s);
     if (w == NULL || target == NULL) {
@@ -94,10 +95,10 @@ static int measure(const bench_engine *e, const bench_scene *s, int steps)
         double save = median(ts, REPS), restore = median(tr, REPS);
         printf("%-10s rain %6d  step %3d  %8.1f KB  %6.0f B/body  save %7.1f us  restore %7.1f us  "
                "hash %7.1f us  save+restore %7.1f us%s\n",
-               e->name, (int)s->size, steps, (double)size / 1024, (double)size / s->nbodies, save * 1e6,
+               name, (int)s->size, steps, (double)size / 1024, (double)size / s->nbodies, save * 1e6,
                restore * 1e6, median(th, REPS) * 1e6, (save + restore) * 1e6, same ? "" : "  HASH DIFFERS");
     } else {
-        printf("%-10s rain %6d  step %3d  the snapshot failed\n", e->name, (int)s->size, steps);
+        printf("%-10s rain %6d  step %3d  the snapshot failed\n", name, (int)s->size, steps);
     }
     for (int kept = 0; kept <= (e->keep != NULL) && ok; kept++) {
         double save, restore;
@@ -105,10 +106,10 @@ static int measure(const bench_engine *e, const bench_scene *s, int steps)
         if (ok)
             printf("%-10s rain %6d  step %3d  rollback of %d steps, %-14s save %7.1f us  restore %7.1f us  "
                    "save+restore %7.1f us\n",
-                   e->name, (int)s->size, steps, ROLLBACK, kept ? "kept in a slot:" : "snapshot:", save * 1e6,
+                   name, (int)s->size, steps, ROLLBACK, kept ? "kept in a slot:" : "snapshot:", save * 1e6,
                    restore * 1e6, (save + restore) * 1e6);
         else
-            printf("%-10s rain %6d  step %3d  the rollback failed\n", e->name, (int)s->size, steps);
+            printf("%-10s rain %6d  step %3d  the rollback failed\n", name, (int)s->size, steps);
     }
     free(buf);
     e->destroy(target);
@@ -157,9 +158,17 @@ int main(int argc, char **argv)
         if (d == NULL || !bench_scene_build(&s, d, sizes[i])) return 1;
         s.sleep = 1;
         for (int k = 0; k < ne; k++) {
-            failed |= !measure(engines[k], &s, 60);
-            failed |= !measure(engines[k], &s, 600);
+            failed |= !measure(engines[k], engines[k]->name, &s, 60);
+            failed |= !measure(engines[k], engines[k]->name, &s, 600);
         }
+#ifdef RG_BENCH_THREADS
+        /* rigid's restore spreads its checks and load over the world's task system: the
+         * same worlds with rigid's pool of two threads (v3's snapshot has no threads) */
+        s.workers = 2;
+        failed |= !measure(&bench_rigid_engine, "rigid-2w", &s, 60);
+        failed |= !measure(&bench_rigid_engine, "rigid-2w", &s, 600);
+        s.workers = 1;
+#endif
         free(s.bodies);
     }
     return failed;

@@ -14,7 +14,9 @@
  *     the world's own save restores into a fresh world that hashes alike and saves the same
  *     bytes, and the restored state steps safely: a few steps in every integrator (with the
  *     queries and the debug draw after each) leave every coordinate the draw shows finite, and
- *     the same steps with a task system (the shuffler of tests/shuffler.h) hash alike.
+ *     the same steps with a task system (the shuffler of tests/shuffler.h) hash alike;
+ *   - either way (the allocator not failing), a fresh world with the shuffler as its task
+ *     system decides alike, with the same reason, and an accepted state hashes alike.
  * Any sanitizer report on the way is a finding too.  The seeds are snapshots of varied scenes
  * written by snapshot_seeds.c (make fuzz runs it). */
 #include <math.h>
@@ -220,6 +222,21 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     rg_status st = rg_world_restore(w, snap, n);
     al.fail_at = -1;
     const char *why = rg_world_last_error(w);
+    if (!(mode & 8)) { /* spread over a task system: the same decision, reason and state */
+        rg_world *t;
+        shuffler sh;
+        rg_task_system ts;
+        if (rg_world_create(&t) != RG_OK) abort();
+        shuffler_init(&sh, 0x2545F4914F6CDD1Dull ^ n, 3, mode & 1);
+        shuffler_tasks(&sh, &ts);
+        if (rg_world_set_task_system(t, &ts) != RG_OK) FAIL("set_task_system");
+        rg_status tst = rg_world_restore(t, snap, n);
+        if (tst != st || strcmp(rg_world_last_error(t), why) != 0)
+            FAIL("with a task system the restore says %d \"%s\", without %d \"%s\"", tst, rg_world_last_error(t), st, why);
+        if (st == RG_OK && hash(t) != hash(w)) FAIL("with a task system the restore loads another state");
+        if (sh.misuse != 0) FAIL("the restore misused its task system");
+        rg_world_destroy(t);
+    }
     if (st != RG_OK) {
         if (st != RG_ERR_INVALID_ARGUMENT && !(st == RG_ERR_OUT_OF_MEMORY && al.refused > 0))
             FAIL("restore refused with status %d", st);
