@@ -89,6 +89,28 @@ static inline void *save(rg_world *w, size_t *size)
     return buf;
 }
 
+/* Forged: the checksum made right after changing what it covers (needs snapshot.h). */
+#ifdef RG_SNAPSHOT_H
+static inline void reseal(uint8_t *p, size_t size) { snap_put64(p + 24, snap_hash(p + SNAP_HEADER, size - SNAP_HEADER)); }
+
+/* Every 4-byte word of snap set to a few hostile values in turn (those it does not hold
+ * already), resealed, in bad (size bytes), each given to forged. */
+static inline void forge_words(const uint8_t *snap, size_t size, uint8_t *bad, void (*forged)(uint8_t *, size_t, void *),
+                               void *context)
+{
+    static const uint32_t hostile[] = { 0xFFFFFFFFu, 0x7FFFFFFFu, 0x80000000u, 0x7FC00000u, 0x7F800000u, 0, 1, 3 };
+    for (size_t at = SNAP_HEADER; at + 4 <= size; at += 4) {
+        for (size_t v = 0; v < sizeof hostile / sizeof hostile[0]; v++) {
+            memcpy(bad, snap, size);
+            if (snap_get32(bad + at) == hostile[v]) continue;
+            snap_put32(bad + at, hostile[v]);
+            reseal(bad, size);
+            forged(bad, size, context);
+        }
+    }
+}
+#endif
+
 /* The scene in a world whose memory ta counts, 30 steps on: where the rollback loops start. */
 static inline rg_world *counted_scene(scene *s, test_alloc *ta)
 {
