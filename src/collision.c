@@ -2,8 +2,6 @@
 #include "collision.h"
 #include "vec2.h"
 
-static inline rg_real sign_of(rg_real v) { return v < 0 ? RG_R(-1) : RG_R(1); }
-
 int coll_circle_circle(rg_vec2 pa, rg_real ra, rg_vec2 pb, rg_real rb, coll_manifold *m)
 {
     rg_vec2 d = rg_v2_sub(pb, pa);
@@ -21,24 +19,7 @@ int coll_circle_circle(rg_vec2 pa, rg_real ra, rg_vec2 pb, rg_real rb, coll_mani
 
 int coll_aabb_aabb(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 hb, coll_manifold *m)
 {
-    rg_vec2 d = rg_v2_sub(pb, pa);
-    /* overlap of the projections on each axis (negative: the gap) */
-    rg_real ox = (ha.x + hb.x) - rg_fabs(d.x);
-    rg_real oy = (ha.y + hb.y) - rg_fabs(d.y);
-    if (!(ox >= oy)) {
-        rg_real s = sign_of(d.x);
-        rg_real lo = rg_max(pa.y - ha.y, pb.y - hb.y), hi = rg_min(pa.y + ha.y, pb.y + hb.y);
-        m->normal = rg_v2(s, 0);
-        m->depth = ox;
-        m->point = rg_v2(((pa.x + s * ha.x) + (pb.x - s * hb.x)) * RG_R(0.5), (lo + hi) * RG_R(0.5));
-    } else {
-        rg_real s = sign_of(d.y);
-        rg_real lo = rg_max(pa.x - ha.x, pb.x - hb.x), hi = rg_min(pa.x + ha.x, pb.x + hb.x);
-        m->normal = rg_v2(0, s);
-        m->depth = oy;
-        m->point = rg_v2((lo + hi) * RG_R(0.5), ((pa.y + s * ha.y) + (pb.y - s * hb.y)) * RG_R(0.5));
-    }
-    if (oy != oy) m->depth = oy; /* NaN in, NaN out: never touching */
+    coll_boxes(pa, ha, pb, hb, m);
     return m->depth >= 0;
 }
 
@@ -61,12 +42,12 @@ int coll_circle_aabb(rg_vec2 pc, rg_real r, rg_vec2 pb, rg_vec2 hb, coll_manifol
         rg_vec2 u, face;
         rg_real pen;
         if (px < py) {
-            rg_real s = sign_of(q.x);
+            rg_real s = coll_sign(q.x);
             u = rg_v2(s, 0);
             face = rg_v2(s * hb.x, q.y);
             pen = px;
         } else {
-            rg_real s = sign_of(q.y);
+            rg_real s = coll_sign(q.y);
             u = rg_v2(0, s);
             face = rg_v2(q.x, s * hb.y);
             pen = py;
@@ -92,30 +73,6 @@ int coll_manifold_of(int32_t ka, rg_vec2 pa, rg_vec2 ha, int32_t kb, rg_vec2 pb,
     return hit;
 }
 
-/* Box-box grazing: separation along one axis within tol of zero while the other axis
- * overlaps or closes: the contact is along the touching axis. */
-static int graze_boxes(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 hb, rg_vec2 r, rg_real tol,
-                       coll_manifold *m)
-{
-    rg_vec2 d = rg_v2_sub(pb, pa);
-    rg_real ox = (ha.x + hb.x) - rg_fabs(d.x), oy = (ha.y + hb.y) - rg_fabs(d.y);
-    int y_face = rg_fabs(oy) <= tol && (ox > 0 || d.x * r.x < 0);
-    int x_face = !y_face && rg_fabs(ox) <= tol && (oy > 0 || d.y * r.y < 0);
-    if (!y_face && !x_face) return 0;
-    if (y_face) {
-        rg_real sy = sign_of(d.y);
-        m->normal = rg_v2(0, sy);
-        m->depth = oy;
-        m->point = rg_v2(pb.x - sign_of(d.x) * rg_min(hb.x, rg_fabs(d.x)), pa.y + sy * ha.y);
-    } else {
-        rg_real sx = sign_of(d.x);
-        m->normal = rg_v2(sx, 0);
-        m->depth = ox;
-        m->point = rg_v2(pa.x + sx * ha.x, pb.y - sign_of(d.y) * rg_min(hb.y, rg_fabs(d.y)));
-    }
-    return 1;
-}
-
 /* Circle-box grazing: the circle beside a corner with its edge within tol of a face plane,
  * moving toward the box along that plane: the face's contact.  q is the circle centre in
  * the box frame, rc the circle's motion relative to the box; n_out from circle to box. */
@@ -125,12 +82,12 @@ static int graze_circle(rg_vec2 q, rg_real rad, rg_vec2 hb, rg_vec2 rc, rg_real 
     if (!(rg_fabs(q.x) > hb.x && rg_fabs(q.y) > hb.y)) return 0; /* not at a corner */
     rg_real dx = rg_fabs(q.x) - hb.x, dy = rg_fabs(q.y) - hb.y;
     if (rg_fabs(dy - rad) <= tol && q.x * rc.x < 0) {
-        *n_out = rg_v2(0, -sign_of(q.y));
+        *n_out = rg_v2(0, -coll_sign(q.y));
         *depth = rad - dy;
         return 1;
     }
     if (rg_fabs(dx - rad) <= tol && q.y * rc.y < 0) {
-        *n_out = rg_v2(-sign_of(q.x), 0);
+        *n_out = rg_v2(-coll_sign(q.x), 0);
         *depth = rad - dx;
         return 1;
     }
@@ -143,7 +100,7 @@ int coll_contact(int32_t ka, rg_vec2 pa, rg_vec2 ha, int32_t kb, rg_vec2 pb, rg_
     int hit = coll_manifold_of(ka, pa, ha, kb, pb, hb, m);
     if (ka == RG_SHAPE_CIRCLE && kb == RG_SHAPE_CIRCLE) return hit;
     if (ka == RG_SHAPE_AABB && kb == RG_SHAPE_AABB) {
-        if (graze_boxes(pa, ha, pb, hb, r, tol, m)) return m->depth >= 0;
+        if (coll_graze_boxes(pa, ha, pb, hb, r, tol, m)) return m->depth >= 0;
         return hit;
     }
     /* circle against box, either order; normals from the circle toward the box */
@@ -206,13 +163,13 @@ int coll_ray_rounded_box(rg_vec2 c, rg_vec2 h, rg_real radius, rg_vec2 origin, r
     if (radius > 0 && rg_fabs(p.x) > h.x && rg_fabs(p.y) > h.y) {
         /* entered through a corner square: the corner circle decides (missing it means
          * missing the rounded box, which is convex) */
-        rg_vec2 corner = rg_v2(sign_of(p.x) * h.x, sign_of(p.y) * h.y);
+        rg_vec2 corner = rg_v2(coll_sign(p.x) * h.x, coll_sign(p.y) * h.y);
         rg_real tc;
         if (!ray_circle(corner, radius, q, d, &tc)) return 0;
         rg_vec2 pc = rg_v2(q.x + d.x * tc - corner.x, q.y + d.y * tc - corner.y);
         *t = tc;
         *n = rg_v2_normalize(pc);
-        if (n->x == 0 && n->y == 0) *n = rg_v2(sign_of(corner.x), 0);
+        if (n->x == 0 && n->y == 0) *n = rg_v2(coll_sign(corner.x), 0);
         return 1;
     }
     if (axis < 0) return 0;

@@ -7,6 +7,7 @@
 #define RG_COLLISION_H
 
 #include "rigid.h"
+#include "vec2.h"
 
 /* The contact between two shapes a and b.  normal is a unit vector from a toward b; depth
  * is the penetration along it (negative: the gap between them, a separating distance
@@ -37,6 +38,65 @@ int coll_manifold_of(int32_t ka, rg_vec2 pa, rg_vec2 ha, int32_t kb, rg_vec2 pb,
  * r is b's motion relative to a over the step. */
 int coll_contact(int32_t ka, rg_vec2 pa, rg_vec2 ha, int32_t kb, rg_vec2 pb, rg_vec2 hb, rg_vec2 r,
                  rg_real tol, coll_manifold *m);
+
+/* The box-box cases inline, for the narrowphase's loop over contacts (coll_aabb_aabb and
+ * coll_contact call these: the same operations, so the same results). */
+static inline rg_real coll_sign(rg_real v) { return v < 0 ? RG_R(-1) : RG_R(1); }
+
+/* coll_aabb_aabb's manifold. */
+static inline void coll_boxes(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 hb, coll_manifold *m)
+{
+    rg_vec2 d = rg_v2_sub(pb, pa);
+    /* overlap of the projections on each axis (negative: the gap) */
+    rg_real ox = (ha.x + hb.x) - rg_fabs(d.x);
+    rg_real oy = (ha.y + hb.y) - rg_fabs(d.y);
+    if (!(ox >= oy)) {
+        rg_real s = coll_sign(d.x);
+        rg_real lo = rg_max(pa.y - ha.y, pb.y - hb.y), hi = rg_min(pa.y + ha.y, pb.y + hb.y);
+        m->normal = rg_v2(s, 0);
+        m->depth = ox;
+        m->point = rg_v2(((pa.x + s * ha.x) + (pb.x - s * hb.x)) * RG_R(0.5), (lo + hi) * RG_R(0.5));
+    } else {
+        rg_real s = coll_sign(d.y);
+        rg_real lo = rg_max(pa.x - ha.x, pb.x - hb.x), hi = rg_min(pa.x + ha.x, pb.x + hb.x);
+        m->normal = rg_v2(0, s);
+        m->depth = oy;
+        m->point = rg_v2((lo + hi) * RG_R(0.5), ((pa.y + s * ha.y) + (pb.y - s * hb.y)) * RG_R(0.5));
+    }
+    if (oy != oy) m->depth = oy; /* NaN in, NaN out: never touching */
+}
+
+/* Box-box grazing (coll_contact): separation along one axis within tol of zero while the
+ * other axis overlaps or closes: the contact is along the touching axis.  0 when the boxes
+ * do not graze (*m untouched). */
+static inline int coll_graze_boxes(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 hb, rg_vec2 r, rg_real tol,
+                                   coll_manifold *m)
+{
+    rg_vec2 d = rg_v2_sub(pb, pa);
+    rg_real ox = (ha.x + hb.x) - rg_fabs(d.x), oy = (ha.y + hb.y) - rg_fabs(d.y);
+    int y_face = rg_fabs(oy) <= tol && (ox > 0 || d.x * r.x < 0);
+    int x_face = !y_face && rg_fabs(ox) <= tol && (oy > 0 || d.y * r.y < 0);
+    if (!y_face && !x_face) return 0;
+    if (y_face) {
+        rg_real sy = coll_sign(d.y);
+        m->normal = rg_v2(0, sy);
+        m->depth = oy;
+        m->point = rg_v2(pb.x - coll_sign(d.x) * rg_min(hb.x, rg_fabs(d.x)), pa.y + sy * ha.y);
+    } else {
+        rg_real sx = coll_sign(d.x);
+        m->normal = rg_v2(sx, 0);
+        m->depth = ox;
+        m->point = rg_v2(pa.x + sx * ha.x, pb.y - coll_sign(d.y) * rg_min(hb.y, rg_fabs(d.y)));
+    }
+    return 1;
+}
+
+/* coll_contact's manifold of two boxes. */
+static inline void coll_contact_boxes(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 hb, rg_vec2 r, rg_real tol,
+                                      coll_manifold *m)
+{
+    if (!coll_graze_boxes(pa, ha, pb, hb, r, tol, m)) coll_boxes(pa, ha, pb, hb, m);
+}
 
 /* Ray p(t) = origin + t * d, t in [0, 1], against the rounded box {q : dist(q, box(c, h))
  * <= radius} (a circle when h = 0, a box when radius = 0).  Returns 1 and the entry
