@@ -117,19 +117,27 @@ typedef struct narrow_task {
     int32_t in_order[RG_MAX_WORKERS]; /* the worker met a contact decided in order */
 } narrow_task;
 
+/* Whether contact c (views A, B) is skipped as far apart (narrow_far_apart): only a pair that
+ * is not touching, with continuous collision.  Both the measurement and the decision take it. */
+static inline int narrow_far(const rg_world *w, const contact *c, const cbody *A, const cbody *B)
+{
+    const collide_world *cw = &w->coll;
+    return cw->continuous && !(c->flags & CT_TOUCHING) && narrow_far_apart(A, B, A->kind, B->kind, cw->slop);
+}
+
 /* The measurement of contact id (the broadphase keeps only pairs whose fat boxes overlap):
  * the manifold at the start of the step or at the time of impact.  It reads the step's views
  * and writes only the contact's own fields, so the contacts are measured in parallel ranges
- * (narrow_run) before the rest runs in order.  A pair far apart is left to narrow_one, which
- * finds it so again.  Otherwise: CT_ACTIVE when the pair meets within the step, with its
- * normal, point and start separation in nx, ny, px, py, s0. */
-static NARROW_INLINE void narrow_measure(const rg_world *w, contact *c, const cbody *A, const cbody *B)
+ * (narrow_run) before the rest runs in order.  A pair far apart (far: narrow_far) is left to
+ * narrow_decide.  Otherwise: CT_ACTIVE when the pair meets within the step, with its normal,
+ * point and start separation in nx, ny, px, py, s0. */
+static NARROW_INLINE void narrow_measure(const rg_world *w, contact *c, const cbody *A, const cbody *B, int far)
 {
     const collide_world *cw = &w->coll;
     int32_t ka = A->kind, kb = B->kind;
     rg_vec2 ha = rg_v2(A->hx, A->hy), hb = rg_v2(B->hx, B->hy);
     rg_vec2 r = rg_v2(B->dx - A->dx, B->dy - A->dy); /* b's motion relative to a over the step */
-    if (cw->continuous && !(c->flags & CT_TOUCHING) && narrow_far_apart(A, B, ka, kb, cw->slop)) return;
+    if (far) return;
     coll_manifold m;
     rg_real s0 = RG_HUGE;
     int active = 1;
@@ -200,13 +208,14 @@ static inline int narrow_in_order(const rg_world *w, const contact *c)
 /* Decides contact c between dense bodies ia, ib (views A, B) from its measurement: touching,
  * solved, its flags, vn0 and toi, and the begin's depth and speed; writes only the contact's
  * own fields, so the contacts that need no order (narrow_in_order) decide in parallel.
- * in_order: the skip (narrow_skip) may be asked.  Returns ND_* bits. */
-static NARROW_INLINE uint32_t narrow_decide(rg_world *w, contact *c, int32_t ia, int32_t ib, const cbody *A, const cbody *B,
-                              int in_order)
+ * far: narrow_far, as the measurement had it.  in_order: the skip (narrow_skip) may be
+ * asked.  Returns ND_* bits. */
+static NARROW_INLINE uint32_t narrow_decide(rg_world *w, contact *c, int32_t ia, int32_t ib, const cbody *A,
+                                            const cbody *B, int far, int in_order)
 {
     const collide_world *cw = &w->coll;
     rg_vec2 r = rg_v2(B->dx - A->dx, B->dy - A->dy); /* b's motion relative to a over the step */
-    if (cw->continuous && !(c->flags & CT_TOUCHING) && narrow_far_apart(A, B, A->kind, B->kind, cw->slop)) {
+    if (far) {
         /* what the full test would conclude: not solved, not touching, apart */
         c->flags &= ~(CT_SOLVE | CT_CLOSING | CT_PASS);
         c->pn = c->pt = 0;
@@ -280,12 +289,13 @@ static void narrow_measure_decide_range(int32_t begin, int32_t end, int32_t work
         int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
         cbody rest_a, rest_b;
         const cbody *A = views_of(w, ia, t->x->n, &rest_a), *B = views_of(w, ib, t->x->n, &rest_b);
-        narrow_measure(w, c, A, B);
+        int far = narrow_far(w, c, A, B);
+        narrow_measure(w, c, A, B, far);
         if (narrow_in_order(w, c)) {
             t->in_order[worker] = 1;
             continue;
         }
-        c->decided = narrow_decide(w, c, ia, ib, A, B, 0);
+        c->decided = narrow_decide(w, c, ia, ib, A, B, far, 0);
     }
 }
 
@@ -316,13 +326,13 @@ static void narrow_events_of(rg_world *w, const contact *c, uint32_t bits)
 /* What a contact's decision does to the rest of the world, in contact order: its solver row,
  * events, grounded flags, islands, waking (on the stepping thread, or, where nothing wakes
  * and the rows are staged, beside the solve's first part: narrow_commit_late). */
-static void narrow_commit(rg_world *w, int32_t id, collide_step *x, uint32_t bits, int stage, int *woke)
+static inline void narrow_commit(rg_world *w, int32_t id, int32_t ia, int32_t ib, collide_step *x, uint32_t bits,
+                                 int stage, int *woke)
 {
     collide_world *cw = &w->coll;
     contact_store *cs = &cw->contacts;
     body_store *b = &w->b;
     contact *c = &cs->c[id];
-    int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
     if ((bits & ND_STAGE) && stage) {
         /* the views' inverse masses: an awake body's (dense below x->n), else 0 */
         const cbody *cb = cw->views.cb;
@@ -348,14 +358,14 @@ static void narrow_commit(rg_world *w, int32_t id, collide_step *x, uint32_t bit
 }
 
 /* A contact decided on the stepping thread: those in order, and those waking appended. */
-static uint32_t narrow_decide_here(rg_world *w, int32_t id, const collide_step *x, int measure)
+static inline uint32_t narrow_decide_here(rg_world *w, contact *c, int32_t ia, int32_t ib, const collide_step *x,
+                                         int measure)
 {
-    contact *c = &w->coll.contacts.c[id];
-    int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
     cbody rest_a, rest_b;
     const cbody *A = views_of(w, ia, x->n, &rest_a), *B = views_of(w, ib, x->n, &rest_b);
-    if (measure) narrow_measure(w, c, A, B);
-    return narrow_decide(w, c, ia, ib, A, B, 1);
+    int far = narrow_far(w, c, A, B); /* (as the measurement found it, when that was apart) */
+    if (measure) narrow_measure(w, c, A, B, far);
+    return narrow_decide(w, c, ia, ib, A, B, far, 1);
 }
 
 /* Contacts per measuring range: the manifolds cost some 30-100 ns each. */
@@ -516,8 +526,9 @@ void narrow_run(rg_world *w, collide_step *x)
     for (int32_t k = 0; k < cs->n_awake; k++) {
         int32_t id = cs->awake[k];
         contact *c = &cs->c[id];
+        int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb); /* a wake moves them only after the commit */
         int here = k >= measured || narrow_in_order(w, c);
-        uint32_t bits = here ? narrow_decide_here(w, id, x, k >= measured) : c->decided;
-        narrow_commit(w, id, x, bits, serial || k >= measured, &x->woke);
+        uint32_t bits = here ? narrow_decide_here(w, c, ia, ib, x, k >= measured) : c->decided;
+        narrow_commit(w, id, ia, ib, x, bits, serial || k >= measured, &x->woke);
     }
 }
