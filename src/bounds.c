@@ -8,6 +8,7 @@
  * body's run at the edge of the range, so the next step starts in range again, and says
  * which body it stopped; the collide stage then sees positions and speeds in range only. */
 #include "bounds.h"
+#include "dispatch.h"
 #include "error.h"
 #include "arg.h"
 #include "query.h"
@@ -35,13 +36,12 @@ typedef struct bounds_task {
     int32_t stopped[RG_MAX_WORKERS]; /* the worker stopped a body */
 } bounds_task;
 
-/* Active bodies [begin, end): each changes only its own state. */
-static void bounds_range(int32_t begin, int32_t end, int32_t worker, void *context)
+/* Bodies [i0, i1) of a block with a body out of range: each out stopped. */
+static void bounds_stop(bounds_task *t, int32_t worker, int32_t i0, int32_t i1)
 {
-    bounds_task *t = context;
     body_store *b = &t->w->b;
     const rg_real c = (rg_real)RG_MAX_COORD;
-    for (int32_t i = begin; i < end; i++) {
+    for (int32_t i = i0; i < i1; i++) {
         if (!bounds_out(b->x[i], b->y[i], b->vx[i], b->vy[i])) continue;
         /* From a start in range Euler cannot overflow (see above), so a non-finite
          * coordinate without a kept start is out of reach; 0 keeps it defined. */
@@ -52,6 +52,26 @@ static void bounds_range(int32_t begin, int32_t end, int32_t worker, void *conte
         b->flags[i] |= BODY_F_STOPPED;
         t->stopped[worker] = 1;
     }
+}
+
+/* Bodies per test of a block: the test alone, without a branch, vectorises; a block that
+ * holds a body out of range (almost never) is walked again body by body. */
+#define BOUNDS_BLOCK 64
+
+/* Active bodies [begin, end): each changes only its own state.  The test in either vector
+ * width (dispatch.h). */
+DISPATCH static void bounds_range(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    bounds_task *t = context;
+    body_store *b = &t->w->b;
+    const rg_real *x = b->x, *y = b->y, *vx = b->vx, *vy = b->vy;
+    int32_t i0 = begin;
+    for (; end - i0 >= BOUNDS_BLOCK; i0 += BOUNDS_BLOCK) {
+        int32_t out = 0;
+        for (int32_t j = 0; j < BOUNDS_BLOCK; j++) out |= bounds_out(x[i0 + j], y[i0 + j], vx[i0 + j], vy[i0 + j]);
+        if (out) bounds_stop(t, worker, i0, i0 + BOUNDS_BLOCK);
+    }
+    if (i0 < end) bounds_stop(t, worker, i0, end);
 }
 
 /* Bodies per range: the test costs about a nanosecond. */

@@ -4,6 +4,7 @@
 
 #include "body.h"
 #include "bounds.h"
+#include "dispatch.h"
 #include "force.h"
 #include "integrator.h"
 #include "state.h"
@@ -128,18 +129,9 @@ static inline int32_t euler_body(body_store *b, const euler_env *e, int32_t i)
     return bounds_out(b->x[i], b->y[i], nvx, nvy);
 }
 
-/* On x86-64 with GCC and glibc the pass is also built for AVX2 and picked at load time
- * (an ifunc), so the library stays portable and uses the wider vectors where the machine has
- * them.  No FMA is enabled, and every operation is correctly rounded in either width, so
- * both versions give bit-identical results.  Define RG_NO_DISPATCH to build SSE2 only. */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__GLIBC__) && \
-    !defined(RG_NO_DISPATCH)
-#define EULER_DISPATCH __attribute__((target_clones("avx2", "default")))
-#define EULER_INLINE __attribute__((always_inline)) inline /* into each version */
-#else
-#define EULER_DISPATCH
-#define EULER_INLINE inline
-#endif
+/* The pass is built for SSE2 and AVX2 and picked at load time (dispatch.h). */
+#define EULER_DISPATCH DISPATCH
+#define EULER_INLINE DISPATCH_INLINE /* into each version */
 
 /* Blocks of a constant length, so the compiler vectorises them at -O2 without an epilogue;
  * restrict parameters spare it alias checks. */
