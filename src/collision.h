@@ -6,6 +6,7 @@
 #ifndef RG_COLLISION_H
 #define RG_COLLISION_H
 
+#include "inline.h"
 #include "rigid.h"
 #include "vec2.h"
 
@@ -41,11 +42,6 @@ int coll_contact(int32_t ka, rg_vec2 pa, rg_vec2 ha, int32_t kb, rg_vec2 pb, rg_
 
 /* The box-box cases inline, for the narrowphase's loop over contacts (coll_aabb_aabb and
  * coll_contact call these: the same operations, so the same results). */
-#if defined(__GNUC__) || defined(__clang__)
-#define COLL_INLINE __attribute__((always_inline)) inline
-#else
-#define COLL_INLINE inline
-#endif
 static inline rg_real coll_sign(rg_real v) { return v < 0 ? RG_R(-1) : RG_R(1); }
 
 /* coll_aabb_aabb's manifold. */
@@ -97,7 +93,7 @@ static inline int coll_graze_boxes(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 h
 }
 
 /* coll_contact's manifold of two boxes. */
-static COLL_INLINE void coll_contact_boxes(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 hb, rg_vec2 r, rg_real tol,
+static FORCE_INLINE void coll_contact_boxes(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 hb, rg_vec2 r, rg_real tol,
                                       coll_manifold *m)
 {
     if (!coll_graze_boxes(pa, ha, pb, hb, r, tol, m)) coll_boxes(pa, ha, pb, hb, m);

@@ -2,6 +2,7 @@
 #include "body.h"
 #include "collision.h"
 #include "events.h"
+#include "inline.h"
 #include "island.h"
 #include "narrow.h"
 #include "resolve.h"
@@ -9,14 +10,6 @@
 #include "task.h"
 #include "vec2.h"
 #include "views.h"
-
-/* The measurement and the decision are inlined into the two walks that use them (the
- * parallel ranges and the serial walk): as calls they cost a fifth of the narrowphase. */
-#if defined(__GNUC__) || defined(__clang__)
-#define NARROW_INLINE __attribute__((always_inline)) inline
-#else
-#define NARROW_INLINE inline
-#endif
 
 #define SPECULATIVE      RG_R(4)    /* solve pairs predicted within SPECULATIVE * slop */
 #define COS45            RG_R(0.70710678)
@@ -125,13 +118,16 @@ static inline int narrow_far(const rg_world *w, const contact *c, const cbody *A
     return cw->continuous && !(c->flags & CT_TOUCHING) && narrow_far_apart(A, B, A->kind, B->kind, cw->slop);
 }
 
-/* The measurement of contact id (the broadphase keeps only pairs whose fat boxes overlap):
+/* The measurement and the decision are inlined into the two walks that use them (the
+ * parallel ranges and the serial walk): as calls they cost a fifth of the narrowphase.
+ *
+ * The measurement of contact id (the broadphase keeps only pairs whose fat boxes overlap):
  * the manifold at the start of the step or at the time of impact.  It reads the step's views
  * and writes only the contact's own fields, so the contacts are measured in parallel ranges
  * (narrow_run) before the rest runs in order.  A pair far apart (far: narrow_far) is left to
  * narrow_decide.  Otherwise: CT_ACTIVE when the pair meets within the step, with its normal,
  * point and start separation in nx, ny, px, py, s0. */
-static NARROW_INLINE void narrow_measure(const rg_world *w, contact *c, const cbody *A, const cbody *B, int far)
+static FORCE_INLINE void narrow_measure(const rg_world *w, contact *c, const cbody *A, const cbody *B, int far)
 {
     const collide_world *cw = &w->coll;
     int32_t ka = A->kind, kb = B->kind;
@@ -210,7 +206,7 @@ static inline int narrow_in_order(const rg_world *w, const contact *c)
  * own fields, so the contacts that need no order (narrow_in_order) decide in parallel.
  * far: narrow_far, as the measurement had it.  in_order: the skip (narrow_skip) may be
  * asked.  Returns ND_* bits. */
-static NARROW_INLINE uint32_t narrow_decide(rg_world *w, contact *c, int32_t ia, int32_t ib, const cbody *A,
+static FORCE_INLINE uint32_t narrow_decide(rg_world *w, contact *c, int32_t ia, int32_t ib, const cbody *A,
                                             const cbody *B, int far, int in_order)
 {
     const collide_world *cw = &w->coll;

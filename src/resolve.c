@@ -3,6 +3,7 @@
 
 #include "body.h"
 #include "continuous.h"
+#include "inline.h"
 #include "resolve.h"
 #include "state.h"
 #include "task.h"
@@ -15,6 +16,7 @@ void resolve_layout(mem_layout *l, resolve_state *s, int32_t n)
     s->stoi = mem_take(l, (size_t)n, sizeof(rg_real));
     s->sstamp = mem_take(l, (size_t)n, sizeof(uint32_t));
     s->cmask = mem_take(l, (size_t)n, sizeof(uint32_t));
+    s->sbody = mem_take(l, (size_t)n, sizeof(int32_t));
 }
 
 void resolve_next_gen(resolve_state *s, int32_t n)
@@ -163,18 +165,24 @@ typedef struct resolve_task {
     rg_real *v, *pv;
     int32_t r0;
     int what, timed;
+    int listed; /* the body passes walk the list of the bodies the rows meet (rs->sbody) */
     int32_t pushing[RG_MAX_WORKERS];
 } resolve_task;
 
-/* Solver bodies q in [q0, q1) (1-based), one of the body passes. */
-static void resolve_bodies(const resolve_task *t, int what, int32_t q0, int32_t q1)
+/* Whether the rows are so few beside the awake bodies that the body passes walk the list of
+ * the bodies they meet rather than every awake body (and the arrays per solver body are
+ * cleared row by row rather than whole): a world of many bodies of which few collide.  Each
+ * body's pass is its own, so either way gives the same results. */
+static inline int resolve_few(int32_t nc, int32_t ns) { return (int64_t)nc * 8 < ns; }
+
+/* Solver body q (1-based) that a row meets: one of the body passes. */
+static FORCE_INLINE void resolve_body(const resolve_task *t, int what, int32_t q)
 {
     body_store *b = &t->w->b;
     const resolve_state *rs = &t->w->coll.resolve;
     rg_real *v = t->v, dt = t->x->p.dt;
-    for (int32_t q = q0; q < q1; q++) {
+    {
         int32_t i = q - 1;
-        if (rs->sstamp[i] != rs->gen) continue; /* no row meets it */
         if (what == RESOLVE_LOAD) {
             /* an immovable body's zero velocity as +0: the rows store it back unchanged, in
              * whatever order they run (solver.h) */
@@ -206,6 +214,30 @@ static void resolve_bodies(const resolve_task *t, int what, int32_t q0, int32_t 
             }
         }
     }
+}
+
+/* Items [k0, k1) of a body pass: places in the list of the bodies the rows meet (t->listed),
+ * or solver bodies k0..k1-1 (1-based), those no row meets skipped. */
+static FORCE_INLINE void resolve_bodies_as(const resolve_task *t, int what, int32_t k0, int32_t k1)
+{
+    const resolve_state *rs = &t->w->coll.resolve;
+    if (t->listed) {
+        for (int32_t k = k0; k < k1; k++) resolve_body(t, what, rs->sbody[k]);
+        return;
+    }
+    for (int32_t q = k0; q < k1; q++)
+        if (rs->sstamp[q - 1] == rs->gen) resolve_body(t, what, q);
+}
+
+/* resolve_bodies_as, each pass's loop of its own. */
+static void resolve_bodies(const resolve_task *t, int what, int32_t k0, int32_t k1)
+{
+    if (what == RESOLVE_LOAD)
+        resolve_bodies_as(t, RESOLVE_LOAD, k0, k1);
+    else if (what == RESOLVE_PUSH)
+        resolve_bodies_as(t, RESOLVE_PUSH, k0, k1);
+    else
+        resolve_bodies_as(t, RESOLVE_MOVE, k0, k1);
 }
 
 static void resolve_range(int32_t begin, int32_t end, int32_t worker, void *context)
@@ -293,12 +325,26 @@ static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void 
         /* the solver's bodies: 0 is the ground, 1..ns the awake bodies; stamped, those the
          * rows meet */
         resolve_next_gen(rs, cw->scap);
-        for (int32_t r = 0; r < nc; r++) {
+        int32_t met = 0;
+        int listed = t->listed = resolve_few(nc, x->ns);
+        for (int32_t r = 0; r < nc && listed; r++) {
+            int32_t qa = con[r].a, qb = con[r].b;
+            if (qa > 0 && rs->sstamp[qa - 1] != rs->gen) {
+                rs->sstamp[qa - 1] = rs->gen;
+                rs->sbody[met++] = qa;
+            }
+            if (qb > 0 && rs->sstamp[qb - 1] != rs->gen) {
+                rs->sstamp[qb - 1] = rs->gen;
+                rs->sbody[met++] = qb;
+            }
+        }
+        for (int32_t r = 0; r < nc && !listed; r++) {
             if (con[r].a > 0) rs->sstamp[con[r].a - 1] = rs->gen;
             if (con[r].b > 0) rs->sstamp[con[r].b - 1] = rs->gen;
         }
+        rs->nbody = met;
         t->v[0] = t->v[1] = 0;
-        resolve_bodies(t, RESOLVE_LOAD, 1, x->ns + 1);
+        resolve_bodies(t, RESOLVE_LOAD, listed ? 0 : 1, listed ? met : x->ns + 1);
         h->nfixed = solver_fixed_list(con, nc, rows->fixed);
     }
 }
@@ -346,7 +392,9 @@ void resolve_run(rg_world *w, collide_step *x)
     solver_fixed_rows(con, rows->fixed, h.nfixed, v, 0);
     /* positions move with the solved velocities, then by the pseudo-velocities of the
      * position pass, which leave the velocities alone */
-    resolve_pass(&t, RESOLVE_MOVE, 1, ns);
+    /* the body passes: the list of the bodies the rows meet, or every awake body */
+    int32_t first = t.listed ? 0 : 1, bodies = t.listed ? rs->nbody : ns;
+    resolve_pass(&t, RESOLVE_MOVE, first, bodies);
     int32_t pushing = 0;
     if (cw->position > 0) {
         int32_t workers = task_workers(w);
@@ -356,7 +404,12 @@ void resolve_run(rg_world *w, collide_step *x)
     }
     if (pushing > 0) {
         rg_real *pv = rs->spv;
-        memset(pv, 0, (size_t)(2 * ns + 2) * sizeof *pv);
+        if (t.listed) { /* the ground's (the padding lanes act on it) and the met bodies' */
+            pv[0] = pv[1] = 0;
+            for (int32_t k = 0; k < rs->nbody; k++) pv[2 * rs->sbody[k]] = pv[2 * rs->sbody[k] + 1] = 0;
+        } else {
+            memset(pv, 0, (size_t)(2 * ns + 2) * sizeof *pv);
+        }
         resolve_pass(&t, RESOLVE_CLEAR_POSITION, 0, sb->nrows);
         resolve_pass(&t, RESOLVE_PACK_POSITION, 0, nc);
         for (int32_t it = 0; it < cw->position; it++) {
@@ -367,7 +420,7 @@ void resolve_run(rg_world *w, collide_step *x)
         if (shock) solver_shock_position(con, ord, nc, pv, gx, gy);
         solver_fixed_rows(con, rows->fixed, h.nfixed, pv, 1);
         rs->pv_valid = 1;
-        resolve_pass(&t, RESOLVE_PUSH, 1, ns);
+        resolve_pass(&t, RESOLVE_PUSH, first, bodies);
     }
     resolve_pass(&t, RESOLVE_KEEP, 0, nc);
 }

@@ -179,7 +179,13 @@ void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, in
     const int32_t ground = 0;
     int32_t count[33];
     memset(count, 0, sizeof count);
-    memset(mask, 0, (size_t)nbodies * sizeof *mask);
+    /* the masks of the bodies the rows meet, which alone are read: row by row when the rows
+     * are few beside the bodies (a world of many of which few collide) */
+    if ((int64_t)n * 8 < nbodies) {
+        for (int32_t j = 0; j < n; j++) mask[c[j].a] = mask[c[j].b] = 0;
+    } else {
+        memset(mask, 0, (size_t)nbodies * sizeof *mask);
+    }
     out->nover = 0;
     /* greedy: the first colour neither movable body is in yet; at the start of each block,
      * how many rows of each colour came before it */
