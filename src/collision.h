@@ -93,8 +93,8 @@ static inline int coll_graze_boxes(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 h
 }
 
 /* coll_contact's manifold of two boxes. */
-static FORCE_INLINE void coll_contact_boxes(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 hb, rg_vec2 r, rg_real tol,
-                                      coll_manifold *m)
+static FORCE_INLINE void coll_contact_boxes(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 hb, rg_vec2 r,
+                                            rg_real tol, coll_manifold *m)
 {
     if (!coll_graze_boxes(pa, ha, pb, hb, r, tol, m)) coll_boxes(pa, ha, pb, hb, m);
 }

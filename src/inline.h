@@ -1,5 +1,7 @@
 /* inline.h: FORCE_INLINE, for the helpers of the hot loops that GCC leaves as calls once the
- * function using them grows (a call there costs a fifth of the loop); plain inline elsewhere. */
+ * function using them grows (the narrowphase's measurement and decision, the box-box
+ * manifold, the solve's body passes: a few percent of a step's instructions each, in
+ * callgrind's count of the bench's piles); plain inline elsewhere. */
 #ifndef RG_INLINE_H
 #define RG_INLINE_H
 

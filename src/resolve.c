@@ -181,37 +181,35 @@ static FORCE_INLINE void resolve_body(const resolve_task *t, int what, int32_t q
     body_store *b = &t->w->b;
     const resolve_state *rs = &t->w->coll.resolve;
     rg_real *v = t->v, dt = t->x->p.dt;
-    {
-        int32_t i = q - 1;
-        if (what == RESOLVE_LOAD) {
-            /* an immovable body's zero velocity as +0: the rows store it back unchanged, in
-             * whatever order they run (solver.h) */
-            rg_real z = b->inv_mass[i] > 0 ? -RG_R(0.0) : 0;
-            v[2 * q] = b->vx[i] + z;
-            v[2 * q + 1] = b->vy[i] + z;
-        } else if (what == RESOLVE_PUSH) {
-            b->x[i] += t->pv[2 * q] * dt;
-            b->y[i] += t->pv[2 * q + 1] * dt;
+    int32_t i = q - 1;
+    if (what == RESOLVE_LOAD) {
+        /* an immovable body's zero velocity as +0: the rows store it back unchanged, in
+         * whatever order they run (solver.h) */
+        rg_real z = b->inv_mass[i] > 0 ? -RG_R(0.0) : 0;
+        v[2 * q] = b->vx[i] + z;
+        v[2 * q + 1] = b->vy[i] + z;
+    } else if (what == RESOLVE_PUSH) {
+        b->x[i] += t->pv[2 * q] * dt;
+        b->y[i] += t->pv[2 * q + 1] * dt;
+    } else {
+        /* positions move with the solved velocities.  A timed body's velocity changes
+         * at its impact, t into the step; v then holds the velocity of its whole step's
+         * motion, for the position pass to see where the step leaves it. */
+        rg_real dvx = v[2 * q] - b->vx[i], dvy = v[2 * q + 1] - b->vy[i];
+        rg_real ti = t->timed ? rs->stoi[q] : 0;
+        if (ti > 0) {
+            rg_real after = 1 - ti, fx = b->vx[i], fy = b->vy[i];
+            b->x[i] += dvx * after * dt;
+            b->y[i] += dvy * after * dt;
+            b->vx[i] = v[2 * q];
+            b->vy[i] = v[2 * q + 1];
+            v[2 * q] = fx + dvx * after;
+            v[2 * q + 1] = fy + dvy * after;
         } else {
-            /* positions move with the solved velocities.  A timed body's velocity changes
-             * at its impact, t into the step; v then holds the velocity of its whole step's
-             * motion, for the position pass to see where the step leaves it. */
-            rg_real dvx = v[2 * q] - b->vx[i], dvy = v[2 * q + 1] - b->vy[i];
-            rg_real ti = t->timed ? rs->stoi[q] : 0;
-            if (ti > 0) {
-                rg_real after = 1 - ti, fx = b->vx[i], fy = b->vy[i];
-                b->x[i] += dvx * after * dt;
-                b->y[i] += dvy * after * dt;
-                b->vx[i] = v[2 * q];
-                b->vy[i] = v[2 * q + 1];
-                v[2 * q] = fx + dvx * after;
-                v[2 * q + 1] = fy + dvy * after;
-            } else {
-                b->x[i] += dvx * dt;
-                b->y[i] += dvy * dt;
-                b->vx[i] = v[2 * q];
-                b->vy[i] = v[2 * q + 1];
-            }
+            b->x[i] += dvx * dt;
+            b->y[i] += dvy * dt;
+            b->vx[i] = v[2 * q];
+            b->vy[i] = v[2 * q + 1];
         }
     }
 }
