@@ -725,7 +725,9 @@ RG_API rg_status rg_world_draw(const rg_world *world, const rg_debug_draw *draw)
    order, each call with a worker index in [0, workers) that no other call running at the
    same time has; or run it all at once and return NULL.  finish waits until every range of
    what enqueue returned has run (it is not called for NULL).  The world calls enqueue and
-   finish from the stepping thread only, and finishes each task before the next.  workers
+   finish only from the thread inside its rg_world_step, rg_world_advance, rg_world_restore or
+   rg_world_restore_slot (a restore's checks and load run on the task system too), and
+   finishes each task before the next.  workers
    must be in [1, RG_MAX_WORKERS]; enqueue and finish must not be NULL.  NULL tasks: one
    thread, the default.  A world keeps a copy of *tasks. */
 #define RG_MAX_WORKERS 64

@@ -289,7 +289,7 @@ static int32_t do_restore(input *in, fworld *fw)
         size_t at = ((size_t)u8(in) << 8 | u8(in)) % n;
         data[at] ^= (unsigned char)(u8(in) | 1);       /* one byte flipped */
     }
-    rg_status st = rg_world_restore(fw->w, data, n);
+    rg_status st = tasks_restore(fw, data, n);
     free(data);
     if (st == RG_OK && corrupt) FAIL("a corrupted snapshot was accepted");
     if (st != RG_OK) return st;
@@ -306,7 +306,7 @@ static int32_t do_kept(input *in, fworld *fw, int *is_const)
     int32_t slot = in_range ? slot_of[k] : (b & 1) ? -1 : RG_MAX_SLOTS;
     *is_const = how != 1;
     rg_status st = how == 0 ? rg_world_save_slot(fw->w, slot)
-                 : how == 1 ? rg_world_restore_slot(fw->w, slot)
+                 : how == 1 ? tasks_restore_slot(fw, slot)
                             : rg_world_drop_slot(fw->w, slot);
     if ((fw->w == NULL || !in_range) && st != RG_ERR_INVALID_ARGUMENT)
         FAIL("kept state %d of slot %ld: status %d, not INVALID_ARGUMENT", how, (long)slot, st);

@@ -98,6 +98,8 @@ int32_t on_pre_solve(rg_body a, rg_body b, rg_vec2 normal, rg_real separation, v
 int32_t tasks_set(input *in, fworld *fw);
 int32_t tasks_pool(input *in);
 int32_t tasks_step(fworld *fw, int advance, rg_real t, int32_t *out_steps);
+int32_t tasks_restore(fworld *fw, const unsigned char *data, size_t n);
+int32_t tasks_restore_slot(fworld *fw, int32_t slot);
 int32_t tasks_crowd(input *in);
 void tasks_check_thread(void);
 void tasks_forget(const fworld *fw);

@@ -6,7 +6,9 @@
  * task_system with good and bad arguments, and the twin oracle: a world with a task system
  * must take each step exactly as a clone of it without one takes the same step (the same
  * rg_world_hash, stopped list and pre-solve calls), and call its task system only from inside
- * its own steps. */
+ * its own steps and restores (whose checks and load run on it: a restore of a snapshot with a
+ * task system must give the status, the reason and the state of the same restore into the
+ * twin, which has none). */
 #include <pthread.h>
 #include <string.h>
 
@@ -266,6 +268,48 @@ int32_t tasks_step(fworld *fw, int advance, rg_real t, int32_t *out_steps)
     twin_compare(fw);
     return RG_OK;
 }
+
+/* ---- restoring (rigid.h: a restore runs its checks and load on the world's task system) */
+
+/* Calls of fw's task system are watched as a step's while restore runs; 0 when the world
+ * misused it. */
+static rg_status tasks_watched(fworld *fw, const unsigned char *data, size_t n, int32_t slot)
+{
+    fz_tasks *ft = tasks_of(fw);
+    long misuse = ft->sh.misuse;
+    stepping = fw;
+    in_step = 1;
+    stepping_thread = pthread_self();
+    rg_status st = data != NULL ? rg_world_restore(fw->w, data, n) : rg_world_restore_slot(fw->w, slot);
+    stepping = NULL;
+    in_step = 0;
+    if (ft->sh.misuse != misuse) FAIL("the world misused its task system in a restore");
+    return st;
+}
+
+int32_t tasks_restore(fworld *fw, const unsigned char *data, size_t n)
+{
+    long refused = fw->al != NULL ? fw->al->refused : 0;
+    rg_status st = tasks_watched(fw, data, n, -1);
+    /* out of memory the world may refuse what its twin takes: no comparison then */
+    if (fw->w == NULL || tasks_of(fw)->kind == TASKS_NONE || (fw->al != NULL && fw->al->refused != refused)) return st;
+    if (twin == NULL && rg_world_create(&twin) != RG_OK) return st;
+    rg_status st2 = rg_world_restore(twin, data, n);
+    if (st != st2) FAIL("a restore with a task system gave status %d, without %d", st, st2);
+    if (st != RG_OK) {
+        if (strcmp(rg_world_last_error(fw->w), rg_world_last_error(twin)) != 0)
+            FAIL("a restore with a task system refused for \"%s\", without for \"%s\"", rg_world_last_error(fw->w),
+                 rg_world_last_error(twin));
+        return st;
+    }
+    uint64_t h1 = 0, h2 = 0;
+    if (rg_world_hash(fw->w, &h1) != RG_OK || rg_world_hash(twin, &h2) != RG_OK || h1 != h2)
+        FAIL("a restore with a task system left another state than without (hash %016llx, twin %016llx)",
+             (unsigned long long)h1, (unsigned long long)h2);
+    return st;
+}
+
+int32_t tasks_restore_slot(fworld *fw, int32_t slot) { return tasks_watched(fw, NULL, 0, slot); }
 
 /* ---- the crowd: a scene large enough that every stage of the step splits (2,048 bodies for
  * the Euler pass, 512 awake shapes for the views, the sweep and the refit, 128 pairs for the
