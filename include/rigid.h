@@ -727,9 +727,9 @@ RG_API rg_status rg_world_draw(const rg_world *world, const rg_debug_draw *draw)
    what enqueue returned has run (it is not called for NULL).  The world calls enqueue and
    finish only from the thread inside its rg_world_step, rg_world_advance, rg_world_restore or
    rg_world_restore_slot (a restore's checks and load run on the task system too), and
-   finishes each task before the next.  workers
-   must be in [1, RG_MAX_WORKERS]; enqueue and finish must not be NULL.  NULL tasks: one
-   thread, the default.  A world keeps a copy of *tasks. */
+   finishes each task before the next.  workers must be in [1, RG_MAX_WORKERS]; enqueue and
+   finish must not be NULL.  NULL tasks: one thread, the default.  A world keeps a copy of
+   *tasks. */
 #define RG_MAX_WORKERS 64
 typedef void rg_task_fn(int32_t begin, int32_t end, int32_t worker, void *context);
 typedef struct rg_task_system {

@@ -271,8 +271,8 @@ int32_t tasks_step(fworld *fw, int advance, rg_real t, int32_t *out_steps)
 
 /* ---- restoring (rigid.h: a restore runs its checks and load on the world's task system) */
 
-/* Calls of fw's task system are watched as a step's while restore runs; 0 when the world
- * misused it. */
+/* A restore of fw (from data, or from kept slot when data is NULL) with the calls of its task
+ * system watched as a step's; its status (a misuse of the task system fails the input). */
 static rg_status tasks_watched(fworld *fw, const unsigned char *data, size_t n, int32_t slot)
 {
     fz_tasks *ft = tasks_of(fw);
