@@ -5,6 +5,7 @@
 #include "collision.h"
 #include "contact.h"
 #include "continuous.h"
+#include "solver.h"
 #include "state.h"
 #include "task.h"
 #include "vec2.h"
@@ -59,9 +60,8 @@ int continuous_time_impacts(rg_world *w, collide_step *x)
     solver_rows *rows = &cw->rows;
     const body_store *b = &w->b;
     if (x->nimp == 0) return 0;
-    /* the times of the bodies the rows meet, which alone the solve reads: row by row when
-     * the rows are few beside the awake bodies (a world of many of which few collide) */
-    if ((int64_t)x->nc * 8 < x->ns) {
+    /* the times of the bodies the rows meet, which alone the solve reads (solver_rows_few) */
+    if (solver_rows_few(x->nc, x->ns)) {
         for (int32_t r = 0; r < x->nc; r++) rs->stoi[rows->stage[r].a] = rs->stoi[rows->stage[r].b] = 0;
     } else {
         memset(rs->stoi, 0, (size_t)(x->ns + 1) * sizeof *rs->stoi);

@@ -129,10 +129,6 @@ static inline int32_t euler_body(body_store *b, const euler_env *e, int32_t i)
     return bounds_out(b->x[i], b->y[i], nvx, nvy);
 }
 
-/* The pass is built for SSE2 and AVX2 and picked at load time (dispatch.h). */
-#define EULER_DISPATCH DISPATCH
-#define EULER_INLINE DISPATCH_INLINE /* into each version */
-
 /* Blocks of a constant length, so the compiler vectorises them at -O2 without an epilogue;
  * restrict parameters spare it alias checks. */
 #define EULER_BLOCK 64
@@ -140,9 +136,9 @@ static inline int32_t euler_body(body_store *b, const euler_env *e, int32_t i)
 /* The commit of a block whose bodies all took the fast path: positions from the old
  * (explicit) or new (semi-implicit) velocities, then the new velocities.  Returns 1 when a
  * body's new state is out of range (bounds.h), checked here while it is in registers. */
-static EULER_INLINE int32_t euler_commit(rg_real *restrict x, rg_real *restrict y, rg_real *restrict vx,
-                                rg_real *restrict vy, const rg_real *restrict nvx,
-                                const rg_real *restrict nvy, rg_real h, int explicit_euler)
+static DISPATCH_INLINE int32_t euler_commit(rg_real *restrict x, rg_real *restrict y, rg_real *restrict vx,
+                                   rg_real *restrict vy, const rg_real *restrict nvx,
+                                   const rg_real *restrict nvy, rg_real h, int explicit_euler)
 {
     int32_t out = 0;
     if (explicit_euler) {
@@ -204,9 +200,9 @@ typedef struct euler_in {
     ((uniform) ? e->a0 : force_sum(e->g, (in)->gs[j], e->w, (in)->f[j], (in)->imf[j]) + (in)->sp[j])
 
 /* No dissipation in the block. */
-static EULER_INLINE void euler_free(const body_store *b, int32_t i0, const euler_env *e,
-                                    const euler_in *in, int uniform, rg_real *restrict nvx,
-                                    rg_real *restrict nvy, rg_real *restrict oax, rg_real *restrict oay)
+static DISPATCH_INLINE void euler_free(const body_store *b, int32_t i0, const euler_env *e,
+                                       const euler_in *in, int uniform, rg_real *restrict nvx,
+                                       rg_real *restrict nvy, rg_real *restrict oax, rg_real *restrict oay)
 {
     const rg_real *restrict vx = b->vx + i0, *restrict vy = b->vy + i0;
     const rg_real h = e->h;
@@ -221,9 +217,9 @@ static EULER_INLINE void euler_free(const body_store *b, int32_t i0, const euler
 }
 
 /* Linear drag on every body of the block; returns nonzero when a body needs the slow path. */
-static EULER_INLINE int32_t euler_linear(const body_store *b, int32_t i0, const euler_env *e,
-                                         const euler_in *in, int uniform, rg_real *restrict nvx,
-                                         rg_real *restrict nvy, rg_real *restrict oax, rg_real *restrict oay)
+static DISPATCH_INLINE int32_t euler_linear(const body_store *b, int32_t i0, const euler_env *e,
+                                            const euler_in *in, int uniform, rg_real *restrict nvx,
+                                            rg_real *restrict nvy, rg_real *restrict oax, rg_real *restrict oay)
 {
     const rg_real *restrict im = b->inv_mass + i0, *restrict lin = b->drag_lin + i0;
     const rg_real *restrict vx = b->vx + i0, *restrict vy = b->vy + i0;
@@ -248,9 +244,9 @@ static EULER_INLINE int32_t euler_linear(const body_store *b, int32_t i0, const 
 }
 
 /* A block of dissipative and other bodies; returns nonzero when a body needs the slow path. */
-static EULER_INLINE int32_t euler_mixed(const body_store *b, int32_t i0, const euler_env *e,
-                                        const euler_in *in, rg_real *restrict nvx,
-                                        rg_real *restrict nvy, rg_real *restrict oax, rg_real *restrict oay)
+static DISPATCH_INLINE int32_t euler_mixed(const body_store *b, int32_t i0, const euler_env *e,
+                                           const euler_in *in, rg_real *restrict nvx,
+                                           rg_real *restrict nvy, rg_real *restrict oax, rg_real *restrict oay)
 {
     const rg_real *restrict im = b->inv_mass + i0, *restrict lin = b->drag_lin + i0;
     const rg_real *restrict vx = b->vx + i0, *restrict vy = b->vy + i0;
@@ -284,8 +280,8 @@ static EULER_INLINE int32_t euler_mixed(const body_store *b, int32_t i0, const e
 }
 
 /* Returns 1 when the block must run body by body. */
-static EULER_INLINE int euler_block(const body_store *b, int32_t i0, const euler_env *e,
-                                    const euler_const *c, rg_real *restrict nvx, rg_real *restrict nvy)
+static DISPATCH_INLINE int euler_block(const body_store *b, int32_t i0, const euler_env *e,
+                                       const euler_const *c, rg_real *restrict nvx, rg_real *restrict nvy)
 {
     const uint32_t *restrict fl = b->flags + i0;
     uint32_t all = ~0u, any = 0;
@@ -331,7 +327,8 @@ typedef struct euler_task {
     int32_t out[RG_MAX_WORKERS];
 } euler_task;
 
-EULER_DISPATCH static void euler_range(int32_t begin, int32_t end, int32_t worker, void *context)
+/* The pass over the active bodies [begin, end), built for SSE2 and AVX2 (dispatch.h). */
+DISPATCH static void euler_range(int32_t begin, int32_t end, int32_t worker, void *context)
 {
     euler_task *t = context;
     body_store *b = t->b;

@@ -165,15 +165,10 @@ typedef struct resolve_task {
     rg_real *v, *pv;
     int32_t r0;
     int what, timed;
-    int listed; /* the body passes walk the list of the bodies the rows meet (rs->sbody) */
+    int listed;     /* the body passes walk the list of the bodies the rows meet (solver_rows_few) */
+    int32_t nbody;  /* listed: how many (rs->sbody) */
     int32_t pushing[RG_MAX_WORKERS];
 } resolve_task;
-
-/* Whether the rows are so few beside the awake bodies that the body passes walk the list of
- * the bodies they meet rather than every awake body (and the arrays per solver body are
- * cleared row by row rather than whole): a world of many bodies of which few collide.  Each
- * body's pass is its own, so either way gives the same results. */
-static inline int resolve_few(int32_t nc, int32_t ns) { return (int64_t)nc * 8 < ns; }
 
 /* Solver body q (1-based) that a row meets: one of the body passes. */
 static FORCE_INLINE void resolve_body(const resolve_task *t, int what, int32_t q)
@@ -324,7 +319,7 @@ static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void 
          * rows meet */
         resolve_next_gen(rs, cw->scap);
         int32_t met = 0;
-        int listed = t->listed = resolve_few(nc, x->ns);
+        int listed = t->listed = solver_rows_few(nc, x->ns);
         for (int32_t r = 0; r < nc && listed; r++) {
             int32_t qa = con[r].a, qb = con[r].b;
             if (qa > 0 && rs->sstamp[qa - 1] != rs->gen) {
@@ -340,7 +335,7 @@ static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void 
             if (con[r].a > 0) rs->sstamp[con[r].a - 1] = rs->gen;
             if (con[r].b > 0) rs->sstamp[con[r].b - 1] = rs->gen;
         }
-        rs->nbody = met;
+        t->nbody = met;
         t->v[0] = t->v[1] = 0;
         resolve_bodies(t, RESOLVE_LOAD, listed ? 0 : 1, listed ? met : x->ns + 1);
         h->nfixed = solver_fixed_list(con, nc, rows->fixed);
@@ -391,7 +386,7 @@ void resolve_run(rg_world *w, collide_step *x)
     /* positions move with the solved velocities, then by the pseudo-velocities of the
      * position pass, which leave the velocities alone */
     /* the body passes: the list of the bodies the rows meet, or every awake body */
-    int32_t first = t.listed ? 0 : 1, bodies = t.listed ? rs->nbody : ns;
+    int32_t first = t.listed ? 0 : 1, bodies = t.listed ? t.nbody : ns;
     resolve_pass(&t, RESOLVE_MOVE, first, bodies);
     int32_t pushing = 0;
     if (cw->position > 0) {
@@ -404,7 +399,7 @@ void resolve_run(rg_world *w, collide_step *x)
         rg_real *pv = rs->spv;
         if (t.listed) { /* the ground's (the padding lanes act on it) and the met bodies' */
             pv[0] = pv[1] = 0;
-            for (int32_t k = 0; k < rs->nbody; k++) pv[2 * rs->sbody[k]] = pv[2 * rs->sbody[k] + 1] = 0;
+            for (int32_t k = 0; k < t.nbody; k++) pv[2 * rs->sbody[k]] = pv[2 * rs->sbody[k] + 1] = 0;
         } else {
             memset(pv, 0, (size_t)(2 * ns + 2) * sizeof *pv);
         }

@@ -179,9 +179,8 @@ void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, in
     const int32_t ground = 0;
     int32_t count[33];
     memset(count, 0, sizeof count);
-    /* the masks of the bodies the rows meet, which alone are read: row by row when the rows
-     * are few beside the bodies (a world of many of which few collide) */
-    if ((int64_t)n * 8 < nbodies) {
+    /* the masks of the bodies the rows meet, which alone are read (solver_rows_few) */
+    if (solver_rows_few(n, nbodies)) {
         for (int32_t j = 0; j < n; j++) mask[c[j].a] = mask[c[j].b] = 0;
     } else {
         memset(mask, 0, (size_t)nbodies * sizeof *mask);

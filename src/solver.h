@@ -169,6 +169,11 @@ typedef struct solver_batch {
  * rows, map and over must hold SOLVER_WIDE_ROWS(n), n and n.  map and over are indexed by
  * row of c. */
 #define SOLVER_PACK_BLOCK 512
+/* Whether rows are so few beside the solver bodies that what is kept per body is cleared, or
+ * walked, row by row rather than whole: a world of many awake bodies of which few collide
+ * (solver_pack's masks, the solve's body passes and pseudo-velocities, the impact times).
+ * Only the bodies the rows meet are read, so either way gives the same results. */
+static inline int solver_rows_few(int32_t rows, int32_t bodies) { return (int64_t)rows * 8 < bodies; }
 #define SOLVER_PACK_BLOCKS(n) (((n) + SOLVER_PACK_BLOCK - 1) / SOLVER_PACK_BLOCK)
 void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, int32_t nbodies,
                  uint32_t *mask, int32_t *color, int32_t *lanes, solver_batch *out);

@@ -228,8 +228,8 @@ typedef struct resolve_state {
     rg_real *stoi;            /* q: fraction of the step at which its velocity changes */
     int32_t pv_valid;         /* spv holds this step's position pass */
     uint32_t *cmask;          /* q: colouring, the colours each body is in */
-    int32_t *sbody;           /* the solver bodies the rows meet, each once (stamping order) */
-    int32_t nbody;
+    int32_t *sbody;           /* the solver bodies the rows meet, each once (stamping order),
+                                 listed where the rows are few (resolve.c) */
 } resolve_state;
 
 typedef struct collide_world {

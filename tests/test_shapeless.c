@@ -86,7 +86,9 @@ static void run_beside(const rg_task_system *tasks)
         assert_ok(rg_world_step(beside.w, (rg_real)(1.0 / 60)));
         assert_same_bits(&alone, &beside, s);
     }
-    /* the pile did collide, and pile bodies touch the floor or each other */
+    /* the pile did collide: once it has settled every body rests on the floor or another
+     * body (PILE touching pairs at least); half of that allows for bodies still bouncing off
+     * the restitution, so the comparison above did cover colliding bodies */
     assert_true(rg_world_touching_count(alone.w) > PILE / 2);
     assert_int_equal(rg_world_touching_count(alone.w), rg_world_touching_count(beside.w));
     rg_world_destroy(alone.w);
