@@ -5,14 +5,13 @@
 #include "inline.h"
 #include "island.h"
 #include "narrow.h"
+#include "narrow_wide.h"
 #include "resolve.h"
 #include "state.h"
 #include "task.h"
 #include "vec2.h"
 #include "views.h"
 
-#define SPECULATIVE      RG_R(4)    /* solve pairs predicted within SPECULATIVE * slop */
-#define COS45            RG_R(0.70710678)
 
 static int narrow_pusher(const body_store *b, int32_t j, int touching)
 {
@@ -106,6 +105,7 @@ static int narrow_skip(rg_world *w, contact *c, int32_t ia, int32_t ib, const cb
 typedef struct narrow_task {
     rg_world *w;
     collide_step *x;
+    int wide;                         /* narrow_wide_ready */
     int32_t n;                        /* staging: the contacts decided in parallel */
     int32_t in_order[RG_MAX_WORKERS]; /* the worker met a contact decided in order */
 } narrow_task;
@@ -186,14 +186,7 @@ static FORCE_INLINE void narrow_measure(const rg_world *w, contact *c, const cbo
     }
 }
 
-/* What narrow_decide found for a contact, for narrow_commit (contact.decided). */
-#define ND_STAGE   1u  /* solved: stage its row */
-#define ND_BEGIN   2u  /* began touching */
-#define ND_END     4u  /* stopped touching */
-#define ND_NOW     8u  /* touching after the step */
-#define ND_WAS    16u  /* touching before it */
-#define ND_GROUND_A 32u /* its surface grounds a (touching, a's gravity against the normal) */
-#define ND_GROUND_B 64u
+/* (narrow_decide's ND_* bits: narrow_wide.h) */
 
 /* Whether the pair's decision needs the stepping thread: a one-way body or passing through
  * (their state changes in order), or a pre-solve hook (a callback, in order). */
@@ -276,23 +269,70 @@ static FORCE_INLINE uint32_t narrow_decide(rg_world *w, contact *c, int32_t ia, 
 
 /* Measures the awake contacts [begin, end) and decides those that need no order, each in
  * one visit (a contact's decision reads only its own measurement and its bodies' views). */
+/* Awake contacts [k0, k1) (at most NARROW_WIDE_LANES) with their bodies and views, and what
+ * narrow_wide_decide did of them (wide: the step may use it). */
+typedef struct narrow_block {
+    int32_t n;
+    uint32_t done;                          /* lanes measured and decided wide */
+    narrow_lanes in;                        /* the lanes past n repeat lane 0's views */
+    contact *c[NARROW_WIDE_LANES];
+    int32_t ia[NARROW_WIDE_LANES], ib[NARROW_WIDE_LANES];
+    uint32_t bits[NARROW_WIDE_LANES];       /* the done lanes' ND_* bits */
+    cbody rest[2 * NARROW_WIDE_LANES];      /* views of bodies at rest */
+} narrow_block;
+
+static FORCE_INLINE void narrow_block_run(rg_world *w, const collide_step *x, int32_t k0, int32_t k1, int wide,
+                                          narrow_block *nb)
+{
+    contact_store *cs = &w->coll.contacts;
+    int32_t n = nb->n = k1 - k0;
+    nb->done = 0;
+    for (int32_t l = 0; l < n; l++) {
+        contact *c = nb->c[l] = &cs->c[cs->awake[k0 + l]];
+        int32_t ia = nb->ia[l] = body_dense(w, c->sa), ib = nb->ib[l] = body_dense(w, c->sb);
+        const cbody *a = nb->in.a[l] = views_of(w, ia, x->n, &nb->rest[2 * l]);
+        const cbody *b = nb->in.b[l] = views_of(w, ib, x->n, &nb->rest[2 * l + 1]);
+        nb->in.flags[l] = c->flags;
+        nb->in.kind_a[l] = a->kind;
+        nb->in.kind_b[l] = b->kind;
+    }
+#if NARROW_WIDE
+    if (!wide) return;
+    for (int32_t l = n; l < NARROW_WIDE_LANES; l++) {
+        nb->in.a[l] = nb->in.a[0];
+        nb->in.b[l] = nb->in.b[0];
+        nb->in.flags[l] = CT_ACTIVE;
+        nb->in.kind_a[l] = nb->in.kind_b[l] = 0;
+    }
+    nb->done = narrow_wide_decide(w, &nb->in, nb->c, nb->bits);
+#else
+    (void)wide;
+#endif
+}
+
 static void narrow_measure_decide_range(int32_t begin, int32_t end, int32_t worker, void *context)
 {
     narrow_task *t = context;
     rg_world *w = t->w;
-    contact_store *cs = &w->coll.contacts;
-    for (int32_t k = begin; k < end; k++) {
-        contact *c = &cs->c[cs->awake[k]];
-        int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
-        cbody rest_a, rest_b;
-        const cbody *A = views_of(w, ia, t->x->n, &rest_a), *B = views_of(w, ib, t->x->n, &rest_b);
-        int far = narrow_far(w, c, A, B);
-        narrow_measure(w, c, A, B, far);
-        if (narrow_in_order(w, c)) {
-            t->in_order[worker] = 1;
-            continue;
+    narrow_block nb;
+    for (int32_t k0 = begin; k0 < end; k0 += NARROW_WIDE_LANES) {
+        int32_t k1 = end - k0 > NARROW_WIDE_LANES ? k0 + NARROW_WIDE_LANES : end;
+        narrow_block_run(w, t->x, k0, k1, t->wide, &nb);
+        for (int32_t l = 0; l < nb.n; l++) {
+            contact *c = nb.c[l];
+            if (nb.done & (1u << l)) {
+                c->decided = nb.bits[l];
+                continue;
+            }
+            const cbody *A = nb.in.a[l], *B = nb.in.b[l];
+            int far = narrow_far(w, c, A, B);
+            narrow_measure(w, c, A, B, far);
+            if (narrow_in_order(w, c)) {
+                t->in_order[worker] = 1;
+                continue;
+            }
+            c->decided = narrow_decide(w, c, nb.ia[l], nb.ib[l], A, B, far, 0);
         }
-        c->decided = narrow_decide(w, c, ia, ib, A, B, far, 0);
     }
 }
 
@@ -323,7 +363,7 @@ static void narrow_events_of(rg_world *w, const contact *c, uint32_t bits)
 /* What a contact's decision does to the rest of the world, in contact order: its solver row,
  * events, grounded flags, islands, waking (on the stepping thread, or, where nothing wakes
  * and the rows are staged, beside the solve's first part: narrow_commit_late). */
-static inline void narrow_commit(rg_world *w, int32_t id, int32_t ia, int32_t ib, collide_step *x, uint32_t bits,
+static FORCE_INLINE void narrow_commit(rg_world *w, int32_t id, int32_t ia, int32_t ib, collide_step *x, uint32_t bits,
                                  int stage, int *woke)
 {
     collide_world *cw = &w->coll;
@@ -498,6 +538,7 @@ void narrow_run(rg_world *w, collide_step *x)
     narrow_task t;
     t.w = w;
     t.x = x;
+    t.wide = NARROW_WIDE && narrow_wide_ready(w);
     int32_t measured = cs->n_awake, workers = task_workers(w), in_order = 0;
     /* One thread and no body asleep (so nothing wakes, and no commit changes what a later
      * decision reads): each contact is measured, decided and committed in the one visit of
@@ -517,6 +558,24 @@ void narrow_run(rg_world *w, collide_step *x)
             x->late = narrow_commit_late;
             return;
         }
+    }
+    if (measured == 0) {
+        /* Measured here, in blocks: nothing wakes (no body asleep), so the contacts are as
+         * many as at the start and a decision reads nothing a commit writes (the hook, the
+         * one caller outside, may change nothing), and a block's decisions, taken before
+         * its commits, are those the commits would have followed. */
+        narrow_block nb;
+        for (int32_t k0 = 0; k0 < cs->n_awake; k0 += NARROW_WIDE_LANES) {
+            int32_t k1 = cs->n_awake - k0 > NARROW_WIDE_LANES ? k0 + NARROW_WIDE_LANES : cs->n_awake;
+            narrow_block_run(w, x, k0, k1, t.wide, &nb);
+            for (int32_t l = 0; l < nb.n; l++) {
+                contact *c = nb.c[l];
+                int32_t ia = nb.ia[l], ib = nb.ib[l];
+                uint32_t bits = (nb.done & (1u << l)) ? nb.bits[l] : narrow_decide_here(w, c, ia, ib, x, 1);
+                narrow_commit(w, cs->awake[k0 + l], ia, ib, x, bits, 1, &x->woke);
+            }
+        }
+        return;
     }
     /* waking appends the contacts of the bodies it wakes: they are measured, decided and
      * staged as they come */
