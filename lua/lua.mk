@@ -138,7 +138,9 @@ rock-install: $(LUA_MOD)
 	install -m 755 $(LUA_MOD) $(ROCK_LIBDIR)/rigid.so
 
 # The rock into a temporary tree, and the module required from there.  The rock's make
-# must not inherit this make's variables (a sanitizer build's flags, its B).
+# must not inherit this make's variables (a sanitizer build's flags, its B): neither through
+# MAKEFLAGS nor through the environment, where make exports the command line's (a
+# sanitizer run's EXTRA_LDFLAGS hold clang's -shared-libasan, which luarocks's gcc refuses).
 ifeq ($(REAL),float)
 TEST_RUNS += check-rock
 endif
@@ -147,7 +149,7 @@ check-rock:
 	@if ! command -v luarocks >/dev/null; then \
 	  echo "skip  the rock: no luarocks (tools/install-deps.sh installs it)"; exit 0; fi; \
 	 tree=$(B)/rock-tree; rm -rf $$tree; \
-	 env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL luarocks --lua-version 5.4 --tree $$tree \
+	 env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u EXTRA_CFLAGS -u EXTRA_LDFLAGS -u OPT luarocks --lua-version 5.4 --tree $$tree \
 	   make lua/rigid-$(VERSION)-1.rockspec > $(B)/rock.log 2>&1 \
 	   || { cat $(B)/rock.log; echo "FAIL  luarocks make"; exit 1; }; \
 	 LUA_CPATH="$$tree/lib/lua/5.4/?.so" $(FFI_ENV) $(LUA_BIN) tests/lua/installed.lua rigid $$tree
