@@ -17,4 +17,14 @@
 #define DISPATCH_INLINE inline
 #endif
 
+/* The hand-written AVX2 paths (the solver's velocity sweep, the narrowphase's eight contacts,
+ * the views of eight bodies): built into the float library on x86-64 with GCC or Clang, and
+ * taken when the CPU has AVX2 (asked at run time); RG_NO_DISPATCH builds without them. */
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(RG_NO_DISPATCH) && \
+    !defined(RG_DOUBLE)
+#define RG_AVX2_PATHS 1
+#else
+#define RG_AVX2_PATHS 0
+#endif
+
 #endif

@@ -10,6 +10,7 @@
 
 #include <stdint.h>
 
+#include "dispatch.h"
 #include "state.h"
 
 #define SPECULATIVE RG_R(4)          /* solve pairs predicted within SPECULATIVE * slop */
@@ -24,13 +25,9 @@
 #define ND_GROUND_A 32u /* its surface grounds a (touching, a's gravity against the normal) */
 #define ND_GROUND_B 64u
 
-/* The wide path: the float build on x86-64 with GCC or Clang, picked per step from the CPU
- * (narrow_wide_ready); RG_NO_DISPATCH and the double build have the scalar code alone. */
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(RG_NO_DISPATCH) && !defined(RG_DOUBLE)
-#define NARROW_WIDE 1
-#else
-#define NARROW_WIDE 0
-#endif
+/* The wide path (dispatch.h), picked per step from the CPU (narrow_wide_ready); RG_NO_DISPATCH
+ * and the double build have the scalar code alone. */
+#define NARROW_WIDE RG_AVX2_PATHS
 
 #define NARROW_WIDE_LANES 8
 

@@ -1,6 +1,7 @@
 /* solver.c: sequential impulses over one-point, translation-only contacts (see solver.h). */
 #include <string.h>
 
+#include "dispatch.h"
 #include "solver.h"
 #include "vec2.h"
 
@@ -306,10 +307,10 @@ void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t k
 }
 
 #if defined(__SSE2__) && !defined(RG_DOUBLE)
-/* On x86-64 with GCC or Clang the velocity sweep, the hot loop, also has an AVX2 version,
+/* The velocity sweep, the hot loop, also has an AVX2 version (dispatch.h's RG_AVX2_PATHS),
  * picked per call from the CPU (so the library stays portable x86-64); RG_NO_DISPATCH builds
  * SSE2 only. */
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(RG_NO_DISPATCH)
+#if RG_AVX2_PATHS
 #define SOLVER_AVX2 1
 #include <immintrin.h>
 #else

@@ -1,5 +1,6 @@
 /* views.c: the step's view of each awake shaped body (start, displacement, velocity,
  * size), and the fat boxes that left their box after integration (see views.h). */
+#include "dispatch.h"
 #include "pairs.h"
 #include "state.h"
 #include "task.h"
@@ -67,8 +68,101 @@ static inline void views_box(rg_real x1, rg_real y1, rg_real hx, rg_real hy, rg_
     box[3] = uy;
 }
 
+#if RG_AVX2_PATHS
+#include <immintrin.h>
+
+#define VIEWS_AVX2 __attribute__((target("avx2")))
+
+/* The 8x8 transpose of rows r[0..8) (its own inverse). */
+VIEWS_AVX2 static inline void views_transpose8(__m256 *r)
+{
+    __m256 t0 = _mm256_unpacklo_ps(r[0], r[1]), t1 = _mm256_unpackhi_ps(r[0], r[1]);
+    __m256 t2 = _mm256_unpacklo_ps(r[2], r[3]), t3 = _mm256_unpackhi_ps(r[2], r[3]);
+    __m256 t4 = _mm256_unpacklo_ps(r[4], r[5]), t5 = _mm256_unpackhi_ps(r[4], r[5]);
+    __m256 t6 = _mm256_unpacklo_ps(r[6], r[7]), t7 = _mm256_unpackhi_ps(r[6], r[7]);
+    __m256 u0 = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(1, 0, 1, 0)), u1 = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(3, 2, 3, 2));
+    __m256 u2 = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(1, 0, 1, 0)), u3 = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(3, 2, 3, 2));
+    __m256 u4 = _mm256_shuffle_ps(t4, t6, _MM_SHUFFLE(1, 0, 1, 0)), u5 = _mm256_shuffle_ps(t4, t6, _MM_SHUFFLE(3, 2, 3, 2));
+    __m256 u6 = _mm256_shuffle_ps(t5, t7, _MM_SHUFFLE(1, 0, 1, 0)), u7 = _mm256_shuffle_ps(t5, t7, _MM_SHUFFLE(3, 2, 3, 2));
+    r[0] = _mm256_permute2f128_ps(u0, u4, 0x20);
+    r[1] = _mm256_permute2f128_ps(u1, u5, 0x20);
+    r[2] = _mm256_permute2f128_ps(u2, u6, 0x20);
+    r[3] = _mm256_permute2f128_ps(u3, u7, 0x20);
+    r[4] = _mm256_permute2f128_ps(u0, u4, 0x31);
+    r[5] = _mm256_permute2f128_ps(u1, u5, 0x31);
+    r[6] = _mm256_permute2f128_ps(u2, u6, 0x31);
+    r[7] = _mm256_permute2f128_ps(u3, u7, 0x31);
+}
+
+/* views_range's loop body for the eight bodies of places k .. k + 7, dense i .. i + 7 (the
+ * places hold consecutive bodies): the same operations, eight at once; the cbody records and
+ * the fat boxes pass through 8x8 and 4x8 transposes. */
+VIEWS_AVX2 static void views_eight(const views_task *t, int32_t k, int32_t i)
+{
+    rg_world *w = t->w;
+    collide_world *cw = &w->coll;
+    views_state *ns = &cw->views;
+    body_store *b = &w->b;
+    __m256 x1 = _mm256_loadu_ps(b->x + i), y1 = _mm256_loadu_ps(b->y + i);
+    __m256 h0 = _mm256_loadu_ps(b->hx + i), h1 = _mm256_loadu_ps(b->hy + i);
+    __m256 sx = _mm256_loadu_ps(ns->sx0 + k), sy = _mm256_loadu_ps(ns->sy0 + k);
+    __m256 mx = _mm256_sub_ps(x1, sx), my = _mm256_sub_ps(y1, sy);
+    /* views_box */
+    __m256 lx = _mm256_sub_ps(x1, h0), ly = _mm256_sub_ps(y1, h1), ux = _mm256_add_ps(x1, h0), uy = _mm256_add_ps(y1, h1);
+    if (cw->continuous) {
+        lx = _mm256_min_ps(lx, _mm256_sub_ps(lx, mx));
+        ly = _mm256_min_ps(ly, _mm256_sub_ps(ly, my));
+        ux = _mm256_max_ps(ux, _mm256_sub_ps(ux, mx));
+        uy = _mm256_max_ps(uy, _mm256_sub_ps(uy, my));
+    }
+    _mm256_storeu_ps(b->dx + i, mx);
+    _mm256_storeu_ps(b->dy + i, my);
+    __m256i *cf = (__m256i *)(void *)(b->cflags + i);
+    _mm256_storeu_si256(cf, _mm256_andnot_si256(_mm256_set1_epi32((int)CF_GROUNDED), _mm256_loadu_si256(cf)));
+    /* the records: sx sy dx dy vx vy hx hy, then gs im kind pad */
+    __m256 r[8] = { sx, sy, mx, my, _mm256_loadu_ps(ns->svx0 + k), _mm256_loadu_ps(ns->svy0 + k), h0, h1 };
+    views_transpose8(r);
+    __m256i type = _mm256_loadu_si256((const __m256i *)(const void *)(b->type + i));
+    __m256 dyn = _mm256_castsi256_ps(_mm256_cmpeq_epi32(type, _mm256_set1_epi32(RG_BODY_DYNAMIC)));
+    __m256 gs = _mm256_and_ps(dyn, _mm256_loadu_ps(b->gscale + i)); /* type == dynamic ? gscale : 0 */
+    __m256 im = _mm256_loadu_ps(b->inv_mass + i);
+    __m256 kind = _mm256_castsi256_ps(_mm256_loadu_si256((const __m256i *)(const void *)(b->shape + i)));
+    __m256 gi_lo = _mm256_unpacklo_ps(gs, im), gi_hi = _mm256_unpackhi_ps(gs, im);
+    __m256 kp_lo = _mm256_unpacklo_ps(kind, _mm256_setzero_ps()), kp_hi = _mm256_unpackhi_ps(kind, _mm256_setzero_ps());
+    __m256 q[4] = { _mm256_shuffle_ps(gi_lo, kp_lo, _MM_SHUFFLE(1, 0, 1, 0)), _mm256_shuffle_ps(gi_lo, kp_lo, _MM_SHUFFLE(3, 2, 3, 2)),
+                    _mm256_shuffle_ps(gi_hi, kp_hi, _MM_SHUFFLE(1, 0, 1, 0)), _mm256_shuffle_ps(gi_hi, kp_hi, _MM_SHUFFLE(3, 2, 3, 2)) };
+    cbody *cb = ns->cb + i;
+    for (int l = 0; l < 8; l++) {
+        _mm256_storeu_ps(&cb[l].sx, r[l]);
+        /* lane l's (gs, im, kind, 0): lanes 0-3 in the low halves of q[0..3], 4-7 in the high */
+        __m256 ql = q[l & 3];
+        _mm_storeu_ps(&cb[l].gs, l < 4 ? _mm256_castps256_ps128(ql) : _mm256_extractf128_ps(ql, 1));
+    }
+    /* pairs_inside of each body's entry */
+    const bp_entry *e = cw->bp.e;
+    const int32_t *slot = b->slot + i;
+    __m256 f[8];
+    uint32_t moved = 0;
+    for (int l = 0; l < 8; l++) {
+        const bp_entry *el = &e[slot[l]];
+        f[l] = _mm256_castps128_ps256(_mm_loadu_ps(&el->lx));
+        moved |= (uint32_t)(el->moved != 0) << l;
+    }
+    views_transpose8(f); /* f[0..3]: the entries' lx, ly, ux, uy in lanes 0..7 */
+    __m256 inside = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(lx, f[0], _CMP_GE_OQ), _mm256_cmp_ps(ly, f[1], _CMP_GE_OQ)),
+                                  _mm256_and_ps(_mm256_cmp_ps(ux, f[2], _CMP_LE_OQ), _mm256_cmp_ps(uy, f[3], _CMP_LE_OQ)));
+    uint32_t out = ~(uint32_t)_mm256_movemask_ps(inside) | moved;
+    for (int l = 0; l < 8; l++) ns->refresh[k + l] = (uint8_t)((out >> l) & 1);
+    if (t->x->unite) {
+        int32_t *uf = cw->island.uf + k;
+        _mm256_storeu_si256((__m256i *)(void *)uf, _mm256_add_epi32(_mm256_set1_epi32(k), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+    }
+}
+#endif
+
 /* Awake bodies [begin, end): views, displacements and whether the fat box must be refreshed
- * (ns->refresh[k]), each body's own. */
+ * (ns->refresh[k]), each body's own; eight at a time (views_eight) where eight places hold
+ * consecutive bodies and the CPU has AVX2. */
 static void views_range(int32_t begin, int32_t end, int32_t worker, void *context)
 {
     const views_task *t = context;
@@ -90,30 +184,48 @@ static void views_range(int32_t begin, int32_t end, int32_t worker, void *contex
     const bp_entry *e = cw->bp.e;
     int continuous = cw->continuous;
     (void)worker;
-    for (int32_t k = begin; k < end; k++) {
-        int32_t i = adense[k];
-        rg_real x1 = x[i], y1 = y[i], h0 = hx[i], h1 = hy[i];
-        rg_real mx = x1 - sx0[k], my = y1 - sy0[k], box[4];
-        views_box(x1, y1, h0, h1, mx, my, continuous, box);
-        dx[i] = mx;
-        dy[i] = my;
-        cflags[i] &= ~CF_GROUNDED; /* set again by the touching contacts */
-        cbody v;
-        v.sx = sx0[k];
-        v.sy = sy0[k];
-        v.dx = mx;
-        v.dy = my;
-        v.vx = svx0[k];
-        v.vy = svy0[k];
-        v.hx = h0;
-        v.hy = h1;
-        v.gs = type[i] == RG_BODY_DYNAMIC ? gscale[i] : 0;
-        v.im = inv_mass[i];
-        v.kind = shape[i];
-        v.pad = 0;
-        cb[i] = v;
-        refresh[k] = (uint8_t)!pairs_inside(&e[slot[i]], box);
-        if (uf != NULL) uf[k] = k;
+#if RG_AVX2_PATHS
+    int wide = __builtin_cpu_supports("avx2");
+#endif
+    for (int32_t k = begin; k < end;) {
+        int32_t stop = end; /* the bodies up to stop one by one */
+#if RG_AVX2_PATHS
+        if (wide && end - k >= 8) {
+            int32_t i0 = adense[k], run = 1;
+            for (int l = 1; l < 8; l++) run &= adense[k + l] == i0 + l;
+            if (run) {
+                views_eight(t, k, i0);
+                k += 8;
+                continue;
+            }
+            stop = k + 8;
+        }
+#endif
+        for (; k < stop; k++) {
+            int32_t i = adense[k];
+            rg_real x1 = x[i], y1 = y[i], h0 = hx[i], h1 = hy[i];
+            rg_real mx = x1 - sx0[k], my = y1 - sy0[k], box[4];
+            views_box(x1, y1, h0, h1, mx, my, continuous, box);
+            dx[i] = mx;
+            dy[i] = my;
+            cflags[i] &= ~CF_GROUNDED; /* set again by the touching contacts */
+            cbody v;
+            v.sx = sx0[k];
+            v.sy = sy0[k];
+            v.dx = mx;
+            v.dy = my;
+            v.vx = svx0[k];
+            v.vy = svy0[k];
+            v.hx = h0;
+            v.hy = h1;
+            v.gs = type[i] == RG_BODY_DYNAMIC ? gscale[i] : 0;
+            v.im = inv_mass[i];
+            v.kind = shape[i];
+            v.pad = 0;
+            cb[i] = v;
+            refresh[k] = (uint8_t)!pairs_inside(&e[slot[i]], box);
+            if (uf != NULL) uf[k] = k;
+        }
     }
 }
 
