@@ -3,6 +3,7 @@
 
 #include "body.h"
 #include "continuous.h"
+#include "dispatch.h"
 #include "inline.h"
 #include "resolve.h"
 #include "state.h"
@@ -209,8 +210,81 @@ static FORCE_INLINE void resolve_body(const resolve_task *t, int what, int32_t q
     }
 }
 
+#if RG_AVX2_PATHS
+#include <immintrin.h>
+
+#define RESOLVE_AVX2 __attribute__((target("avx2")))
+
+/* The pairs (x, y) of p[0 .. 16) as eight x and eight y, and back. */
+RESOLVE_AVX2 static inline void resolve_pairs_load(const float *p, __m256 *x, __m256 *y)
+{
+    __m256 lo = _mm256_loadu_ps(p), hi = _mm256_loadu_ps(p + 8);
+    __m256 xs = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0)), ys = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1));
+    *x = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(xs), _MM_SHUFFLE(3, 1, 2, 0)));
+    *y = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(ys), _MM_SHUFFLE(3, 1, 2, 0)));
+}
+
+RESOLVE_AVX2 static inline void resolve_pairs_store(float *p, __m256 x, __m256 y)
+{
+    __m256 lo = _mm256_unpacklo_ps(x, y), hi = _mm256_unpackhi_ps(x, y);
+    _mm256_storeu_ps(p, _mm256_permute2f128_ps(lo, hi, 0x20));
+    _mm256_storeu_ps(p + 8, _mm256_permute2f128_ps(lo, hi, 0x31));
+}
+
+/* resolve_body of solver bodies q .. q + 7 (all met by rows): the same operations, eight at
+ * once; a timed body's lanes take the timed branch's results. */
+RESOLVE_AVX2 static void resolve_eight(const resolve_task *t, int what, int32_t q)
+{
+    body_store *b = &t->w->b;
+    const resolve_state *rs = &t->w->coll.resolve;
+    float *v = t->v + 2 * q;
+    int32_t i = q - 1;
+    __m256 dt = _mm256_set1_ps(t->x->p.dt);
+    if (what == RESOLVE_LOAD) {
+        __m256 movable = _mm256_cmp_ps(_mm256_loadu_ps(b->inv_mass + i), _mm256_setzero_ps(), _CMP_GT_OQ);
+        __m256 z = _mm256_and_ps(movable, _mm256_set1_ps(-0.0f));
+        resolve_pairs_store(v, _mm256_add_ps(_mm256_loadu_ps(b->vx + i), z), _mm256_add_ps(_mm256_loadu_ps(b->vy + i), z));
+        return;
+    }
+    __m256 px, py;
+    if (what == RESOLVE_PUSH) {
+        resolve_pairs_load(t->pv + 2 * q, &px, &py);
+        _mm256_storeu_ps(b->x + i, _mm256_add_ps(_mm256_loadu_ps(b->x + i), _mm256_mul_ps(px, dt)));
+        _mm256_storeu_ps(b->y + i, _mm256_add_ps(_mm256_loadu_ps(b->y + i), _mm256_mul_ps(py, dt)));
+        return;
+    }
+    __m256 wx, wy;
+    resolve_pairs_load(v, &wx, &wy);
+    __m256 fx = _mm256_loadu_ps(b->vx + i), fy = _mm256_loadu_ps(b->vy + i);
+    __m256 dvx = _mm256_sub_ps(wx, fx), dvy = _mm256_sub_ps(wy, fy);
+    __m256 mx = _mm256_mul_ps(dvx, dt), my = _mm256_mul_ps(dvy, dt);
+    if (t->timed) {
+        __m256 ti = _mm256_loadu_ps(rs->stoi + q);
+        __m256 timed = _mm256_cmp_ps(ti, _mm256_setzero_ps(), _CMP_GT_OQ);
+        __m256 after = _mm256_sub_ps(_mm256_set1_ps(1.0f), ti);
+        __m256 ax = _mm256_mul_ps(dvx, after), ay = _mm256_mul_ps(dvy, after);
+        mx = _mm256_blendv_ps(mx, _mm256_mul_ps(ax, dt), timed);
+        my = _mm256_blendv_ps(my, _mm256_mul_ps(ay, dt), timed);
+        resolve_pairs_store(v, _mm256_blendv_ps(wx, _mm256_add_ps(fx, ax), timed),
+                            _mm256_blendv_ps(wy, _mm256_add_ps(fy, ay), timed));
+    }
+    _mm256_storeu_ps(b->x + i, _mm256_add_ps(_mm256_loadu_ps(b->x + i), mx));
+    _mm256_storeu_ps(b->y + i, _mm256_add_ps(_mm256_loadu_ps(b->y + i), my));
+    _mm256_storeu_ps(b->vx + i, wx);
+    _mm256_storeu_ps(b->vy + i, wy);
+}
+
+/* Whether the rows meet each of solver bodies q .. q + 7. */
+RESOLVE_AVX2 static inline int resolve_met8(const resolve_state *rs, int32_t q)
+{
+    __m256i s = _mm256_loadu_si256((const __m256i *)(const void *)(rs->sstamp + q - 1));
+    return _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(s, _mm256_set1_epi32((int)rs->gen)))) == 0xFF;
+}
+#endif
+
 /* Items [k0, k1) of a body pass: places in the list of the bodies the rows meet (t->listed),
- * or solver bodies k0..k1-1 (1-based), those no row meets skipped. */
+ * or solver bodies k0..k1-1 (1-based), those no row meets skipped; eight at a time
+ * (resolve_eight) where the rows meet eight in a row and the CPU has AVX2. */
 static FORCE_INLINE void resolve_bodies_as(const resolve_task *t, int what, int32_t k0, int32_t k1)
 {
     const resolve_state *rs = &t->w->coll.resolve;
@@ -218,7 +292,20 @@ static FORCE_INLINE void resolve_bodies_as(const resolve_task *t, int what, int3
         for (int32_t k = k0; k < k1; k++) resolve_body(t, what, rs->sbody[k]);
         return;
     }
-    for (int32_t q = k0; q < k1; q++)
+    int32_t q = k0;
+#if RG_AVX2_PATHS
+    if (__builtin_cpu_supports("avx2")) {
+        for (; k1 - q >= 8; q += 8) {
+            if (resolve_met8(rs, q)) {
+                resolve_eight(t, what, q);
+                continue;
+            }
+            for (int32_t e = q; e < q + 8; e++)
+                if (rs->sstamp[e - 1] == rs->gen) resolve_body(t, what, e);
+        }
+    }
+#endif
+    for (; q < k1; q++)
         if (rs->sstamp[q - 1] == rs->gen) resolve_body(t, what, q);
 }
 
