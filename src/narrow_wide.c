@@ -17,10 +17,11 @@ int narrow_wide_ready(const struct rg_world *w)
 
 #if NARROW_WIDE
 #include <float.h>
-#include <immintrin.h>
 
-#define NW_AVX2 __attribute__((target("avx2")))
-#define NW_INLINE __attribute__((target("avx2"), always_inline)) static inline
+#include "avx2.h"
+
+#define NW_AVX2 AVX2_FN
+#define NW_INLINE AVX2_INLINE
 
 typedef struct nw_body {
     __m256 sx, sy, dx, dy, vx, vy, hx, hy, gs, im;
@@ -30,26 +31,18 @@ typedef struct nw_body {
  * gs and im as pairs. */
 NW_INLINE void nw_gather(const cbody *const *v, nw_body *o)
 {
-    __m256 r0 = _mm256_loadu_ps(&v[0]->sx), r1 = _mm256_loadu_ps(&v[1]->sx);
-    __m256 r2 = _mm256_loadu_ps(&v[2]->sx), r3 = _mm256_loadu_ps(&v[3]->sx);
-    __m256 r4 = _mm256_loadu_ps(&v[4]->sx), r5 = _mm256_loadu_ps(&v[5]->sx);
-    __m256 r6 = _mm256_loadu_ps(&v[6]->sx), r7 = _mm256_loadu_ps(&v[7]->sx);
-    __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpackhi_ps(r0, r1);
-    __m256 t2 = _mm256_unpacklo_ps(r2, r3), t3 = _mm256_unpackhi_ps(r2, r3);
-    __m256 t4 = _mm256_unpacklo_ps(r4, r5), t5 = _mm256_unpackhi_ps(r4, r5);
-    __m256 t6 = _mm256_unpacklo_ps(r6, r7), t7 = _mm256_unpackhi_ps(r6, r7);
-    __m256 u0 = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(1, 0, 1, 0)), u1 = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(3, 2, 3, 2));
-    __m256 u2 = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(1, 0, 1, 0)), u3 = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(3, 2, 3, 2));
-    __m256 u4 = _mm256_shuffle_ps(t4, t6, _MM_SHUFFLE(1, 0, 1, 0)), u5 = _mm256_shuffle_ps(t4, t6, _MM_SHUFFLE(3, 2, 3, 2));
-    __m256 u6 = _mm256_shuffle_ps(t5, t7, _MM_SHUFFLE(1, 0, 1, 0)), u7 = _mm256_shuffle_ps(t5, t7, _MM_SHUFFLE(3, 2, 3, 2));
-    o->sx = _mm256_permute2f128_ps(u0, u4, 0x20);
-    o->sy = _mm256_permute2f128_ps(u1, u5, 0x20);
-    o->dx = _mm256_permute2f128_ps(u2, u6, 0x20);
-    o->dy = _mm256_permute2f128_ps(u3, u7, 0x20);
-    o->vx = _mm256_permute2f128_ps(u0, u4, 0x31);
-    o->vy = _mm256_permute2f128_ps(u1, u5, 0x31);
-    o->hx = _mm256_permute2f128_ps(u2, u6, 0x31);
-    o->hy = _mm256_permute2f128_ps(u3, u7, 0x31);
+    __m256 r[8] = { _mm256_loadu_ps(&v[0]->sx), _mm256_loadu_ps(&v[1]->sx), _mm256_loadu_ps(&v[2]->sx),
+                    _mm256_loadu_ps(&v[3]->sx), _mm256_loadu_ps(&v[4]->sx), _mm256_loadu_ps(&v[5]->sx),
+                    _mm256_loadu_ps(&v[6]->sx), _mm256_loadu_ps(&v[7]->sx) };
+    avx2_transpose8(r);
+    o->sx = r[0];
+    o->sy = r[1];
+    o->dx = r[2];
+    o->dy = r[3];
+    o->vx = r[4];
+    o->vy = r[5];
+    o->hx = r[6];
+    o->hy = r[7];
     __m128 p01 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)&v[0]->gs);
     p01 = _mm_loadh_pi(p01, (const __m64 *)(const void *)&v[1]->gs);
     __m128 p23 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)&v[2]->gs);

@@ -1,6 +1,7 @@
 /* pairs.c: fat boxes, the collision filter and the pair search (see pairs.h). */
 #include "body.h"
 #include "contact.h"
+#include "dispatch.h"
 #include "island.h"
 #include "pairs.h"
 #include "state.h"
@@ -259,7 +260,24 @@ static inline void pairs_final_box(const rg_world *w, const collide_step *x, int
     mo[3] = k < x->na ? (b->vy[i] - ns->svy0[k]) * dt : 0;
 }
 
-/* Members [begin, end): whether each final box left its fat box (ns->refresh[k]). */
+#if RG_AVX2_PATHS
+#include "avx2.h"
+
+/* pairs_refit_range's test for members k .. k + 7, the consecutive bodies from dense i: the
+ * final boxes (pairs_final_box's) against their fat boxes, eight at once. */
+AVX2_FN static void pairs_refit8(const rg_world *w, int32_t k, int32_t i)
+{
+    const body_store *b = &w->b;
+    __m256 x1 = _mm256_loadu_ps(b->x + i), y1 = _mm256_loadu_ps(b->y + i);
+    __m256 hx = _mm256_loadu_ps(b->hx + i), hy = _mm256_loadu_ps(b->hy + i);
+    uint32_t out = avx2_outside8(w->coll.bp.e, b->slot + i, _mm256_sub_ps(x1, hx), _mm256_sub_ps(y1, hy),
+                                 _mm256_add_ps(x1, hx), _mm256_add_ps(y1, hy));
+    avx2_bytes8(w->coll.views.refresh + k, out);
+}
+#endif
+
+/* Members [begin, end): whether each final box left its fat box (ns->refresh[k]); eight
+ * members of consecutive bodies at a time (pairs_refit8) where the CPU has AVX2. */
 static void pairs_refit_range(int32_t begin, int32_t end, int32_t worker, void *context)
 {
     const refit_task *t = context;
@@ -267,7 +285,19 @@ static void pairs_refit_range(int32_t begin, int32_t end, int32_t worker, void *
     const broadphase *bp = &w->coll.bp;
     uint8_t *refresh = w->coll.views.refresh;
     (void)worker;
-    for (int32_t k = begin; k < end; k++) {
+    int32_t k = begin;
+#if RG_AVX2_PATHS
+    if (__builtin_cpu_supports("avx2")) {
+        while (end - k >= 8) {
+            int32_t i0 = body_dense(w, bp->active[k]), run = 1;
+            for (int l = 1; l < 8; l++) run &= body_dense(w, bp->active[k + l]) == i0 + l;
+            if (!run) break;
+            pairs_refit8(w, k, i0);
+            k += 8;
+        }
+    }
+#endif
+    for (; k < end; k++) {
         int32_t s = bp->active[k];
         rg_real box[4], mo[4];
         pairs_final_box(w, t->x, k, body_dense(w, s), t->dt, box, mo);

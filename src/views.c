@@ -69,35 +69,12 @@ static inline void views_box(rg_real x1, rg_real y1, rg_real hx, rg_real hy, rg_
 }
 
 #if RG_AVX2_PATHS
-#include <immintrin.h>
-
-#define VIEWS_AVX2 __attribute__((target("avx2")))
-
-/* The 8x8 transpose of rows r[0..8) (its own inverse). */
-VIEWS_AVX2 static inline void views_transpose8(__m256 *r)
-{
-    __m256 t0 = _mm256_unpacklo_ps(r[0], r[1]), t1 = _mm256_unpackhi_ps(r[0], r[1]);
-    __m256 t2 = _mm256_unpacklo_ps(r[2], r[3]), t3 = _mm256_unpackhi_ps(r[2], r[3]);
-    __m256 t4 = _mm256_unpacklo_ps(r[4], r[5]), t5 = _mm256_unpackhi_ps(r[4], r[5]);
-    __m256 t6 = _mm256_unpacklo_ps(r[6], r[7]), t7 = _mm256_unpackhi_ps(r[6], r[7]);
-    __m256 u0 = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(1, 0, 1, 0)), u1 = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(3, 2, 3, 2));
-    __m256 u2 = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(1, 0, 1, 0)), u3 = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(3, 2, 3, 2));
-    __m256 u4 = _mm256_shuffle_ps(t4, t6, _MM_SHUFFLE(1, 0, 1, 0)), u5 = _mm256_shuffle_ps(t4, t6, _MM_SHUFFLE(3, 2, 3, 2));
-    __m256 u6 = _mm256_shuffle_ps(t5, t7, _MM_SHUFFLE(1, 0, 1, 0)), u7 = _mm256_shuffle_ps(t5, t7, _MM_SHUFFLE(3, 2, 3, 2));
-    r[0] = _mm256_permute2f128_ps(u0, u4, 0x20);
-    r[1] = _mm256_permute2f128_ps(u1, u5, 0x20);
-    r[2] = _mm256_permute2f128_ps(u2, u6, 0x20);
-    r[3] = _mm256_permute2f128_ps(u3, u7, 0x20);
-    r[4] = _mm256_permute2f128_ps(u0, u4, 0x31);
-    r[5] = _mm256_permute2f128_ps(u1, u5, 0x31);
-    r[6] = _mm256_permute2f128_ps(u2, u6, 0x31);
-    r[7] = _mm256_permute2f128_ps(u3, u7, 0x31);
-}
+#include "avx2.h"
 
 /* views_range's loop body for the eight bodies of places k .. k + 7, dense i .. i + 7 (the
  * places hold consecutive bodies): the same operations, eight at once; the cbody records and
  * the fat boxes pass through 8x8 and 4x8 transposes. */
-VIEWS_AVX2 static void views_eight(const views_task *t, int32_t k, int32_t i)
+AVX2_FN static void views_eight(const views_task *t, int32_t k, int32_t i)
 {
     rg_world *w = t->w;
     collide_world *cw = &w->coll;
@@ -121,7 +98,7 @@ VIEWS_AVX2 static void views_eight(const views_task *t, int32_t k, int32_t i)
     _mm256_storeu_si256(cf, _mm256_andnot_si256(_mm256_set1_epi32((int)CF_GROUNDED), _mm256_loadu_si256(cf)));
     /* the records: sx sy dx dy vx vy hx hy, then gs im kind pad */
     __m256 r[8] = { sx, sy, mx, my, _mm256_loadu_ps(ns->svx0 + k), _mm256_loadu_ps(ns->svy0 + k), h0, h1 };
-    views_transpose8(r);
+    avx2_transpose8(r);
     __m256i type = _mm256_loadu_si256((const __m256i *)(const void *)(b->type + i));
     __m256 dyn = _mm256_castsi256_ps(_mm256_cmpeq_epi32(type, _mm256_set1_epi32(RG_BODY_DYNAMIC)));
     __m256 gs = _mm256_and_ps(dyn, _mm256_loadu_ps(b->gscale + i)); /* type == dynamic ? gscale : 0 */
@@ -139,20 +116,7 @@ VIEWS_AVX2 static void views_eight(const views_task *t, int32_t k, int32_t i)
         _mm_storeu_ps(&cb[l].gs, l < 4 ? _mm256_castps256_ps128(ql) : _mm256_extractf128_ps(ql, 1));
     }
     /* pairs_inside of each body's entry */
-    const bp_entry *e = cw->bp.e;
-    const int32_t *slot = b->slot + i;
-    __m256 f[8];
-    uint32_t moved = 0;
-    for (int l = 0; l < 8; l++) {
-        const bp_entry *el = &e[slot[l]];
-        f[l] = _mm256_castps128_ps256(_mm_loadu_ps(&el->lx));
-        moved |= (uint32_t)(el->moved != 0) << l;
-    }
-    views_transpose8(f); /* f[0..3]: the entries' lx, ly, ux, uy in lanes 0..7 */
-    __m256 inside = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(lx, f[0], _CMP_GE_OQ), _mm256_cmp_ps(ly, f[1], _CMP_GE_OQ)),
-                                  _mm256_and_ps(_mm256_cmp_ps(ux, f[2], _CMP_LE_OQ), _mm256_cmp_ps(uy, f[3], _CMP_LE_OQ)));
-    uint32_t out = ~(uint32_t)_mm256_movemask_ps(inside) | moved;
-    for (int l = 0; l < 8; l++) ns->refresh[k + l] = (uint8_t)((out >> l) & 1);
+    avx2_bytes8(ns->refresh + k, avx2_outside8(cw->bp.e, b->slot + i, lx, ly, ux, uy));
     if (t->x->unite) {
         int32_t *uf = cw->island.uf + k;
         _mm256_storeu_si256((__m256i *)(void *)uf, _mm256_add_epi32(_mm256_set1_epi32(k), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
