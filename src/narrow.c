@@ -284,14 +284,18 @@ typedef struct narrow_block {
 static FORCE_INLINE void narrow_block_run(rg_world *w, const collide_step *x, int32_t k0, int32_t k1, int wide,
                                           narrow_block *nb)
 {
-    contact_store *cs = &w->coll.contacts;
+    /* in locals: the stores into nb could alias them, which would read them again */
+    contact *const cc = w->coll.contacts.c;
+    const int32_t *const awake = w->coll.contacts.awake, *const dense = w->body_pool.index;
+    const cbody *const cb = w->coll.views.cb;
+    const int32_t nv = x->n;
     int32_t n = nb->n = k1 - k0;
     nb->done = 0;
     for (int32_t l = 0; l < n; l++) {
-        contact *c = nb->c[l] = &cs->c[cs->awake[k0 + l]];
-        int32_t ia = nb->ia[l] = body_dense(w, c->sa), ib = nb->ib[l] = body_dense(w, c->sb);
-        const cbody *a = nb->in.a[l] = views_of(w, ia, x->n, &nb->rest[2 * l]);
-        const cbody *b = nb->in.b[l] = views_of(w, ib, x->n, &nb->rest[2 * l + 1]);
+        contact *c = nb->c[l] = &cc[awake[k0 + l]];
+        int32_t ia = nb->ia[l] = dense[c->sa], ib = nb->ib[l] = dense[c->sb]; /* body_dense */
+        const cbody *a = nb->in.a[l] = ia < nv ? &cb[ia] : views_of(w, ia, nv, &nb->rest[2 * l]);
+        const cbody *b = nb->in.b[l] = ib < nv ? &cb[ib] : views_of(w, ib, nv, &nb->rest[2 * l + 1]);
         nb->in.flags[l] = c->flags;
         nb->in.kind_a[l] = a->kind;
         nb->in.kind_b[l] = b->kind;
