@@ -5,6 +5,16 @@
 #include "solver.h"
 #include "vec2.h"
 
+/* The velocity sweep (the hot loop), the warm start and the position pass's preparation also
+ * have AVX2 versions (dispatch.h's RG_AVX2_PATHS), picked per call from the CPU (so the
+ * library stays portable x86-64); RG_NO_DISPATCH builds SSE2 only. */
+#if RG_AVX2_PATHS
+#define SOLVER_AVX2 1
+#include "avx2.h"
+#else
+#define SOLVER_AVX2 0
+#endif
+
 /* max and min without branches (x86 SSE: one instruction each; elsewhere plain C).  Both
  * return b when a is NaN, like the C expression. */
 #if defined(__SSE2__)
@@ -137,11 +147,21 @@ int32_t solver_fixed_list(const solver_constraint *c, int32_t n, int32_t *list)
     return k;
 }
 
+#if SOLVER_AVX2
+static int32_t prepare_position_avx2(solver_constraint *c, int32_t n, const float *v, const solver_params *p);
+#endif
+
 int32_t solver_prepare_position(solver_constraint *c, int32_t n, const rg_real *v,
                                 const solver_params *p)
 {
-    int32_t pushing = 0;
-    for (int32_t k = 0; k < n; k++) {
+    int32_t pushing = 0, k = 0;
+#if SOLVER_AVX2
+    if (__builtin_cpu_supports("avx2")) {
+        k = n - n % 8;
+        pushing = prepare_position_avx2(c, k, v, p);
+    }
+#endif
+    for (; k < n; k++) {
         solver_constraint *q = &c[k];
         const rg_real *va = v + 2 * q->a, *vb = v + 2 * q->b;
         rg_real vn = (vb[0] - va[0]) * q->nx + (vb[1] - va[1]) * q->ny;
@@ -307,15 +327,6 @@ void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t k
 }
 
 #if defined(__SSE2__) && !defined(RG_DOUBLE)
-/* The velocity sweep, the hot loop, also has an AVX2 version (dispatch.h's RG_AVX2_PATHS),
- * picked per call from the CPU (so the library stays portable x86-64); RG_NO_DISPATCH builds
- * SSE2 only. */
-#if RG_AVX2_PATHS
-#define SOLVER_AVX2 1
-#include <immintrin.h>
-#else
-#define SOLVER_AVX2 0
-#endif
 
 /* The lanes in SSE registers.  Velocities are pairs (x, y): two lanes' pairs load into one
  * register and shuffle into x and y vectors; the stores undo it.  Lanes of one row never
@@ -462,8 +473,79 @@ __attribute__((target("avx2"))) static void wide_iterate_avx2(solver_batch *s, i
 }
 #endif
 
+#if SOLVER_AVX2
+/* warm_start4's operations on all eight lanes (a's velocities stored before b's are read,
+ * as there: lanes of a row share no movable body, and the ground's velocity, +0, stays +0). */
+__attribute__((target("avx2"))) static void wide_warm_start_avx2(const solver_batch *s, int32_t r0, int32_t r1, float *v)
+{
+    for (int32_t r = r0; r < r1; r++) {
+        const solver_wide *q = &s->rows[r];
+        __m256 vax, vay, vbx, vby;
+        gather8(v, q->a, &vax, &vay);
+        __m256 nx = _mm256_loadu_ps(q->nx), ny = _mm256_loadu_ps(q->ny);
+        __m256 pn = _mm256_loadu_ps(q->pn), pt = _mm256_loadu_ps(q->pt);
+        __m256 px = _mm256_sub_ps(_mm256_mul_ps(pn, nx), _mm256_mul_ps(pt, ny));
+        __m256 py = _mm256_add_ps(_mm256_mul_ps(pn, ny), _mm256_mul_ps(pt, nx));
+        __m256 ima = _mm256_loadu_ps(q->ima), imb = _mm256_loadu_ps(q->imb);
+        scatter8(v, q->a, _mm256_sub_ps(vax, _mm256_mul_ps(px, ima)), _mm256_sub_ps(vay, _mm256_mul_ps(py, ima)));
+        gather8(v, q->b, &vbx, &vby);
+        scatter8(v, q->b, _mm256_add_ps(vbx, _mm256_mul_ps(px, imb)), _mm256_add_ps(vby, _mm256_mul_ps(py, imb)));
+    }
+}
+#endif
+
+#if SOLVER_AVX2
+/* solver_prepare_position's operations for rows c[0 .. n), n a multiple of 8, eight at once:
+ * the rows' first halves (a, b, ima, imb, nx, ny, m, mu) and second halves (vmin, s0, ...)
+ * through 8x8 transposes, the velocities through gather8. */
+__attribute__((target("avx2"))) static int32_t prepare_position_avx2(solver_constraint *c, int32_t n, const float *v,
+                                                                      const solver_params *p)
+{
+    const __m256 zero = _mm256_setzero_ps(), dt = _mm256_set1_ps(p->dt), inv_dt = _mm256_set1_ps(p->inv_dt);
+    const __m256 bias = _mm256_set1_ps(p->bias_rate), slop = _mm256_set1_ps(p->slop), max_push = _mm256_set1_ps(p->max_push);
+    int32_t pushing = 0;
+    for (int32_t k = 0; k < n; k += 8) {
+        solver_constraint *q = c + k;
+        __m256 r[8], h[8];
+        for (int l = 0; l < 8; l++) {
+            r[l] = _mm256_loadu_ps((const float *)(const void *)&q[l]);
+            h[l] = _mm256_loadu_ps(&q[l].vmin);
+        }
+        avx2_transpose8(r);
+        avx2_transpose8(h);
+        int32_t ia[8], ib[8];
+        _mm256_storeu_si256((__m256i *)(void *)ia, _mm256_castps_si256(r[0]));
+        _mm256_storeu_si256((__m256i *)(void *)ib, _mm256_castps_si256(r[1]));
+        __m256 vax, vay, vbx, vby;
+        gather8(v, ia, &vax, &vay);
+        gather8(v, ib, &vbx, &vby);
+        __m256 vn = _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(vbx, vax), r[4]), _mm256_mul_ps(_mm256_sub_ps(vby, vay), r[5]));
+        __m256 s1 = _mm256_add_ps(h[1], _mm256_mul_ps(vn, dt));
+        __m256 neg_s1 = _mm256_xor_ps(s1, _mm256_set1_ps(-0.0f));
+        __m256 push = _mm256_mul_ps(_mm256_mul_ps(bias, _mm256_sub_ps(neg_s1, slop)), inv_dt);
+        __m256 pushes = _mm256_cmp_ps(push, zero, _CMP_GT_OQ);
+        __m256 pmin = _mm256_and_ps(pushes, _mm256_min_ps(push, max_push)); /* push > 0 ? min : 0 */
+        pmin = _mm256_blendv_ps(pmin, _mm256_mul_ps(neg_s1, inv_dt), _mm256_cmp_ps(s1, zero, _CMP_GT_OQ));
+        float out[8];
+        _mm256_storeu_ps(out, pmin);
+        for (int l = 0; l < 8; l++) {
+            q[l].pmin = out[l];
+            q[l].pp = 0;
+        }
+        pushing += __builtin_popcount((unsigned)_mm256_movemask_ps(pushes));
+    }
+    return pushing;
+}
+#endif
+
 void solver_wide_warm_start(const solver_batch *s, int32_t r0, int32_t r1, rg_real *v)
 {
+#if SOLVER_AVX2
+    if (__builtin_cpu_supports("avx2")) {
+        wide_warm_start_avx2(s, r0, r1, v);
+        return;
+    }
+#endif
     for (int32_t r = r0; r < r1; r++)
         for (int h = 0; h < SOLVER_LANES; h += 4) warm_start4(&s->rows[r], h, v);
 }
