@@ -1,7 +1,7 @@
 /* avx2.h: helpers of the hand-written AVX2 paths (dispatch.h's RG_AVX2_PATHS): an 8x8
- * transpose, for records of eight floats in and out of eight lanes, and the fat-box test of
- * eight bodies.  Include only where RG_AVX2_PATHS is 1; every function is for callers built
- * with target("avx2"). */
+ * transpose, for records of eight floats in and out of eight lanes; the velocity pairs of
+ * eight solver bodies in and out of lanes; the fat-box test of eight bodies.  Include only
+ * where RG_AVX2_PATHS is 1; every function is for callers built with target("avx2"). */
 #ifndef RG_AVX2_H
 #define RG_AVX2_H
 
@@ -50,6 +50,40 @@ AVX2_INLINE uint32_t avx2_outside8(const bp_entry *e, const int32_t *slot, __m25
     __m256 inside = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(lx, f[0], _CMP_GE_OQ), _mm256_cmp_ps(ly, f[1], _CMP_GE_OQ)),
                                   _mm256_and_ps(_mm256_cmp_ps(ux, f[2], _CMP_LE_OQ), _mm256_cmp_ps(uy, f[3], _CMP_LE_OQ)));
     return (~(uint32_t)_mm256_movemask_ps(inside) & 0xFFu) | moved;
+}
+
+/* The pairs (x, y) of v at 2 idx[l], l = 0..7, as eight x and eight y. */
+AVX2_INLINE void avx2_gather_pairs(const float *v, const int32_t *idx, __m256 *x, __m256 *y)
+{
+    __m128 p01 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[0]));
+    p01 = _mm_loadh_pi(p01, (const __m64 *)(const void *)(v + 2 * idx[1]));
+    __m128 p23 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[2]));
+    p23 = _mm_loadh_pi(p23, (const __m64 *)(const void *)(v + 2 * idx[3]));
+    __m128 p45 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[4]));
+    p45 = _mm_loadh_pi(p45, (const __m64 *)(const void *)(v + 2 * idx[5]));
+    __m128 p67 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[6]));
+    p67 = _mm_loadh_pi(p67, (const __m64 *)(const void *)(v + 2 * idx[7]));
+    /* (x0 y0 x1 y1 | x4 y4 x5 y5) and (x2 y2 x3 y3 | x6 y6 x7 y7) */
+    __m256 lo = _mm256_insertf128_ps(_mm256_castps128_ps256(p01), p45, 1);
+    __m256 hi = _mm256_insertf128_ps(_mm256_castps128_ps256(p23), p67, 1);
+    *x = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0));
+    *y = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1));
+}
+
+/* And back: the pairs stored in order, lane 0 first. */
+AVX2_INLINE void avx2_scatter_pairs(float *v, const int32_t *idx, __m256 x, __m256 y)
+{
+    __m256 lo = _mm256_unpacklo_ps(x, y), hi = _mm256_unpackhi_ps(x, y);
+    __m128 p01 = _mm256_castps256_ps128(lo), p45 = _mm256_extractf128_ps(lo, 1);
+    __m128 p23 = _mm256_castps256_ps128(hi), p67 = _mm256_extractf128_ps(hi, 1);
+    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[0]), p01);
+    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[1]), p01);
+    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[2]), p23);
+    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[3]), p23);
+    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[4]), p45);
+    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[5]), p45);
+    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[6]), p67);
+    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[7]), p67);
 }
 
 /* Bits 0..7 of m as bytes 0 or 1 at out[0..8). */

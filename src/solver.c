@@ -412,47 +412,14 @@ static inline void iterate_position4(solver_wide *q, int h, float *pv)
 #if SOLVER_AVX2
 /* All eight lanes in AVX registers: the same operations on each lane as iterate4, so the same
  * results. */
-__attribute__((target("avx2"))) static inline void gather8(const float *v, const int32_t *idx, __m256 *x,
-                                                            __m256 *y)
-{
-    __m128 p01 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[0]));
-    p01 = _mm_loadh_pi(p01, (const __m64 *)(const void *)(v + 2 * idx[1]));
-    __m128 p23 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[2]));
-    p23 = _mm_loadh_pi(p23, (const __m64 *)(const void *)(v + 2 * idx[3]));
-    __m128 p45 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[4]));
-    p45 = _mm_loadh_pi(p45, (const __m64 *)(const void *)(v + 2 * idx[5]));
-    __m128 p67 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[6]));
-    p67 = _mm_loadh_pi(p67, (const __m64 *)(const void *)(v + 2 * idx[7]));
-    /* (x0 y0 x1 y1 | x4 y4 x5 y5) and (x2 y2 x3 y3 | x6 y6 x7 y7) */
-    __m256 lo = _mm256_insertf128_ps(_mm256_castps128_ps256(p01), p45, 1);
-    __m256 hi = _mm256_insertf128_ps(_mm256_castps128_ps256(p23), p67, 1);
-    *x = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0));
-    *y = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1));
-}
-
-__attribute__((target("avx2"))) static inline void scatter8(float *v, const int32_t *idx, __m256 x, __m256 y)
-{
-    __m256 lo = _mm256_unpacklo_ps(x, y), hi = _mm256_unpackhi_ps(x, y);
-    __m128 p01 = _mm256_castps256_ps128(lo), p45 = _mm256_extractf128_ps(lo, 1);
-    __m128 p23 = _mm256_castps256_ps128(hi), p67 = _mm256_extractf128_ps(hi, 1);
-    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[0]), p01);
-    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[1]), p01);
-    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[2]), p23);
-    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[3]), p23);
-    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[4]), p45);
-    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[5]), p45);
-    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[6]), p67);
-    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[7]), p67);
-}
-
 __attribute__((target("avx2"))) static void wide_iterate_avx2(solver_batch *s, int32_t r0, int32_t r1, float *v)
 {
     const __m256 zero = _mm256_setzero_ps();
     for (int32_t r = r0; r < r1; r++) {
         solver_wide *q = &s->rows[r];
         __m256 vax, vay, vbx, vby;
-        gather8(v, q->a, &vax, &vay);
-        gather8(v, q->b, &vbx, &vby);
+        avx2_gather_pairs(v, q->a, &vax, &vay);
+        avx2_gather_pairs(v, q->b, &vbx, &vby);
         __m256 nx = _mm256_loadu_ps(q->nx), ny = _mm256_loadu_ps(q->ny), m = _mm256_loadu_ps(q->m);
         __m256 pn0 = _mm256_loadu_ps(q->pn), pt0 = _mm256_loadu_ps(q->pt);
         __m256 dvx = _mm256_sub_ps(vbx, vax), dvy = _mm256_sub_ps(vby, vay);
@@ -467,8 +434,8 @@ __attribute__((target("avx2"))) static void wide_iterate_avx2(solver_batch *s, i
         __m256 px = _mm256_sub_ps(_mm256_mul_ps(ln, nx), _mm256_mul_ps(lt, ny));
         __m256 py = _mm256_add_ps(_mm256_mul_ps(ln, ny), _mm256_mul_ps(lt, nx));
         __m256 ima = _mm256_loadu_ps(q->ima), imb = _mm256_loadu_ps(q->imb);
-        scatter8(v, q->a, _mm256_sub_ps(vax, _mm256_mul_ps(px, ima)), _mm256_sub_ps(vay, _mm256_mul_ps(py, ima)));
-        scatter8(v, q->b, _mm256_add_ps(vbx, _mm256_mul_ps(px, imb)), _mm256_add_ps(vby, _mm256_mul_ps(py, imb)));
+        avx2_scatter_pairs(v, q->a, _mm256_sub_ps(vax, _mm256_mul_ps(px, ima)), _mm256_sub_ps(vay, _mm256_mul_ps(py, ima)));
+        avx2_scatter_pairs(v, q->b, _mm256_add_ps(vbx, _mm256_mul_ps(px, imb)), _mm256_add_ps(vby, _mm256_mul_ps(py, imb)));
     }
 }
 #endif
@@ -481,15 +448,15 @@ __attribute__((target("avx2"))) static void wide_warm_start_avx2(const solver_ba
     for (int32_t r = r0; r < r1; r++) {
         const solver_wide *q = &s->rows[r];
         __m256 vax, vay, vbx, vby;
-        gather8(v, q->a, &vax, &vay);
+        avx2_gather_pairs(v, q->a, &vax, &vay);
         __m256 nx = _mm256_loadu_ps(q->nx), ny = _mm256_loadu_ps(q->ny);
         __m256 pn = _mm256_loadu_ps(q->pn), pt = _mm256_loadu_ps(q->pt);
         __m256 px = _mm256_sub_ps(_mm256_mul_ps(pn, nx), _mm256_mul_ps(pt, ny));
         __m256 py = _mm256_add_ps(_mm256_mul_ps(pn, ny), _mm256_mul_ps(pt, nx));
         __m256 ima = _mm256_loadu_ps(q->ima), imb = _mm256_loadu_ps(q->imb);
-        scatter8(v, q->a, _mm256_sub_ps(vax, _mm256_mul_ps(px, ima)), _mm256_sub_ps(vay, _mm256_mul_ps(py, ima)));
-        gather8(v, q->b, &vbx, &vby);
-        scatter8(v, q->b, _mm256_add_ps(vbx, _mm256_mul_ps(px, imb)), _mm256_add_ps(vby, _mm256_mul_ps(py, imb)));
+        avx2_scatter_pairs(v, q->a, _mm256_sub_ps(vax, _mm256_mul_ps(px, ima)), _mm256_sub_ps(vay, _mm256_mul_ps(py, ima)));
+        avx2_gather_pairs(v, q->b, &vbx, &vby);
+        avx2_scatter_pairs(v, q->b, _mm256_add_ps(vbx, _mm256_mul_ps(px, imb)), _mm256_add_ps(vby, _mm256_mul_ps(py, imb)));
     }
 }
 #endif
@@ -517,8 +484,8 @@ __attribute__((target("avx2"))) static int32_t prepare_position_avx2(solver_cons
         _mm256_storeu_si256((__m256i *)(void *)ia, _mm256_castps_si256(r[0]));
         _mm256_storeu_si256((__m256i *)(void *)ib, _mm256_castps_si256(r[1]));
         __m256 vax, vay, vbx, vby;
-        gather8(v, ia, &vax, &vay);
-        gather8(v, ib, &vbx, &vby);
+        avx2_gather_pairs(v, ia, &vax, &vay);
+        avx2_gather_pairs(v, ib, &vbx, &vby);
         __m256 vn = _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(vbx, vax), r[4]), _mm256_mul_ps(_mm256_sub_ps(vby, vay), r[5]));
         __m256 s1 = _mm256_add_ps(h[1], _mm256_mul_ps(vn, dt));
         __m256 neg_s1 = _mm256_xor_ps(s1, _mm256_set1_ps(-0.0f));
