@@ -219,7 +219,8 @@ static FORCE_INLINE void resolve_body(const resolve_task *t, int what, int32_t q
 RESOLVE_AVX2 static inline void resolve_pairs_load(const float *p, __m256 *x, __m256 *y)
 {
     __m256 lo = _mm256_loadu_ps(p), hi = _mm256_loadu_ps(p + 8);
-    __m256 xs = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0)), ys = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1));
+    __m256 xs = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0)),
+           ys = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1));
     *x = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(xs), _MM_SHUFFLE(3, 1, 2, 0)));
     *y = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(ys), _MM_SHUFFLE(3, 1, 2, 0)));
 }
@@ -243,7 +244,8 @@ RESOLVE_AVX2 static void resolve_eight(const resolve_task *t, int what, int32_t 
     if (what == RESOLVE_LOAD) {
         __m256 movable = _mm256_cmp_ps(_mm256_loadu_ps(b->inv_mass + i), _mm256_setzero_ps(), _CMP_GT_OQ);
         __m256 z = _mm256_and_ps(movable, _mm256_set1_ps(-0.0f));
-        resolve_pairs_store(v, _mm256_add_ps(_mm256_loadu_ps(b->vx + i), z), _mm256_add_ps(_mm256_loadu_ps(b->vy + i), z));
+        resolve_pairs_store(v, _mm256_add_ps(_mm256_loadu_ps(b->vx + i), z),
+                            _mm256_add_ps(_mm256_loadu_ps(b->vy + i), z));
         return;
     }
     __m256 px, py;

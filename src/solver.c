@@ -425,17 +425,21 @@ __attribute__((target("avx2"))) static void wide_iterate_avx2(solver_batch *s, i
         __m256 dvx = _mm256_sub_ps(vbx, vax), dvy = _mm256_sub_ps(vby, vay);
         __m256 vn = _mm256_add_ps(_mm256_mul_ps(dvx, nx), _mm256_mul_ps(dvy, ny));
         __m256 vt = _mm256_sub_ps(_mm256_mul_ps(dvy, nx), _mm256_mul_ps(dvx, ny));
-        __m256 pn = _mm256_max_ps(_mm256_add_ps(pn0, _mm256_mul_ps(m, _mm256_sub_ps(_mm256_loadu_ps(q->vmin), vn))), zero);
+        __m256 pn =
+            _mm256_max_ps(_mm256_add_ps(pn0, _mm256_mul_ps(m, _mm256_sub_ps(_mm256_loadu_ps(q->vmin), vn))), zero);
         __m256 maxf = _mm256_mul_ps(_mm256_loadu_ps(q->mu), pn);
-        __m256 pt = _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(pt0, _mm256_mul_ps(m, vt)), _mm256_sub_ps(zero, maxf)), maxf);
+        __m256 pt =
+            _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(pt0, _mm256_mul_ps(m, vt)), _mm256_sub_ps(zero, maxf)), maxf);
         _mm256_storeu_ps(q->pn, pn);
         _mm256_storeu_ps(q->pt, pt);
         __m256 ln = _mm256_sub_ps(pn, pn0), lt = _mm256_sub_ps(pt, pt0);
         __m256 px = _mm256_sub_ps(_mm256_mul_ps(ln, nx), _mm256_mul_ps(lt, ny));
         __m256 py = _mm256_add_ps(_mm256_mul_ps(ln, ny), _mm256_mul_ps(lt, nx));
         __m256 ima = _mm256_loadu_ps(q->ima), imb = _mm256_loadu_ps(q->imb);
-        avx2_scatter_pairs(v, q->a, _mm256_sub_ps(vax, _mm256_mul_ps(px, ima)), _mm256_sub_ps(vay, _mm256_mul_ps(py, ima)));
-        avx2_scatter_pairs(v, q->b, _mm256_add_ps(vbx, _mm256_mul_ps(px, imb)), _mm256_add_ps(vby, _mm256_mul_ps(py, imb)));
+        avx2_scatter_pairs(v, q->a, _mm256_sub_ps(vax, _mm256_mul_ps(px, ima)),
+                           _mm256_sub_ps(vay, _mm256_mul_ps(py, ima)));
+        avx2_scatter_pairs(v, q->b, _mm256_add_ps(vbx, _mm256_mul_ps(px, imb)),
+                           _mm256_add_ps(vby, _mm256_mul_ps(py, imb)));
     }
 }
 #endif
@@ -443,7 +447,8 @@ __attribute__((target("avx2"))) static void wide_iterate_avx2(solver_batch *s, i
 #if SOLVER_AVX2
 /* warm_start4's operations on all eight lanes (a's velocities stored before b's are read,
  * as there: lanes of a row share no movable body, and the ground's velocity, +0, stays +0). */
-__attribute__((target("avx2"))) static void wide_warm_start_avx2(const solver_batch *s, int32_t r0, int32_t r1, float *v)
+__attribute__((target("avx2"))) static void wide_warm_start_avx2(const solver_batch *s, int32_t r0, int32_t r1,
+                                                                 float *v)
 {
     for (int32_t r = r0; r < r1; r++) {
         const solver_wide *q = &s->rows[r];
@@ -454,9 +459,11 @@ __attribute__((target("avx2"))) static void wide_warm_start_avx2(const solver_ba
         __m256 px = _mm256_sub_ps(_mm256_mul_ps(pn, nx), _mm256_mul_ps(pt, ny));
         __m256 py = _mm256_add_ps(_mm256_mul_ps(pn, ny), _mm256_mul_ps(pt, nx));
         __m256 ima = _mm256_loadu_ps(q->ima), imb = _mm256_loadu_ps(q->imb);
-        avx2_scatter_pairs(v, q->a, _mm256_sub_ps(vax, _mm256_mul_ps(px, ima)), _mm256_sub_ps(vay, _mm256_mul_ps(py, ima)));
+        avx2_scatter_pairs(v, q->a, _mm256_sub_ps(vax, _mm256_mul_ps(px, ima)),
+                           _mm256_sub_ps(vay, _mm256_mul_ps(py, ima)));
         avx2_gather_pairs(v, q->b, &vbx, &vby);
-        avx2_scatter_pairs(v, q->b, _mm256_add_ps(vbx, _mm256_mul_ps(px, imb)), _mm256_add_ps(vby, _mm256_mul_ps(py, imb)));
+        avx2_scatter_pairs(v, q->b, _mm256_add_ps(vbx, _mm256_mul_ps(px, imb)),
+                           _mm256_add_ps(vby, _mm256_mul_ps(py, imb)));
     }
 }
 #endif
@@ -469,7 +476,8 @@ __attribute__((target("avx2"))) static int32_t prepare_position_avx2(solver_cons
                                                                       const solver_params *p)
 {
     const __m256 zero = _mm256_setzero_ps(), dt = _mm256_set1_ps(p->dt), inv_dt = _mm256_set1_ps(p->inv_dt);
-    const __m256 bias = _mm256_set1_ps(p->bias_rate), slop = _mm256_set1_ps(p->slop), max_push = _mm256_set1_ps(p->max_push);
+    const __m256 bias = _mm256_set1_ps(p->bias_rate), slop = _mm256_set1_ps(p->slop),
+                 max_push = _mm256_set1_ps(p->max_push);
     int32_t pushing = 0;
     for (int32_t k = 0; k < n; k += 8) {
         solver_constraint *q = c + k;
@@ -486,7 +494,8 @@ __attribute__((target("avx2"))) static int32_t prepare_position_avx2(solver_cons
         __m256 vax, vay, vbx, vby;
         avx2_gather_pairs(v, ia, &vax, &vay);
         avx2_gather_pairs(v, ib, &vbx, &vby);
-        __m256 vn = _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(vbx, vax), r[4]), _mm256_mul_ps(_mm256_sub_ps(vby, vay), r[5]));
+        __m256 vn =
+            _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(vbx, vax), r[4]), _mm256_mul_ps(_mm256_sub_ps(vby, vay), r[5]));
         __m256 s1 = _mm256_add_ps(h[1], _mm256_mul_ps(vn, dt));
         __m256 neg_s1 = _mm256_xor_ps(s1, _mm256_set1_ps(-0.0f));
         __m256 push = _mm256_mul_ps(_mm256_mul_ps(bias, _mm256_sub_ps(neg_s1, slop)), inv_dt);

@@ -85,7 +85,8 @@ AVX2_FN static void views_eight(const views_task *t, int32_t k, int32_t i)
     __m256 sx = _mm256_loadu_ps(ns->sx0 + k), sy = _mm256_loadu_ps(ns->sy0 + k);
     __m256 mx = _mm256_sub_ps(x1, sx), my = _mm256_sub_ps(y1, sy);
     /* views_box */
-    __m256 lx = _mm256_sub_ps(x1, h0), ly = _mm256_sub_ps(y1, h1), ux = _mm256_add_ps(x1, h0), uy = _mm256_add_ps(y1, h1);
+    __m256 lx = _mm256_sub_ps(x1, h0), ly = _mm256_sub_ps(y1, h1), ux = _mm256_add_ps(x1, h0),
+           uy = _mm256_add_ps(y1, h1);
     if (cw->continuous) {
         lx = _mm256_min_ps(lx, _mm256_sub_ps(lx, mx));
         ly = _mm256_min_ps(ly, _mm256_sub_ps(ly, my));
@@ -106,8 +107,10 @@ AVX2_FN static void views_eight(const views_task *t, int32_t k, int32_t i)
     __m256 kind = _mm256_castsi256_ps(_mm256_loadu_si256((const __m256i *)(const void *)(b->shape + i)));
     __m256 gi_lo = _mm256_unpacklo_ps(gs, im), gi_hi = _mm256_unpackhi_ps(gs, im);
     __m256 kp_lo = _mm256_unpacklo_ps(kind, _mm256_setzero_ps()), kp_hi = _mm256_unpackhi_ps(kind, _mm256_setzero_ps());
-    __m256 q[4] = { _mm256_shuffle_ps(gi_lo, kp_lo, _MM_SHUFFLE(1, 0, 1, 0)), _mm256_shuffle_ps(gi_lo, kp_lo, _MM_SHUFFLE(3, 2, 3, 2)),
-                    _mm256_shuffle_ps(gi_hi, kp_hi, _MM_SHUFFLE(1, 0, 1, 0)), _mm256_shuffle_ps(gi_hi, kp_hi, _MM_SHUFFLE(3, 2, 3, 2)) };
+    __m256 q[4] = {_mm256_shuffle_ps(gi_lo, kp_lo, _MM_SHUFFLE(1, 0, 1, 0)),
+                   _mm256_shuffle_ps(gi_lo, kp_lo, _MM_SHUFFLE(3, 2, 3, 2)),
+                   _mm256_shuffle_ps(gi_hi, kp_hi, _MM_SHUFFLE(1, 0, 1, 0)),
+                   _mm256_shuffle_ps(gi_hi, kp_hi, _MM_SHUFFLE(3, 2, 3, 2))};
     cbody *cb = ns->cb + i;
     for (int l = 0; l < 8; l++) {
         _mm256_storeu_ps(&cb[l].sx, r[l]);
@@ -119,7 +122,8 @@ AVX2_FN static void views_eight(const views_task *t, int32_t k, int32_t i)
     avx2_bytes8(ns->refresh + k, avx2_outside8(cw->bp.e, b->slot + i, lx, ly, ux, uy));
     if (t->x->unite) {
         int32_t *uf = cw->island.uf + k;
-        _mm256_storeu_si256((__m256i *)(void *)uf, _mm256_add_epi32(_mm256_set1_epi32(k), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+        _mm256_storeu_si256((__m256i *)(void *)uf,
+                            _mm256_add_epi32(_mm256_set1_epi32(k), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
     }
 }
 #endif
