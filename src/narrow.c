@@ -12,7 +12,6 @@
 #include "vec2.h"
 #include "views.h"
 
-
 static int narrow_pusher(const body_store *b, int32_t j, int touching)
 {
     if (b->type[j] == RG_BODY_DYNAMIC) return touching;
@@ -267,8 +266,6 @@ static FORCE_INLINE uint32_t narrow_decide(rg_world *w, contact *c, int32_t ia, 
     return bits | (now ? ND_NOW : 0) | (was ? ND_WAS : 0);
 }
 
-/* Measures the awake contacts [begin, end) and decides those that need no order, each in
- * one visit (a contact's decision reads only its own measurement and its bodies' views). */
 /* Awake contacts [k0, k1) (at most NARROW_WIDE_LANES) with their bodies and views, and what
  * narrow_wide_decide did of them (wide: the step may use it). */
 typedef struct narrow_block {
@@ -314,6 +311,9 @@ static FORCE_INLINE void narrow_block_run(rg_world *w, const collide_step *x, in
 #endif
 }
 
+/* Measures the awake contacts [begin, end) and decides those that need no order, each in
+ * one visit (a contact's decision reads only its own measurement and its bodies' views);
+ * in blocks of eight, the common case's wide (narrow_wide.h). */
 static void narrow_measure_decide_range(int32_t begin, int32_t end, int32_t worker, void *context)
 {
     narrow_task *t = context;
@@ -367,8 +367,8 @@ static void narrow_events_of(rg_world *w, const contact *c, uint32_t bits)
 /* What a contact's decision does to the rest of the world, in contact order: its solver row,
  * events, grounded flags, islands, waking (on the stepping thread, or, where nothing wakes
  * and the rows are staged, beside the solve's first part: narrow_commit_late). */
-static FORCE_INLINE void narrow_commit(rg_world *w, int32_t id, int32_t ia, int32_t ib, collide_step *x, uint32_t bits,
-                                 int stage, int *woke)
+static FORCE_INLINE void narrow_commit(rg_world *w, int32_t id, int32_t ia, int32_t ib, collide_step *x,
+                                       uint32_t bits, int stage, int *woke)
 {
     collide_world *cw = &w->coll;
     contact_store *cs = &cw->contacts;
@@ -545,8 +545,8 @@ void narrow_run(rg_world *w, collide_step *x)
     t.wide = NARROW_WIDE && narrow_wide_ready(w);
     int32_t measured = cs->n_awake, workers = task_workers(w), in_order = 0;
     /* One thread and no body asleep (so nothing wakes, and no commit changes what a later
-     * decision reads): each contact is measured, decided and committed in the one visit of
-     * the walk below, the same work in the same order as a pass of its own before it. */
+     * decision reads): the contacts are measured, decided and committed in the one walk
+     * below, block by block, the same work as a pass of its own before it. */
     if (workers < 2 && w->b.n_moving == w->b.n_active) measured = 0;
     for (int32_t k = 0; k < workers; k++) t.in_order[k] = 0;
     task_for(w, narrow_measure_decide_range, measured, NARROW_RANGE, &t);
@@ -564,10 +564,11 @@ void narrow_run(rg_world *w, collide_step *x)
         }
     }
     if (measured == 0) {
-        /* Measured here, in blocks: nothing wakes (no body asleep), so the contacts are as
-         * many as at the start and a decision reads nothing a commit writes (the hook, the
-         * one caller outside, may change nothing), and a block's decisions, taken before
-         * its commits, are those the commits would have followed. */
+        /* Measured here, in blocks of eight: with no body asleep nothing wakes, so the
+         * contacts stay as many as at the start, and no decision reads what a commit writes
+         * (the pre-solve hook, the one caller outside, may change nothing), so a block's wide
+         * decisions, taken before its commits, are those a walk one by one takes.  A contact
+         * not done wide is measured and decided in its turn. */
         narrow_block nb;
         for (int32_t k0 = 0; k0 < cs->n_awake; k0 += NARROW_WIDE_LANES) {
             int32_t k1 = cs->n_awake - k0 > NARROW_WIDE_LANES ? k0 + NARROW_WIDE_LANES : cs->n_awake;
