@@ -211,9 +211,9 @@ static FORCE_INLINE void resolve_body(const resolve_task *t, int what, int32_t q
 }
 
 #if RG_AVX2_PATHS
-#include <immintrin.h>
+#include "avx2.h"
 
-#define RESOLVE_AVX2 __attribute__((target("avx2")))
+#define RESOLVE_AVX2 AVX2_FN
 
 /* The pairs (x, y) of p[0 .. 16) as eight x and eight y, and back. */
 RESOLVE_AVX2 static inline void resolve_pairs_load(const float *p, __m256 *x, __m256 *y)

@@ -106,7 +106,8 @@ AVX2_FN static void views_eight(const views_task *t, int32_t k, int32_t i)
     __m256 im = _mm256_loadu_ps(b->inv_mass + i);
     __m256 kind = _mm256_castsi256_ps(_mm256_loadu_si256((const __m256i *)(const void *)(b->shape + i)));
     __m256 gi_lo = _mm256_unpacklo_ps(gs, im), gi_hi = _mm256_unpackhi_ps(gs, im);
-    __m256 kp_lo = _mm256_unpacklo_ps(kind, _mm256_setzero_ps()), kp_hi = _mm256_unpackhi_ps(kind, _mm256_setzero_ps());
+    __m256 kp_lo = _mm256_unpacklo_ps(kind, _mm256_setzero_ps());
+    __m256 kp_hi = _mm256_unpackhi_ps(kind, _mm256_setzero_ps());
     __m256 q[4] = {_mm256_shuffle_ps(gi_lo, kp_lo, _MM_SHUFFLE(1, 0, 1, 0)),
                    _mm256_shuffle_ps(gi_lo, kp_lo, _MM_SHUFFLE(3, 2, 3, 2)),
                    _mm256_shuffle_ps(gi_hi, kp_hi, _MM_SHUFFLE(1, 0, 1, 0)),
