@@ -57,22 +57,30 @@ AVX2_INLINE uint32_t avx2_outside8(const bp_entry *e, const int32_t *slot, __m25
     return (~(uint32_t)_mm256_movemask_ps(inside) & 0xFFu) | moved;
 }
 
-/* The pairs (x, y) of v at 2 idx[l], l = 0..7, as eight x and eight y. */
-AVX2_INLINE void avx2_gather_pairs(const float *v, const int32_t *idx, __m256 *x, __m256 *y)
+/* The pairs (x, y) at p[l], l = 0..7, as eight x and eight y. */
+AVX2_INLINE void avx2_pairs_at(const float *const *p, __m256 *x, __m256 *y)
 {
-    __m128 p01 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[0]));
-    p01 = _mm_loadh_pi(p01, (const __m64 *)(const void *)(v + 2 * idx[1]));
-    __m128 p23 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[2]));
-    p23 = _mm_loadh_pi(p23, (const __m64 *)(const void *)(v + 2 * idx[3]));
-    __m128 p45 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[4]));
-    p45 = _mm_loadh_pi(p45, (const __m64 *)(const void *)(v + 2 * idx[5]));
-    __m128 p67 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[6]));
-    p67 = _mm_loadh_pi(p67, (const __m64 *)(const void *)(v + 2 * idx[7]));
+    __m128 p01 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)p[0]);
+    p01 = _mm_loadh_pi(p01, (const __m64 *)(const void *)p[1]);
+    __m128 p23 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)p[2]);
+    p23 = _mm_loadh_pi(p23, (const __m64 *)(const void *)p[3]);
+    __m128 p45 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)p[4]);
+    p45 = _mm_loadh_pi(p45, (const __m64 *)(const void *)p[5]);
+    __m128 p67 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)p[6]);
+    p67 = _mm_loadh_pi(p67, (const __m64 *)(const void *)p[7]);
     /* (x0 y0 x1 y1 | x4 y4 x5 y5) and (x2 y2 x3 y3 | x6 y6 x7 y7) */
     __m256 lo = _mm256_insertf128_ps(_mm256_castps128_ps256(p01), p45, 1);
     __m256 hi = _mm256_insertf128_ps(_mm256_castps128_ps256(p23), p67, 1);
     *x = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0));
     *y = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1));
+}
+
+/* The pairs (x, y) of v at 2 idx[l], l = 0..7 (solver bodies' velocities). */
+AVX2_INLINE void avx2_gather_pairs(const float *v, const int32_t *idx, __m256 *x, __m256 *y)
+{
+    const float *p[8] = {v + 2 * idx[0], v + 2 * idx[1], v + 2 * idx[2], v + 2 * idx[3],
+                         v + 2 * idx[4], v + 2 * idx[5], v + 2 * idx[6], v + 2 * idx[7]};
+    avx2_pairs_at(p, x, y);
 }
 
 /* And back: the pairs stored in order, lane 0 first. */

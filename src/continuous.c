@@ -136,9 +136,10 @@ static void continuous_sweep_range(int32_t k0, int32_t k1, int32_t worker, void 
     for (int32_t k = k0; k < k1; k++) {
         int32_t i = ns->adense[k];
 #if RG_AVX2_PATHS
-        if (wide && (k - k0) % 8 == 0 && k1 - k >= 8 && ns->adense[k + 7] == i + 7) {
+        /* at the start of each block of eight */
+        if (wide && (k - k0) % 8 == 0 && k1 - k >= 8) {
             int run = 1;
-            for (int l = 1; l < 7; l++) run &= ns->adense[k + l] == i + l;
+            for (int l = 1; l < 8; l++) run &= ns->adense[k + l] == i + l;
             if (run && continuous_fast8(w, k, i) == 0) {
                 k += 7;
                 continue;

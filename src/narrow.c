@@ -283,21 +283,21 @@ static FORCE_INLINE void narrow_block_run(rg_world *w, const collide_step *x, in
 {
     /* in locals: the stores into nb could alias them, which would read them again */
     contact *const cc = w->coll.contacts.c;
-    const int32_t *const awake = w->coll.contacts.awake, *const dense = w->body_pool.index;
+    const int32_t *const awake = w->coll.contacts.awake;
     const cbody *const cb = w->coll.views.cb;
     const int32_t nv = x->n;
     int32_t n = nb->n = k1 - k0;
     nb->done = 0;
     for (int32_t l = 0; l < n; l++) {
         contact *c = nb->c[l] = &cc[awake[k0 + l]];
-        int32_t ia = nb->ia[l] = dense[c->sa], ib = nb->ib[l] = dense[c->sb]; /* body_dense */
+        int32_t ia = nb->ia[l] = body_dense(w, c->sa), ib = nb->ib[l] = body_dense(w, c->sb);
         const cbody *a = nb->in.a[l] = ia < nv ? &cb[ia] : views_of(w, ia, nv, &nb->rest[2 * l]);
         const cbody *b = nb->in.b[l] = ib < nv ? &cb[ib] : views_of(w, ib, nv, &nb->rest[2 * l + 1]);
         nb->in.flags[l] = c->flags;
         nb->in.kind_a[l] = a->kind;
         nb->in.kind_b[l] = b->kind;
     }
-#if NARROW_WIDE
+#if RG_AVX2_PATHS
     if (!wide) return;
     for (int32_t l = n; l < NARROW_WIDE_LANES; l++) {
         nb->in.a[l] = nb->in.a[0];
@@ -542,7 +542,7 @@ void narrow_run(rg_world *w, collide_step *x)
     narrow_task t;
     t.w = w;
     t.x = x;
-    t.wide = NARROW_WIDE && narrow_wide_ready(w);
+    t.wide = RG_AVX2_PATHS && narrow_wide_ready(w);
     int32_t measured = cs->n_awake, workers = task_workers(w), in_order = 0;
     /* One thread and no body asleep (so nothing wakes, and no commit changes what a later
      * decision reads): the contacts are measured, decided and committed in the one walk

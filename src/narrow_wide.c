@@ -7,7 +7,7 @@
 
 int narrow_wide_ready(const struct rg_world *w)
 {
-#if NARROW_WIDE
+#if RG_AVX2_PATHS
     return w->coll.continuous && w->pre_solve == NULL && __builtin_cpu_supports("avx2");
 #else
     (void)w;
@@ -15,21 +15,18 @@ int narrow_wide_ready(const struct rg_world *w)
 #endif
 }
 
-#if NARROW_WIDE
+#if RG_AVX2_PATHS
 #include <float.h>
 
 #include "avx2.h"
-
-#define NARROW_WIDE_AVX2 AVX2_FN
-#define NARROW_WIDE_INLINE AVX2_INLINE
 
 typedef struct narrow_wide_body {
     __m256 sx, sy, dx, dy, vx, vy, hx, hy, gs, im;
 } narrow_wide_body;
 
 /* The eight views' fields, lane l from v[l]: the first eight (sx .. hy) as an 8x8 transpose,
- * gs and im as pairs. */
-NARROW_WIDE_INLINE void narrow_wide_gather(const cbody *const *v, narrow_wide_body *o)
+ * gs and im as pairs (they follow each other in a cbody). */
+AVX2_INLINE void narrow_wide_gather(const cbody *const *v, narrow_wide_body *o)
 {
     __m256 r[8] = {_mm256_loadu_ps(&v[0]->sx), _mm256_loadu_ps(&v[1]->sx), _mm256_loadu_ps(&v[2]->sx),
                    _mm256_loadu_ps(&v[3]->sx), _mm256_loadu_ps(&v[4]->sx), _mm256_loadu_ps(&v[5]->sx),
@@ -43,36 +40,26 @@ NARROW_WIDE_INLINE void narrow_wide_gather(const cbody *const *v, narrow_wide_bo
     o->vy = r[5];
     o->hx = r[6];
     o->hy = r[7];
-    __m128 p01 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)&v[0]->gs);
-    p01 = _mm_loadh_pi(p01, (const __m64 *)(const void *)&v[1]->gs);
-    __m128 p23 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)&v[2]->gs);
-    p23 = _mm_loadh_pi(p23, (const __m64 *)(const void *)&v[3]->gs);
-    __m128 p45 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)&v[4]->gs);
-    p45 = _mm_loadh_pi(p45, (const __m64 *)(const void *)&v[5]->gs);
-    __m128 p67 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)&v[6]->gs);
-    p67 = _mm_loadh_pi(p67, (const __m64 *)(const void *)&v[7]->gs);
-    __m256 lo = _mm256_insertf128_ps(_mm256_castps128_ps256(p01), p45, 1);
-    __m256 hi = _mm256_insertf128_ps(_mm256_castps128_ps256(p23), p67, 1);
-    o->gs = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0));
-    o->im = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1));
+    const float *gi[8] = {&v[0]->gs, &v[1]->gs, &v[2]->gs, &v[3]->gs, &v[4]->gs, &v[5]->gs, &v[6]->gs, &v[7]->gs};
+    avx2_pairs_at(gi, &o->gs, &o->im);
 }
 
-NARROW_WIDE_INLINE __m256 narrow_wide_abs(__m256 v) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), v); }
-NARROW_WIDE_INLINE __m256 narrow_wide_neg(__m256 v) { return _mm256_xor_ps(_mm256_set1_ps(-0.0f), v); }
+AVX2_INLINE __m256 narrow_wide_abs(__m256 v) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), v); }
+AVX2_INLINE __m256 narrow_wide_neg(__m256 v) { return _mm256_xor_ps(_mm256_set1_ps(-0.0f), v); }
 /* coll_sign: v < 0 ? -1 : 1 */
-NARROW_WIDE_INLINE __m256 narrow_wide_sign(__m256 v)
+AVX2_INLINE __m256 narrow_wide_sign(__m256 v)
 {
     return _mm256_blendv_ps(_mm256_set1_ps(1.0f), _mm256_set1_ps(-1.0f),
                             _mm256_cmp_ps(v, _mm256_setzero_ps(), _CMP_LT_OQ));
 }
 /* m ? a : b */
-NARROW_WIDE_INLINE __m256 narrow_wide_pick(__m256 m, __m256 a, __m256 b) { return _mm256_blendv_ps(b, a, m); }
+AVX2_INLINE __m256 narrow_wide_pick(__m256 m, __m256 a, __m256 b) { return _mm256_blendv_ps(b, a, m); }
 #define NARROW_WIDE_CMP(a, b, op) _mm256_cmp_ps((a), (b), (op))
 #define NARROW_WIDE_AND(a, b) _mm256_and_ps((a), (b))
 #define NARROW_WIDE_OR(a, b) _mm256_or_ps((a), (b))
 
 /* narrow_far_apart, for the lanes whose pair is not touching (the caller masks it). */
-NARROW_WIDE_INLINE __m256 narrow_wide_far_apart(const narrow_wide_body *A, const narrow_wide_body *B, __m256 circles,
+AVX2_INLINE __m256 narrow_wide_far_apart(const narrow_wide_body *A, const narrow_wide_body *B, __m256 circles,
                                                 __m256 slop)
 {
     __m256 gx = _mm256_sub_ps(narrow_wide_abs(_mm256_sub_ps(B->sx, A->sx)), _mm256_add_ps(A->hx, B->hx));
@@ -98,7 +85,7 @@ typedef struct narrow_wide_manifold {
 } narrow_wide_manifold;
 
 /* coll_contact_boxes: the grazing faces first, else coll_boxes. */
-NARROW_WIDE_INLINE void narrow_wide_boxes(const narrow_wide_body *A, const narrow_wide_body *B, __m256 rx, __m256 ry,
+AVX2_INLINE void narrow_wide_boxes(const narrow_wide_body *A, const narrow_wide_body *B, __m256 rx, __m256 ry,
                                           __m256 tol, narrow_wide_manifold *m)
 {
     const __m256 zero = _mm256_setzero_ps(), half = _mm256_set1_ps(0.5f);
@@ -146,7 +133,7 @@ NARROW_WIDE_INLINE void narrow_wide_boxes(const narrow_wide_body *A, const narro
 }
 
 /* narrow_measure's two circles at the start of the step; depth is -s0. */
-NARROW_WIDE_INLINE void narrow_wide_circles(const narrow_wide_body *A, const narrow_wide_body *B,
+AVX2_INLINE void narrow_wide_circles(const narrow_wide_body *A, const narrow_wide_body *B,
                                             narrow_wide_manifold *m)
 {
     const __m256 zero = _mm256_setzero_ps();
@@ -166,7 +153,7 @@ NARROW_WIDE_INLINE void narrow_wide_circles(const narrow_wide_body *A, const nar
 }
 
 /* narrow_is_ground, for the lanes of mask `has` (gs != 0). */
-NARROW_WIDE_INLINE __m256 narrow_wide_ground(__m256 gx, __m256 gy, __m256 gs, __m256 nx, __m256 ny)
+AVX2_INLINE __m256 narrow_wide_ground(__m256 gx, __m256 gy, __m256 gs, __m256 nx, __m256 ny)
 {
     const __m256 zero = _mm256_setzero_ps();
     __m256 ex = _mm256_mul_ps(gx, gs), ey = _mm256_mul_ps(gy, gs);
@@ -179,12 +166,12 @@ NARROW_WIDE_INLINE __m256 narrow_wide_ground(__m256 gx, __m256 gy, __m256 gs, __
 }
 
 /* rg_finite */
-NARROW_WIDE_INLINE __m256 narrow_wide_finite(__m256 v)
+AVX2_INLINE __m256 narrow_wide_finite(__m256 v)
 {
     return NARROW_WIDE_CMP(narrow_wide_abs(v), _mm256_set1_ps(FLT_MAX), _CMP_LE_OQ);
 }
 
-NARROW_WIDE_AVX2 uint32_t narrow_wide_decide(const struct rg_world *w, const narrow_lanes *in, contact *const *c,
+AVX2_FN uint32_t narrow_wide_decide(const struct rg_world *w, const narrow_lanes *in, contact *const *c,
                                              uint32_t *bits)
 {
     const __m256i zero_i = _mm256_setzero_si256();

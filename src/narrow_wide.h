@@ -25,9 +25,8 @@
 #define ND_GROUND_A 32u /* its surface grounds a (touching, a's gravity against the normal) */
 #define ND_GROUND_B 64u
 
-/* The wide path (dispatch.h), picked per step from the CPU (narrow_wide_ready); RG_NO_DISPATCH
- * and the double build have the scalar code alone. */
-#define NARROW_WIDE RG_AVX2_PATHS
+/* The wide path is built where dispatch.h's RG_AVX2_PATHS is 1 and picked per step from the
+ * CPU (narrow_wide_ready); RG_NO_DISPATCH and the double build have the scalar code alone. */
 
 #define NARROW_WIDE_LANES 8
 

@@ -213,10 +213,9 @@ static FORCE_INLINE void resolve_body(const resolve_task *t, int what, int32_t q
 #if RG_AVX2_PATHS
 #include "avx2.h"
 
-#define RESOLVE_AVX2 AVX2_FN
 
 /* The pairs (x, y) of p[0 .. 16) as eight x and eight y, and back. */
-RESOLVE_AVX2 static inline void resolve_pairs_load(const float *p, __m256 *x, __m256 *y)
+AVX2_FN static inline void resolve_pairs_load(const float *p, __m256 *x, __m256 *y)
 {
     __m256 lo = _mm256_loadu_ps(p), hi = _mm256_loadu_ps(p + 8);
     __m256 xs = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0)),
@@ -225,7 +224,7 @@ RESOLVE_AVX2 static inline void resolve_pairs_load(const float *p, __m256 *x, __
     *y = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(ys), _MM_SHUFFLE(3, 1, 2, 0)));
 }
 
-RESOLVE_AVX2 static inline void resolve_pairs_store(float *p, __m256 x, __m256 y)
+AVX2_FN static inline void resolve_pairs_store(float *p, __m256 x, __m256 y)
 {
     __m256 lo = _mm256_unpacklo_ps(x, y), hi = _mm256_unpackhi_ps(x, y);
     _mm256_storeu_ps(p, _mm256_permute2f128_ps(lo, hi, 0x20));
@@ -234,7 +233,7 @@ RESOLVE_AVX2 static inline void resolve_pairs_store(float *p, __m256 x, __m256 y
 
 /* resolve_body of solver bodies q .. q + 7 (all met by rows): the same operations, eight at
  * once; a timed body's lanes take the timed branch's results. */
-RESOLVE_AVX2 static void resolve_eight(const resolve_task *t, int what, int32_t q)
+AVX2_FN static void resolve_eight(const resolve_task *t, int what, int32_t q)
 {
     body_store *b = &t->w->b;
     const resolve_state *rs = &t->w->coll.resolve;
@@ -277,7 +276,7 @@ RESOLVE_AVX2 static void resolve_eight(const resolve_task *t, int what, int32_t 
 }
 
 /* Whether the rows meet each of solver bodies q .. q + 7. */
-RESOLVE_AVX2 static inline int resolve_met8(const resolve_state *rs, int32_t q)
+AVX2_FN static inline int resolve_met8(const resolve_state *rs, int32_t q)
 {
     __m256i s = _mm256_loadu_si256((const __m256i *)(const void *)(rs->sstamp + q - 1));
     return _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(s, _mm256_set1_epi32((int)rs->gen)))) == 0xFF;

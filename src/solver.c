@@ -412,7 +412,7 @@ static inline void iterate_position4(solver_wide *q, int h, float *pv)
 #if SOLVER_AVX2
 /* All eight lanes in AVX registers: the same operations on each lane as iterate4, so the same
  * results. */
-__attribute__((target("avx2"))) static void wide_iterate_avx2(solver_batch *s, int32_t r0, int32_t r1, float *v)
+AVX2_FN static void wide_iterate_avx2(solver_batch *s, int32_t r0, int32_t r1, float *v)
 {
     const __m256 zero = _mm256_setzero_ps();
     for (int32_t r = r0; r < r1; r++) {
@@ -447,7 +447,7 @@ __attribute__((target("avx2"))) static void wide_iterate_avx2(solver_batch *s, i
 #if SOLVER_AVX2
 /* warm_start4's operations on all eight lanes (a's velocities stored before b's are read,
  * as there: lanes of a row share no movable body, and the ground's velocity, +0, stays +0). */
-__attribute__((target("avx2"))) static void wide_warm_start_avx2(const solver_batch *s, int32_t r0, int32_t r1,
+AVX2_FN static void wide_warm_start_avx2(const solver_batch *s, int32_t r0, int32_t r1,
                                                                  float *v)
 {
     for (int32_t r = r0; r < r1; r++) {
@@ -472,7 +472,7 @@ __attribute__((target("avx2"))) static void wide_warm_start_avx2(const solver_ba
 /* solver_prepare_position's operations for rows c[0 .. n), n a multiple of 8, eight at once:
  * the rows' first halves (a, b, ima, imb, nx, ny, m, mu) and second halves (vmin, s0, ...)
  * through 8x8 transposes, the velocities through gather8. */
-__attribute__((target("avx2"))) static int32_t prepare_position_avx2(solver_constraint *c, int32_t n, const float *v,
+AVX2_FN static int32_t prepare_position_avx2(solver_constraint *c, int32_t n, const float *v,
                                                                       const solver_params *p)
 {
     const __m256 zero = _mm256_setzero_ps(), dt = _mm256_set1_ps(p->dt), inv_dt = _mm256_set1_ps(p->inv_dt);
