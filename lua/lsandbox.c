@@ -238,11 +238,11 @@ static int safe_require(lua_State *L)
     return 1;
 }
 
-/* string.rep, with the empty case answered at once: the stock one loops n times copying
- * nothing, and n may be 2^62. */
+/* string.rep, with the empty case answered at once (the stock one loops n times copying
+ * nothing, and n may be 2^62) and the copy made in O(log n) memcpy calls. */
 static int safe_rep(lua_State *L)
 {
-    size_t l, lsep, total;
+    size_t l, lsep, total, done, step;
     const char *s = luaL_checklstring(L, 1, &l);
     lua_Integer n = luaL_checkinteger(L, 2);
     const char *sep = luaL_optlstring(L, 3, "", &lsep);
@@ -262,14 +262,17 @@ static int safe_rep(lua_State *L)
             return luaL_error(L, "resulting string (%I bytes) would not fit in the memory cap "
                                  "(%I MiB)", (lua_Integer)total, (lua_Integer)(sb->limit >> 20));
     }
+    /* The result is s..sep repeated, cut after the last s: one piece, then copies of what is
+     * written, doubling, so the time goes with the bytes (which the allocation charged) and
+     * not with n (the stock loop's 12 million memcpy calls of one byte take 0.25 s in the
+     * sanitized fuzzer, for an allocation charged 200,000 units). */
     p = luaL_buffinitsize(L, &b, total);
-    for (; n > 1; n--) {
-        memcpy(p, s, l);
-        p += l;
-        memcpy(p, sep, lsep);
-        p += lsep;
-    }
     memcpy(p, s, l);
+    if (n > 1) memcpy(p + l, sep, lsep);
+    for (done = n > 1 ? l + lsep : l; done < total; done += step) {
+        step = done < total - done ? done : total - done;
+        memcpy(p + done, p, step);
+    }
     luaL_pushresultsize(&b, total);
     return 1;
 }

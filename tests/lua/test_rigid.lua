@@ -713,6 +713,15 @@ if sandboxed then
     eq(("x"):rep(0), "")
     raises("resulting string too large", string.rep, "xx", math.maxinteger)
     raises("would not fit in the memory cap", string.rep, "x", 2 ^ 40)
+    -- The doubling copy against a plain concatenation, at every count up to 40 (the partial
+    -- last copy falls at each offset) with and without a separator, empty pieces included.
+    for _, piece in ipairs({ { "", "," }, { "a", "" }, { "ab", "" }, { "abc", "-+" }, { "", "xy" } }) do
+      for n = 0, 40 do
+        local want = ""
+        for i = 1, n do want = want .. (i > 1 and piece[2] or "") .. piece[1] end
+        eq(string.rep(piece[1], n, piece[2]), want, "rep(" .. piece[1] .. ", " .. n .. ", " .. piece[2] .. ")")
+      end
+    end
     eq(("hello world"):find("o w"), 5)
     eq(("key=val"):match("(%w+)=(%w+)"), "key")
     eq(("a,b,c"):gsub(",", ";"), "a;b;c")
