@@ -2,17 +2,54 @@
  *
  * Each runs a loop in C that no instruction counts: select and string.char walk their
  * arguments (a call may pass a million, from table.unpack), table.unpack and string.byte push
- * as many results as asked, table.sort without a comparator runs n log n comparisons, and
- * tonumber or arithmetic on a string (the string metatable's __add and the rest) reads the
- * whole string, and print writes it.  Each wrapper calls the stock function and charges the meter by that count:
- * a value moved, a comparison or a byte read is a unit. */
+ * as many results as asked, table.sort without a comparator runs n log n comparisons,
+ * table.concat appends (and formats) each element, and tonumber or arithmetic on a string
+ * (the string metatable's __add and the rest) reads the whole string, and print writes it.
+ * Each wrapper calls the stock function and charges the meter by that count: a value moved,
+ * a comparison or a byte read is a unit; an element of table.concat is charged what it
+ * costs as units (an instruction's 1.8 ns): a string 16, an integer 110 and a float 280
+ * (table.concat of 200,000 elements, gcc -O2 build on a Zen 5 VM: 26, 194 and 510 ns per
+ * element), and 280 when the table has a metatable (its __index gives the values). */
 #include <lauxlib.h>
 #include <lua.h>
 #include <lualib.h>
 
 #include "lcount.h"
 
-enum { BY_ARGS, BY_RESULTS, BY_SORT, BY_STRINGS };
+enum { BY_ARGS, BY_RESULTS, BY_SORT, BY_STRINGS, BY_CONCAT };
+
+#define CONCAT_STRING  16
+#define CONCAT_INTEGER 110
+#define CONCAT_FLOAT   280
+
+/* table.concat(t [, sep [, i [, j]]]): what its elements i..j cost, read raw (the stock
+ * function raises on a bad argument or element, after the charge). */
+static double lcount_concat(lua_State *L)
+{
+    lua_Integer i, j;
+    double units = 0;
+    if (lua_type(L, 1) != LUA_TTABLE) return 0;
+    i = luaL_optinteger(L, 3, 1);
+    j = lua_isnoneornil(L, 4) ? (lua_Integer)lua_rawlen(L, 1) : luaL_checkinteger(L, 4);
+    if (i > j) return 0;
+    if (lua_getmetatable(L, 1)) {
+        lua_pop(L, 1);
+        return ((double)j - (double)i + 1) * CONCAT_FLOAT;
+    }
+    /* up to the first element that is neither string nor number, where the stock function
+     * stops (so the walk is never longer than the table: j may be 2^62) */
+    for (lua_Integer k = i;; k++) {
+        int t = lua_rawgeti(L, 1, k);
+        if (t != LUA_TNUMBER && t != LUA_TSTRING) {
+            lua_pop(L, 1);
+            break;
+        }
+        units += t == LUA_TSTRING ? CONCAT_STRING : lua_isinteger(L, -1) ? CONCAT_INTEGER : CONCAT_FLOAT;
+        lua_pop(L, 1);
+        if (k == j) break;
+    }
+    return units;
+}
 
 static void lcount_charge(lua_State *L, double units)
 {
@@ -31,6 +68,7 @@ static int lcount_call(lua_State *L)
         for (double k = n; k > 1; k /= 2) lg++;
         units = n * lg;
     }
+    if (mode == BY_CONCAT) units = lcount_concat(L);
     if (mode == BY_STRINGS)
         for (int i = 1; i <= nargs; i++)
             if (lua_type(L, i) == LUA_TSTRING) units += (double)lua_rawlen(L, i);
@@ -72,6 +110,7 @@ void lcount_open(lua_State *L, const lpattern_meter *meter)
     lua_getglobal(L, LUA_TABLIBNAME);
     lcount_wrap(L, top + 2, "unpack", BY_RESULTS, meter);
     lcount_wrap(L, top + 2, "sort", BY_SORT, meter);
+    lcount_wrap(L, top + 2, "concat", BY_CONCAT, meter);
     lua_getglobal(L, LUA_STRLIBNAME);
     lcount_wrap(L, top + 3, "byte", BY_RESULTS, meter);
     lcount_wrap(L, top + 3, "char", BY_ARGS, meter);

@@ -5,7 +5,8 @@
 #include "lpattern.h"
 
 /* Replaces, in the state's libraries, select, string.char, utf8.char (by argument count),
- * table.unpack, string.byte (by result count), table.sort (n log2 n for #t = n), tonumber,
+ * table.unpack, string.byte (by result count), table.sort (n log2 n for #t = n),
+ * table.concat (by its elements, numbers costing more than strings), tonumber,
  * print and the string metatable's arithmetic (by the length of each string they read).
  * meter must outlive the state. */
 void lcount_open(lua_State *L, const lpattern_meter *meter);
