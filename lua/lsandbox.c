@@ -124,7 +124,40 @@ static void arm(lua_State *L, const lsandbox *sb)
     else lua_sethook(L, hook, NORMAL_MASK, sb->count);
 }
 
-/* Every hook event charges: a count event the instructions since the last, a call one unit.
+/* What a call moved besides its own unit: the values it passes, one unit each past the first
+ * CALL_FREE_VALUES.  The VM copies a vararg list (f(...)) or a function's results into an
+ * argument list in one instruction, a million values each time when they come from
+ * table.unpack.  A C function's arguments are its frame, where its call hook runs; a Lua
+ * function's varargs lie below its frame, found by asking for vararg -k (O(1) each): doubling
+ * k, then halving the step. */
+#define CALL_FREE_VALUES 64
+static double call_values(lua_State *L, lua_Debug *ar)
+{
+    int top = lua_gettop(L), lo, hi;   /* a Lua function's frame is its registers, <= 255 */
+    if (top > CALL_FREE_VALUES && lua_getinfo(L, "f", ar)) {
+        int c = lua_iscfunction(L, -1);
+        lua_pop(L, 1);
+        if (c) return top - CALL_FREE_VALUES;
+    }
+    if (lua_getlocal(L, ar, -(CALL_FREE_VALUES + 1)) == NULL) return 0;   /* also a C function */
+    lua_pop(L, 1);
+    /* at least lo varargs, fewer than hi */
+    for (lo = CALL_FREE_VALUES + 1, hi = 2 * lo; lua_getlocal(L, ar, -hi) != NULL; lo = hi, hi *= 2)
+        lua_pop(L, 1);
+    while (hi - lo > 1) {
+        int mid = lo + (hi - lo) / 2;
+        if (lua_getlocal(L, ar, -mid) != NULL) {
+            lua_pop(L, 1);
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    return lo - CALL_FREE_VALUES;
+}
+
+/* Every hook event charges: a count event the instructions since the last, a call one unit
+ * and the values it passes (call_values).
  * Once the budget is gone the thread raises on every instruction, so a pcall that catches
  * the error gets to run exactly nothing, in this thread or any other, until the host's own
  * pcall returns. */
@@ -141,6 +174,7 @@ static void hook(lua_State *L, lua_Debug *ar)
             snprintf(sb->where, sizeof sb->where, "%s:%d", ar->short_src, ar->currentline);
     } else {
         sb->spent += per;
+        if (!sb->exhausted) sb->spent += call_values(L, ar);
     }
     if (!sb->exhausted && sb->spent <= sb->budget) {
         if (lua_gethookmask(L) != NORMAL_MASK) arm(L, sb);   /* from an earlier entry */
