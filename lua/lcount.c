@@ -51,10 +51,12 @@ static double lcount_concat(lua_State *L)
     return units;
 }
 
+/* Charges units, at most half of size_t (past any budget: table.concat's j may be 2^63). */
 static void lcount_charge(lua_State *L, double units)
 {
     const lpattern_meter *m = (const lpattern_meter *)lua_touserdata(L, lua_upvalueindex(2));
-    if (units >= 1) m->charge(L, m->ud, (size_t)units);
+    const double most = (double)((size_t)-1 / 2);
+    if (units >= 1) m->charge(L, m->ud, units < most ? (size_t)units : (size_t)-1 / 2);
 }
 
 static int lcount_call(lua_State *L)
