@@ -722,6 +722,15 @@ if sandboxed then
         eq(string.rep(piece[1], n, piece[2]), want, "rep(" .. piece[1] .. ", " .. n .. ", " .. piece[2] .. ")")
       end
     end
+    -- the charged wrappers keep stock Lua's results and argument errors, names included
+    eq(string.format("%5.2f|%s|%d|%q", 3.14159, "abc", 42, "a\nb"), " 3.14|abc|42|\"a\\\nb\"")
+    eq(table.concat({ 1, 2.5, "x" }, ","), "1,2.5,x")
+    eq(table.concat({ 1, 2, 3 }, "-", 2, 3), "2-3")
+    raises("bad argument #2 to 'string.format' (number expected, got string)", string.format, "%d", "x")
+    raises("bad argument #1 to 'table.sort' (table expected, got number)", table.sort, 5)
+    raises("bad argument #1 to 'select' (number expected, got string)", select, "x")
+    raises("invalid value (table) at index 1 in table for 'concat'", table.concat, { {} })
+    raises("invalid value (nil) at index 1 in table for 'concat'", table.concat, {}, "", 1, math.maxinteger)
     eq(("hello world"):find("o w"), 5)
     eq(("key=val"):match("(%w+)=(%w+)"), "key")
     eq(("a,b,c"):gsub(",", ";"), "a;b;c")
