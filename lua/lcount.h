@@ -7,7 +7,8 @@
 /* Replaces, in the state's libraries, select, string.char, utf8.char (by argument count),
  * table.unpack, string.byte (by result count), table.sort (n log2 n for #t = n),
  * table.concat (by its elements, numbers costing more than strings), string.format (by
- * the bytes it writes that no string argument gave), tonumber,
+ * the bytes it writes that no string argument gave), string.pack/unpack/packsize (by the
+ * length of the format), collectgarbage (by the heap, for what walks it), tonumber,
  * print and the string metatable's arithmetic (by the length of each string they read).
  * meter must outlive the state. */
 void lcount_open(lua_State *L, const lpattern_meter *meter);
