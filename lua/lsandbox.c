@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <lauxlib.h>
 #include <lua.h>
@@ -23,6 +24,7 @@
 #define CHUNK_OVERHEAD  8
 #define COMPARE_BYTES_PER_UNIT 64       /* memcmp: 90 bytes in the 1.8 ns of one instruction */
 #define PARSE_BYTES_PER_UNIT   1        /* the lexer skips a blank in 1.4 ns */
+#define CPU_CHECK_EVERY 1024            /* hook events between looks at the CPU clock */
 
 struct lsandbox {
     size_t used, peak, limit;
@@ -31,6 +33,10 @@ struct lsandbox {
     double spent;
     int exhausted;           /* once set, every hook raises until the entry ends */
     int count;               /* instructions per count hook */
+    double cpu_limit;        /* CPU seconds per entry, besides the budget; 0: none */
+    clock_t start;           /* the CPU clock when the entry began */
+    int ticks;               /* hook events since the last look at the clock */
+    int out_of_time;         /* the entry passed cpu_limit: raises as an exhausted budget */
     lpattern_meter meter;
     char where[200];         /* "file:line" of the script at the last count hook */
     llong longs;             /* live long strings: every instruction and call is charged
@@ -108,8 +114,11 @@ static int raise_budget(lua_State *L, const lsandbox *sb)
             break;
         }
     }
-    lua_pushfstring(L, "instruction budget exhausted (%I units per call into the script)",
-                    (lua_Integer)sb->budget);
+    if (sb->out_of_time)
+        lua_pushfstring(L, "CPU time limit exceeded (%f s per call into the script)", (lua_Number)sb->cpu_limit);
+    else
+        lua_pushfstring(L, "instruction budget exhausted (%I units per call into the script)",
+                        (lua_Integer)sb->budget);
     lua_concat(L, 2);
     return lua_error(L);
 }
@@ -176,7 +185,11 @@ static void hook(lua_State *L, lua_Debug *ar)
         sb->spent += per;
         if (!sb->exhausted) sb->spent += call_values(L, ar);
     }
-    if (!sb->exhausted && sb->spent <= sb->budget) {
+    if (sb->cpu_limit > 0 && !sb->exhausted && ++sb->ticks >= CPU_CHECK_EVERY) {
+        sb->ticks = 0;
+        if ((double)(clock() - sb->start) > sb->cpu_limit * CLOCKS_PER_SEC) sb->out_of_time = 1;
+    }
+    if (!sb->exhausted && !sb->out_of_time && sb->spent <= sb->budget) {
         if (lua_gethookmask(L) != NORMAL_MASK) arm(L, sb);   /* from an earlier entry */
         return;
     }
@@ -630,6 +643,8 @@ void lsandbox_close(lua_State *L, lsandbox *sb)
         /* Finalizers are script code too: they get a budget of their own. */
         sb->spent = 0;
         sb->exhausted = 0;
+        sb->out_of_time = 0;
+        sb->start = clock();
         arm(L, sb);
         lua_close(L);
     }
@@ -667,8 +682,16 @@ int lsandbox_call(lua_State *L, lsandbox *sb, int nargs, int nresults)
 {
     sb->spent = 0;
     sb->exhausted = 0;
+    sb->out_of_time = 0;
+    sb->ticks = 0;
+    sb->start = clock();
     sb->where[0] = '\0';
     return lsandbox_continue(L, sb, nargs, nresults);
+}
+
+void lsandbox_set_cpu_limit(lsandbox *sb, double seconds)
+{
+    sb->cpu_limit = seconds > 0 ? seconds : 0;
 }
 
 int lsandbox_continue(lua_State *L, lsandbox *sb, int nargs, int nresults)
