@@ -17,7 +17,7 @@
 #define DEFAULT_MEMORY_MIB 64
 #define DEFAULT_BUDGET     100000000LL
 #define DEFAULT_SECONDS    10.0
-#define DEFAULT_CPU        10.0    /* CPU seconds per call into the script: a backstop */
+#define DEFAULT_TIMEOUT    10.0    /* seconds per call into the script: a backstop */
 #define MAX_STEPS          1e12    /* a scene's steps, however long its duration */
 
 static const char usage[] =
@@ -31,7 +31,7 @@ static const char usage[] =
     "  --budget N     instructions per call into the script: the main chunk, setup, each\n"
     "                 frame (update and the contact calls after its step share one) and\n"
     "                 finish (default 100000000; 0: no limit)\n"
-    "  --cpu S        CPU seconds per call into the script besides the budget, for work it\n"
+    "  --timeout S    seconds per call into the script besides the budget, for work it\n"
     "                 undercharges (default 10; 0: none; no effect with --budget 0)\n"
     "  --threads N    step every world on a pool of N threads (1-64; the results are the\n"
     "                 same bits as on one thread, the default)\n"
@@ -43,7 +43,7 @@ typedef struct host {
     const char *script;
     long long steps;         /* -1: not given */
     double seconds;          /* < 0: not given */
-    double cpu;              /* CPU seconds per call into the script; 0: none */
+    double timeout;          /* seconds per call into the script; 0: none */
     const char *svg;
     const char *html;
     long long memory_mib;
@@ -97,7 +97,7 @@ static int parse_args(host *h, int argc, char **argv)
             }
             i++;
         } else if (strcmp(a, "--steps") == 0 || strcmp(a, "--memory") == 0 ||
-                   strcmp(a, "--budget") == 0 || strcmp(a, "--seconds") == 0 || strcmp(a, "--cpu") == 0 ||
+                   strcmp(a, "--budget") == 0 || strcmp(a, "--seconds") == 0 || strcmp(a, "--timeout") == 0 ||
                    strcmp(a, "--svg") == 0 || strcmp(a, "--html") == 0) {
             if (val == NULL) {
                 fprintf(stderr, "rigid: %s needs a value\n%s", a, usage);
@@ -115,11 +115,11 @@ static int parse_args(host *h, int argc, char **argv)
                     fprintf(stderr, "rigid: --seconds wants a positive number, not '%s'\n", val);
                     return 0;
                 }
-            } else if (strcmp(a, "--cpu") == 0) {
+            } else if (strcmp(a, "--timeout") == 0) {
                 char *end;
-                h->cpu = strtod(val, &end);
-                if (end == val || *end != '\0' || !(h->cpu >= 0) || !isfinite(h->cpu)) {
-                    fprintf(stderr, "rigid: --cpu wants a number of seconds >= 0, not '%s'\n", val);
+                h->timeout = strtod(val, &end);
+                if (end == val || *end != '\0' || !(h->timeout >= 0) || !isfinite(h->timeout)) {
+                    fprintf(stderr, "rigid: --timeout wants a number of seconds >= 0, not '%s'\n", val);
                     return 0;
                 }
             } else if (!parse_int(val, strcmp(a, "--budget") == 0 ? 0 : 1,
@@ -412,7 +412,7 @@ int main(int argc, char **argv)
     h.seconds = -1;
     h.memory_mib = DEFAULT_MEMORY_MIB;
     h.budget = DEFAULT_BUDGET;
-    h.cpu = DEFAULT_CPU;
+    h.timeout = DEFAULT_TIMEOUT;
     h.threads = 1;
     h.world_ref = LUA_NOREF;
     if (!parse_args(&h, argc, argv)) return 2;
@@ -423,7 +423,7 @@ int main(int argc, char **argv)
         return 1;
     }
     h.L = L;
-    lsandbox_set_cpu_limit(h.sb, h.cpu);
+    lsandbox_set_time_limit(h.sb, h.timeout);
     lsandbox_provide(L, "rigid", luaopen_rigid);
     lua_getglobal(L, "rigid");
     lua_getfield(L, -1, "world");

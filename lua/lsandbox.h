@@ -44,14 +44,14 @@ int lsandbox_continue(lua_State *L, lsandbox *sb, int nargs, int nresults);
  * nothing and returns 0 when that global is not a function. */
 int lsandbox_getfunction(lua_State *L, const char *name);
 
-/* CPU seconds an entry may take besides its budget (0, the default: no limit; only with a
- * budget).  A backstop for work the units undercharge, all of it inside single calls or
- * instructions: a number formatted to a string (some 400 ns, one instruction), next() over
- * a table whose deletions left a million empty slots (a scan of all of them, one call).
- * The clock is read every 1024th hook event, and passing the limit raises "CPU time limit
- * exceeded" as an exhausted budget does.  Unlike the budget it depends on the machine: it
- * is for scripts already far past what the budget means to allow. */
-void lsandbox_set_cpu_limit(lsandbox *sb, double seconds);
+/* Seconds an entry may run besides its budget (0, the default: no limit; only with a
+ * budget), on a monotonic clock.  A backstop for work the units undercharge, all of it
+ * inside single calls or instructions: a float formatted to a string (some 400 ns, one
+ * instruction), next() over a table whose deletions left a million empty slots (a scan of
+ * all of them, one call).  The clock is read every 64th hook event, and passing the limit
+ * raises "time limit exceeded" as an exhausted budget does.  Unlike the budget it depends
+ * on the machine and its load: it is for scripts already far past what the budget allows. */
+void lsandbox_set_time_limit(lsandbox *sb, double seconds);
 
 /* Adds units of work done in C on the script's behalf.  Never raises: when the budget runs
  * out the script stops at its next instruction. */

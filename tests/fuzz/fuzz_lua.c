@@ -4,7 +4,10 @@
  * event), three frames of a host-made world, each frame's update and contact calls under one
  * budget.  Any crash or sanitizer report is a finding, and so is an input that takes more
  * than FUZZ_LUA_CPU seconds of CPU: the budget must stop every runaway script long before
- * (BUDGET units are well under a millisecond of VM work).
+ * (BUDGET units are well under a millisecond of VM work).  Each entry also has the host's
+ * backstop, a time limit (ENTRY_SECONDS, at most 5 entries), which stops work the units
+ * undercharge call after call (a next() scanning empty slots); what it cannot stop, one call
+ * or instruction that runs long, is what the CPU guard finds.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,6 +23,7 @@
 #define MEMORY       (16u << 20)
 #define FRAMES       3
 #define FUZZ_LUA_CPU 0.5
+#define ENTRY_SECONDS 0.05
 
 static void charge(lua_State *L, void *ud, double units)
 {
@@ -75,6 +79,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     clock_t t0 = clock();
     lua_State *L = lsandbox_new(MEMORY, BUDGET, &sb);
     if (L == NULL) return 0;
+    lsandbox_set_time_limit(sb, ENTRY_SECONDS);
     lsandbox_provide(L, "rigid", luaopen_rigid);
     lua_pushcfunction(L, quiet);
     lua_setglobal(L, "print");

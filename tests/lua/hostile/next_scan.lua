@@ -1,8 +1,8 @@
 -- next(t) from the start scans every empty slot before the first live one, inside one call:
 -- here a million (0.4 ms) for a charge of one unit, so no budget stops the loop below in
--- under an hour.  The host's CPU time limit per call into the script does.
--- expect: CPU time limit exceeded
--- args: --cpu 1
+-- under an hour.  The host's time limit per call into the script does.
+-- expect: time limit exceeded
+-- args: --timeout 1
 local t = {}
 for i = 1, 1000000 do t[i] = true end
 for i = 1, 999999 do t[i] = nil end
