@@ -11,9 +11,9 @@ typedef struct lsandbox lsandbox;
 
 /* A new state whose allocations stop at memory_limit bytes (0: no cap) and whose every entry
  * (lsandbox_call) may spend `budget` units (0: no budget).  A unit is one VM instruction;
- * a function call, 64 bytes allocated, a byte of source parsed (load), a byte scanned by
- * utf8.len/codepoint/offset/codes, and C work reported through lsandbox_charge cost units
- * too; while two long strings (over 40 bytes) live, every instruction and call is charged
+ * a function call (and each value past 64 that it passes), 64 bytes allocated, a byte of
+ * source parsed (load), a byte scanned by utf8.len/codepoint/offset/codes, and C work
+ * reported through lsandbox_charge cost units too; while two long strings (over 40 bytes) live, every instruction and call is charged
  * 1 + 2^(k+1)/64 units, 2^(k+1) bounding the shorter one: what one ==, < or rawequal
  * between them may read (inside one instruction, where the VM cannot be metered; llong.h).
  * The cap counts each block as malloc sizes it (request + 8, rounded to 16, at least 32)
