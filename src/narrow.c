@@ -275,11 +275,12 @@ typedef struct narrow_block {
     contact *c[NARROW_WIDE_LANES];
     int32_t ia[NARROW_WIDE_LANES], ib[NARROW_WIDE_LANES];
     uint32_t bits[NARROW_WIDE_LANES];       /* the done lanes' ND_* bits */
+    int32_t id[NARROW_WIDE_LANES];          /* the lanes' contact ids */
     cbody rest[2 * NARROW_WIDE_LANES];      /* views of bodies at rest */
 } narrow_block;
 
-static FORCE_INLINE void narrow_block_run(rg_world *w, const collide_step *x, int32_t k0, int32_t k1, int wide,
-                                          narrow_block *nb)
+static FORCE_INLINE void narrow_block_run(rg_world *w, collide_step *x, int32_t k0, int32_t k1, int wide,
+                                          narrow_block *nb, narrow_wide_stage *st)
 {
     /* in locals: the stores into nb could alias them, which would read them again */
     contact *const cc = w->coll.contacts.c;
@@ -288,8 +289,9 @@ static FORCE_INLINE void narrow_block_run(rg_world *w, const collide_step *x, in
     const int32_t nv = x->n;
     int32_t n = nb->n = k1 - k0;
     nb->done = 0;
+    if (st != NULL) st->staged = 0;
     for (int32_t l = 0; l < n; l++) {
-        contact *c = nb->c[l] = &cc[awake[k0 + l]];
+        contact *c = nb->c[l] = &cc[nb->id[l] = awake[k0 + l]];
         int32_t ia = nb->ia[l] = body_dense(w, c->sa), ib = nb->ib[l] = body_dense(w, c->sb);
         const cbody *a = nb->in.a[l] = ia < nv ? &cb[ia] : views_of(w, ia, nv, &nb->rest[2 * l]);
         const cbody *b = nb->in.b[l] = ib < nv ? &cb[ib] : views_of(w, ib, nv, &nb->rest[2 * l + 1]);
@@ -305,9 +307,17 @@ static FORCE_INLINE void narrow_block_run(rg_world *w, const collide_step *x, in
         nb->in.flags[l] = CT_ACTIVE;
         nb->in.kind_a[l] = nb->in.kind_b[l] = 0;
     }
-    nb->done = narrow_wide_decide(w, &nb->in, nb->c, nb->bits);
+    if (st != NULL) {
+        st->x = x;
+        st->rows = &w->coll.rows;
+        st->ia = nb->ia;
+        st->ib = nb->ib;
+        st->id = nb->id;
+    }
+    nb->done = narrow_wide_decide(w, &nb->in, nb->c, nb->bits, st);
 #else
     (void)wide;
+    (void)st;
 #endif
 }
 
@@ -321,7 +331,7 @@ static void narrow_measure_decide_range(int32_t begin, int32_t end, int32_t work
     narrow_block nb;
     for (int32_t k0 = begin; k0 < end; k0 += NARROW_WIDE_LANES) {
         int32_t k1 = end - k0 > NARROW_WIDE_LANES ? k0 + NARROW_WIDE_LANES : end;
-        narrow_block_run(w, t->x, k0, k1, t->wide, &nb);
+        narrow_block_run(w, t->x, k0, k1, t->wide, &nb, NULL);
         for (int32_t l = 0; l < nb.n; l++) {
             contact *c = nb.c[l];
             if (nb.done & (1u << l)) {
@@ -570,14 +580,15 @@ void narrow_run(rg_world *w, collide_step *x)
          * decisions, taken before its commits, are those a walk one by one takes.  A contact
          * not done wide is measured and decided in its turn. */
         narrow_block nb;
+        narrow_wide_stage st;
         for (int32_t k0 = 0; k0 < cs->n_awake; k0 += NARROW_WIDE_LANES) {
             int32_t k1 = cs->n_awake - k0 > NARROW_WIDE_LANES ? k0 + NARROW_WIDE_LANES : cs->n_awake;
-            narrow_block_run(w, x, k0, k1, t.wide, &nb);
+            narrow_block_run(w, x, k0, k1, t.wide, &nb, &st);
             for (int32_t l = 0; l < nb.n; l++) {
                 contact *c = nb.c[l];
                 int32_t ia = nb.ia[l], ib = nb.ib[l];
                 uint32_t bits = (nb.done & (1u << l)) ? nb.bits[l] : narrow_decide_here(w, c, ia, ib, x, 1);
-                narrow_commit(w, cs->awake[k0 + l], ia, ib, x, bits, 1, &x->woke);
+                narrow_commit(w, nb.id[l], ia, ib, x, bits, !st.staged, &x->woke);
             }
         }
         return;

@@ -17,6 +17,7 @@ int narrow_wide_ready(const struct rg_world *w)
 
 #if RG_AVX2_PATHS
 #include <float.h>
+#include <stddef.h>
 
 #include "avx2.h"
 
@@ -171,8 +172,77 @@ AVX2_INLINE __m256 narrow_wide_finite(__m256 v)
     return NARROW_WIDE_CMP(narrow_wide_abs(v), _mm256_set1_ps(FLT_MAX), _CMP_LE_OQ);
 }
 
+/* The eight values of two neighbouring fields of the lanes' contacts (mu and e, pn and pt). */
+AVX2_INLINE void narrow_wide_fields(contact *const *c, size_t offset, __m256 *f0, __m256 *f1)
+{
+    const float *p[8];
+    for (int l = 0; l < 8; l++) p[l] = (const float *)(const void *)((const char *)c[l] + offset);
+    avx2_pairs_at(p, f0, f1);
+}
+
+/* resolve_row and resolve_stage (resolve.h) for the lanes of stage, in lane order: each
+ * value as there (resolve_index, the views' inverse masses of awake bodies, m = 1 / (ima +
+ * imb), solver_vmin), a row's two halves through 8x8 transposes. */
+AVX2_INLINE void narrow_wide_stage_rows(narrow_wide_stage *st, contact *const *c,
+                                        uint32_t stage, __m256 ima, __m256 imb, __m256 nx, __m256 ny, __m256 px,
+                                        __m256 py, __m256 s0, __m256 vn0, __m256 toi, __m256 closing)
+{
+    collide_step *x = st->x;
+    solver_rows *rows = st->rows;
+    const solver_params *p = &x->p;
+    const __m256 zero = _mm256_setzero_ps();
+    __m256i n = _mm256_set1_epi32(x->n), one = _mm256_set1_epi32(1);
+    __m256i ia = _mm256_loadu_si256((const __m256i *)(const void *)st->ia);
+    __m256i ib = _mm256_loadu_si256((const __m256i *)(const void *)st->ib);
+    __m256i awake_a = _mm256_cmpgt_epi32(n, ia), awake_b = _mm256_cmpgt_epi32(n, ib);
+    ima = _mm256_and_ps(_mm256_castsi256_ps(awake_a), ima);
+    imb = _mm256_and_ps(_mm256_castsi256_ps(awake_b), imb);
+    __m256 mu, e, pn, pt;
+    narrow_wide_fields(c, offsetof(contact, mu), &mu, &e);
+    narrow_wide_fields(c, offsetof(contact, pn), &pn, &pt);
+    __m256 vmin = _mm256_and_ps(NARROW_WIDE_CMP(s0, zero, _CMP_GT_OQ),
+                                _mm256_mul_ps(narrow_wide_neg(s0), _mm256_set1_ps(p->inv_dt)));
+    __m256 bounce = _mm256_mul_ps(narrow_wide_neg(e), vn0);
+    __m256 bounces = NARROW_WIDE_AND(
+        NARROW_WIDE_AND(closing, NARROW_WIDE_CMP(e, zero, _CMP_GT_OQ)),
+        NARROW_WIDE_AND(NARROW_WIDE_CMP(vn0, _mm256_set1_ps(-p->restitution_threshold), _CMP_LT_OQ),
+                        NARROW_WIDE_CMP(bounce, vmin, _CMP_GT_OQ)));
+    vmin = narrow_wide_pick(bounces, bounce, vmin);
+    __m256 r[8] = {_mm256_castsi256_ps(_mm256_and_si256(awake_a, _mm256_add_epi32(ia, one))),
+                   _mm256_castsi256_ps(_mm256_and_si256(awake_b, _mm256_add_epi32(ib, one))),
+                   ima,
+                   imb,
+                   nx,
+                   ny,
+                   _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_add_ps(ima, imb)),
+                   mu};
+    __m256 h[8] = {vmin, s0, zero, pn, pt, zero, toi,
+                   _mm256_castsi256_ps(_mm256_loadu_si256((const __m256i *)(const void *)st->id))};
+    avx2_transpose8(r);
+    avx2_transpose8(h);
+    float o_px[8], o_py[8], o_toi[8];
+    _mm256_storeu_ps(o_px, px);
+    _mm256_storeu_ps(o_py, py);
+    _mm256_storeu_ps(o_toi, toi);
+    /* in locals: the stores could alias the counts and the arrays' pointers */
+    solver_constraint *const out = rows->stage;
+    rg_real *const hgt = rows->hgt, *const hgx = rows->hgx;
+    int32_t *const imp = rows->imp;
+    int32_t k = x->nc, nimp = x->nimp;
+    for (uint32_t left = stage; left != 0; left &= left - 1, k++) {
+        int l = __builtin_ctz(left);
+        _mm256_storeu_ps((float *)(void *)&out[k], r[l]);
+        _mm256_storeu_ps(&out[k].vmin, h[l]);
+        hgt[k] = o_py[l];
+        hgx[k] = o_px[l];
+        if (o_toi[l] > 0) imp[nimp++] = k;
+    }
+    x->nc = k;
+    x->nimp = nimp;
+}
+
 AVX2_FN uint32_t narrow_wide_decide(const struct rg_world *w, const narrow_lanes *in, contact *const *c,
-                                             uint32_t *bits)
+                                             uint32_t *bits, narrow_wide_stage *st)
 {
     const __m256i zero_i = _mm256_setzero_si256();
     __m256i F = _mm256_loadu_si256((const __m256i *)(const void *)in->flags);
@@ -295,6 +365,11 @@ AVX2_FN uint32_t narrow_wide_decide(const struct rg_world *w, const narrow_lanes
             q->depth = o_depth[l];
             q->speed = o_speed[l];
         }
+    }
+    if (st != NULL && done == 0xFFu) {
+        uint32_t staging = (uint32_t)_mm256_movemask_ps(stage) & ~far_m;   /* bits[l] & ND_STAGE */
+        narrow_wide_stage_rows(st, c, staging, A.im, B.im, nx, ny, px, py, s0, vn0, toi, closing);
+        st->staged = 1;
     }
     return done;
 }

@@ -43,11 +43,23 @@ typedef struct narrow_lanes {
     const cbody *a[NARROW_WIDE_LANES], *b[NARROW_WIDE_LANES];
 } narrow_lanes;
 
+/* Where the one-thread walk has narrow_wide_decide stage the rows of a block it decides
+ * whole: the lanes' dense body indices and contact ids, the step (its row counts grow).
+ * `staged` says it did: the rows resolve.h's resolve_stage writes, the same bytes, for the
+ * lanes with ND_STAGE in lane order (pmin and pp, which only the solve sets, are 0). */
+typedef struct narrow_wide_stage {
+    struct collide_step *x;
+    solver_rows *rows;
+    const int32_t *ia, *ib, *id;
+    int staged;
+} narrow_wide_stage;
+
 /* The contacts c[l] of the lanes in: those of the common case are measured and decided as
  * narrow.c's narrow_measure then narrow_decide (not in order) would, writing the same fields
  * of the contact, their ND_* bits in bits[l]; returns the mask of the lanes done.  The others
  * (another pair of kinds, a flag of the rare cases, or a pair apart and fast, which takes the
- * time of impact) are left untouched. */
-uint32_t narrow_wide_decide(const struct rg_world *w, const narrow_lanes *in, contact *const *c, uint32_t *bits);
+ * time of impact) are left untouched.  With st, a block done whole is staged too. */
+uint32_t narrow_wide_decide(const struct rg_world *w, const narrow_lanes *in, contact *const *c, uint32_t *bits,
+                            narrow_wide_stage *st);
 
 #endif
