@@ -578,7 +578,9 @@ void narrow_run(rg_world *w, collide_step *x)
          * contacts stay as many as at the start, and no decision reads what a commit writes
          * (the pre-solve hook, the one caller outside, may change nothing), so a block's wide
          * decisions, taken before its commits, are those a walk one by one takes.  A contact
-         * not done wide is measured and decided in its turn. */
+         * not done wide is measured and decided in its turn.  A block done whole has its rows
+         * staged by the wide code too (in lane order, as the commits would stage them), so
+         * its commits stage nothing. */
         narrow_block nb;
         narrow_wide_stage st;
         for (int32_t k0 = 0; k0 < cs->n_awake; k0 += NARROW_WIDE_LANES) {
