@@ -48,9 +48,10 @@ int lsandbox_getfunction(lua_State *L, const char *name);
  * budget), on a monotonic clock.  A backstop for work the units undercharge, all of it
  * inside single calls or instructions: a float formatted to a string (some 400 ns, one
  * instruction), next() over a table whose deletions left a million empty slots (a scan of
- * all of them, one call).  The clock is read every 64th hook event, and passing the limit
- * raises "time limit exceeded" as an exhausted budget does.  Unlike the budget it depends
- * on the machine and its load: it is for scripts already far past what the budget allows. */
+ * all of them, one call).  The clock is read at every count hook (1,000 instructions) and
+ * every 64th call, and passing the limit raises "time limit exceeded" as an exhausted
+ * budget does.  Unlike the budget it depends on the machine and its load: it is for
+ * scripts already far past what the budget allows. */
 void lsandbox_set_time_limit(lsandbox *sb, double seconds);
 
 /* Adds units of work done in C on the script's behalf.  Never raises: when the budget runs
