@@ -170,6 +170,19 @@ do
   result(bad:find("--threads wants a whole number in [1, 64]", 1, true) ~= nil, "--threads 65 is refused", bad)
 end
 
+print("-- the host's --timeout: a time limit per call into the script, besides the budget")
+do
+  local path = "tests/lua/timeout/slow.lua"
+  local out, how, code = run(limit .. q(opts.host) .. " " .. q(path) .. " --timeout 0.05")
+  result(how == "exit" and code == 1 and out:find("slow.lua:%d+: time limit exceeded %(0.05") ~= nil,
+         path .. " --timeout 0.05 stops at the limit, where its budget would not", out:sub(1, 800))
+  out, how, code = run(limit .. q(opts.host) .. " " .. q(path) .. " --timeout 0")
+  result(how == "exit" and code == 0 and out:find("lookups 40000", 1, true) ~= nil,
+         path .. " --timeout 0 runs to its end", out:sub(1, 800))
+  local bad = run(q(opts.host) .. " " .. q(path) .. " --timeout -1")
+  result(bad:find("--timeout wants a number of seconds >= 0", 1, true) ~= nil, "--timeout -1 is refused", bad)
+end
+
 print("-- examples in the host, each drawing its picture")
 for _, path in ipairs(list("lua/examples/*.lua")) do
   local name = path:match("([^/]+)%.lua$")
