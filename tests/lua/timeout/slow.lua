@@ -1,4 +1,4 @@
--- 40 000 lookups through 1 990 __index tables: some 0.45 s, for some 160 000 units (each
+-- 40 000 lookups through 1 990 __index tables: some 0.4-0.8 s, for some 160 000 units (each
 -- lookup one instruction).  tests/lua/run.lua runs it under a time limit it passes and with
 -- the limit off.
 local t = {}
