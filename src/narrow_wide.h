@@ -45,8 +45,9 @@ typedef struct narrow_lanes {
 
 /* Where the one-thread walk has narrow_wide_decide stage the rows of a block it decides
  * whole: the lanes' dense body indices and contact ids, the step (its row counts grow).
- * `staged` says it did: the rows resolve.h's resolve_stage writes, the same bytes, for the
- * lanes with ND_STAGE in lane order (pmin and pp, which only the solve sets, are 0). */
+ * `staged` says it did: the rows resolve.h's resolve_stage writes, with the same values, for
+ * the lanes with ND_STAGE in lane order (and pmin and pp, which resolve_row leaves and the
+ * solve sets before it reads them, 0). */
 typedef struct narrow_wide_stage {
     struct collide_step *x;
     solver_rows *rows;
