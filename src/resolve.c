@@ -154,7 +154,7 @@ enum {
     RESOLVE_LOAD, RESOLVE_MOVE, RESOLVE_PUSH,         /* solver bodies 1..ns */
     RESOLVE_UNPACK, RESOLVE_UNPACK_POSITION, RESOLVE_PREPARE, RESOLVE_PACK_POSITION,
     RESOLVE_KEEP,                                     /* rows of c */
-    RESOLVE_CLEAR_POSITION,                           /* all wide rows */
+    RESOLVE_CLEAR_POSITION, RESOLVE_PACK_LANES,       /* all wide rows */
     RESOLVE_PACK                                      /* blocks of the solving order */
 };
 
@@ -330,6 +330,7 @@ static void resolve_range(int32_t begin, int32_t end, int32_t worker, void *cont
     case RESOLVE_VELOCITY: solver_wide_iterate(t->sb, b0, b1, t->v); break;
     case RESOLVE_POSITION: solver_wide_iterate_position(t->sb, b0, b1, t->pv); break;
     case RESOLVE_CLEAR_POSITION: solver_clear_position(t->sb, b0, b1); break;
+    case RESOLVE_PACK_LANES: solver_pack_lanes(t->sb, t->con, b0, b1); break;
     case RESOLVE_UNPACK: solver_unpack(t->sb, t->con, b0, b1, 0); break;
     case RESOLVE_UNPACK_POSITION: solver_unpack(t->sb, t->con, b0, b1, 1); break;
     case RESOLVE_PACK_POSITION: solver_pack_position(t->sb, t->con, b0, b1); break;
@@ -361,7 +362,7 @@ static void resolve_pass(resolve_task *t, int what, int32_t r0, int32_t count)
 {
     t->what = what;
     t->r0 = r0;
-    int wide = what <= RESOLVE_POSITION || what == RESOLVE_CLEAR_POSITION;
+    int wide = what <= RESOLVE_POSITION || what == RESOLVE_CLEAR_POSITION || what == RESOLVE_PACK_LANES;
     int32_t min_range = what == RESOLVE_PACK ? RESOLVE_PACK_RANGE : wide ? RESOLVE_WIDE_RANGE : RESOLVE_RANGE;
     task_for(t->w, resolve_range, count, min_range, t);
 }
@@ -462,6 +463,7 @@ void resolve_run(rg_world *w, collide_step *x)
     int shock = h.shock;
     const int32_t *ord = rows->ord;
     resolve_pass(&t, RESOLVE_PACK, 0, SOLVER_PACK_BLOCKS(nc));
+    if (solver_pack_wide()) resolve_pass(&t, RESOLVE_PACK_LANES, 0, sb->nrows);
     resolve_wide(&t, RESOLVE_WARM);
     solver_warm_start(con, sb->over, sb->nover, v);
     for (int32_t it = 0; it < cw->iterations; it++) {

@@ -257,6 +257,7 @@ void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, in
         if (used == 0) continue;
         solver_wide *q = &w[start[col] + count[col] / SOLVER_LANES];
         for (int l = used; l < SOLVER_LANES; l++) {
+            out->row_of[(start[col] + count[col] / SOLVER_LANES) * SOLVER_LANES + l] = -1;
             q->a[l] = q->b[l] = ground;
             q->nx[l] = q->ny[l] = q->m[l] = q->mu[l] = q->ima[l] = q->imb[l] = 0;
             q->vmin[l] = q->pn[l] = q->pt[l] = q->pmin[l] = q->pp[l] = 0;
@@ -264,10 +265,35 @@ void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, in
     }
 }
 
+int solver_pack_wide(void)
+{
+#if SOLVER_AVX2
+    return __builtin_cpu_supports("avx2");
+#else
+    return 0;
+#endif
+}
+
 void solver_pack_rows(const solver_constraint *c, const int32_t *order, int32_t n, const int32_t *color,
                       const int32_t *lanes, int32_t blk0, int32_t blk1, solver_batch *out)
 {
     solver_wide *w = out->rows;
+    if (solver_pack_wide()) {
+        for (int32_t blk = blk0; blk < blk1; blk++) {
+            int32_t next[32];
+            memcpy(next, lanes + blk * 32, sizeof next);
+            int32_t j1 = (blk + 1) * SOLVER_PACK_BLOCK < n ? (blk + 1) * SOLVER_PACK_BLOCK : n;
+            for (int32_t j = blk * SOLVER_PACK_BLOCK; j < j1; j++) {
+                int32_t k = order[j];
+                int col = color[k];
+                if (col == 32) continue; /* the overflow list (solver_pack) */
+                int32_t slot = next[col]++;
+                out->map[k] = slot;
+                out->row_of[slot] = k;
+            }
+        }
+        return;
+    }
     for (int32_t blk = blk0; blk < blk1; blk++) {
         int32_t next[32];
         memcpy(next, lanes + blk * 32, sizeof next);
@@ -294,6 +320,50 @@ void solver_pack_rows(const solver_constraint *c, const int32_t *order, int32_t 
             q->pt[l] = r->pt;
         }
     }
+}
+
+#if SOLVER_AVX2
+/* solver_pack_rows's copies for wide rows [r0, r1): each lane's row of c (a padding lane's a
+ * zero row on the ground, as solver_pack wrote it) in two halves, transposed. */
+AVX2_FN static void pack_lanes_avx2(solver_batch *out, const solver_constraint *c, int32_t r0, int32_t r1)
+{
+    static const solver_constraint pad; /* a = b = 0, the ground; every value 0 */
+    for (int32_t r = r0; r < r1; r++) {
+        const int32_t *k = out->row_of + (size_t)r * SOLVER_LANES;
+        __m256 f[8], h[8];
+        for (int l = 0; l < 8; l++) {
+            const solver_constraint *q = k[l] >= 0 ? &c[k[l]] : &pad;
+            f[l] = _mm256_loadu_ps((const float *)(const void *)q);
+            h[l] = _mm256_loadu_ps(&q->vmin);
+        }
+        avx2_transpose8(f); /* a, b, ima, imb, nx, ny, m, mu */
+        avx2_transpose8(h); /* vmin, s0, pmin, pn, pt, pp, toi, cid */
+        solver_wide *w = &out->rows[r];
+        _mm256_storeu_ps((float *)(void *)w->a, f[0]);
+        _mm256_storeu_ps((float *)(void *)w->b, f[1]);
+        _mm256_storeu_ps(w->ima, f[2]);
+        _mm256_storeu_ps(w->imb, f[3]);
+        _mm256_storeu_ps(w->nx, f[4]);
+        _mm256_storeu_ps(w->ny, f[5]);
+        _mm256_storeu_ps(w->m, f[6]);
+        _mm256_storeu_ps(w->mu, f[7]);
+        _mm256_storeu_ps(w->vmin, h[0]);
+        _mm256_storeu_ps(w->pn, h[3]);
+        _mm256_storeu_ps(w->pt, h[4]);
+    }
+}
+#endif
+
+void solver_pack_lanes(solver_batch *out, const solver_constraint *c, int32_t r0, int32_t r1)
+{
+#if SOLVER_AVX2
+    pack_lanes_avx2(out, c, r0, r1);
+#else
+    (void)out;
+    (void)c;
+    (void)r0;
+    (void)r1;
+#endif
 }
 
 void solver_unpack(const solver_batch *s, solver_constraint *c, int32_t k0, int32_t k1, int position)
@@ -654,6 +724,7 @@ static void solver_rows_layout(mem_layout *l, void *ctx)
     r->ord = mem_take(l, n, sizeof(int32_t));
     r->tord = mem_take(l, n, sizeof(int32_t));
     r->batch.map = mem_take(l, n, sizeof(int32_t));
+    r->batch.row_of = mem_take(l, (size_t)SOLVER_WIDE_ROWS(r->cap) * SOLVER_LANES, sizeof(int32_t));
     r->batch.over = mem_take(l, n, sizeof(int32_t));
     r->color = mem_take(l, n, sizeof(int32_t));
     r->imp = mem_take(l, n, sizeof(int32_t));

@@ -156,6 +156,7 @@ typedef struct solver_batch {
     int32_t nrows;
     int32_t cstart[33];  /* colour c's rows: [cstart[c], cstart[c + 1]) */
     int32_t *map;        /* per row of c: its wide slot (row * SOLVER_LANES + lane), or -1 */
+    int32_t *row_of;     /* per wide slot: its row of c, -1 for padding (solver_pack_lanes) */
     int32_t *over;       /* rows of c in the overflow list, [0, nover) */
     int32_t nover;
 } solver_batch;
@@ -179,6 +180,11 @@ void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, in
                  uint32_t *mask, int32_t *color, int32_t *lanes, solver_batch *out);
 void solver_pack_rows(const solver_constraint *c, const int32_t *order, int32_t n, const int32_t *color,
                       const int32_t *lanes, int32_t blk0, int32_t blk1, solver_batch *out);
+/* Where the CPU has AVX2 (solver_pack_wide), solver_pack_rows only places the rows (map and
+ * row_of), and solver_pack_lanes then fills wide rows [r0, r1) from them, eight rows of c at
+ * a time through 8x8 transposes: the same lanes. */
+int solver_pack_wide(void);
+void solver_pack_lanes(solver_batch *out, const solver_constraint *c, int32_t r0, int32_t r1);
 /* The wide calls take rows [r0, r1): within a colour the rows share no movable body, so its
  * rows may run in any split and order, at once on several threads, with the same results
  * (lanes on immovable bodies store back the velocity they loaded, which the caller makes

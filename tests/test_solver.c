@@ -605,6 +605,44 @@ static void test_position_correction_adds_no_energy(void **state)
 
 /* ---------------------------------------------------------------- the lanes */
 
+/* Every lane of the wide rows holds its row of c (map) as solver_pack_rows copies it, field
+ * by field, and every other lane the padding: the ground on both sides, every value 0. */
+static void check_lanes(const solver_batch *sb, const solver_constraint *c, int32_t n)
+{
+    static unsigned char seen[SOLVER_WIDE_ROWS(700) * SOLVER_LANES];
+    assert_true(n <= 700);
+    memset(seen, 0, sizeof seen);
+    for (int32_t k = 0; k < n; k++) {
+        int32_t slot = sb->map[k];
+        if (slot < 0) continue;
+        const solver_wide *q = &sb->rows[slot / SOLVER_LANES];
+        int l = slot % SOLVER_LANES;
+        seen[slot] = 1;
+        assert_int_equal(q->a[l], c[k].a);
+        assert_int_equal(q->b[l], c[k].b);
+        assert_memory_equal(&q->nx[l], &c[k].nx, sizeof(rg_real));
+        assert_memory_equal(&q->ny[l], &c[k].ny, sizeof(rg_real));
+        assert_memory_equal(&q->m[l], &c[k].m, sizeof(rg_real));
+        assert_memory_equal(&q->mu[l], &c[k].mu, sizeof(rg_real));
+        assert_memory_equal(&q->ima[l], &c[k].ima, sizeof(rg_real));
+        assert_memory_equal(&q->imb[l], &c[k].imb, sizeof(rg_real));
+        assert_memory_equal(&q->vmin[l], &c[k].vmin, sizeof(rg_real));
+        assert_memory_equal(&q->pn[l], &c[k].pn, sizeof(rg_real));
+        assert_memory_equal(&q->pt[l], &c[k].pt, sizeof(rg_real));
+    }
+    const rg_real zero = 0;
+    for (int32_t slot = 0; slot < sb->nrows * SOLVER_LANES; slot++) {
+        if (seen[slot]) continue;
+        const solver_wide *q = &sb->rows[slot / SOLVER_LANES];
+        int l = slot % SOLVER_LANES;
+        assert_int_equal(q->a[l], 0);
+        assert_int_equal(q->b[l], 0);
+        const rg_real *f[] = {&q->nx[l], &q->ny[l], &q->m[l], &q->mu[l], &q->ima[l], &q->imb[l],
+                              &q->vmin[l], &q->pn[l], &q->pt[l]};
+        for (size_t i = 0; i < sizeof f / sizeof f[0]; i++) assert_memory_equal(f[i], &zero, sizeof zero);
+    }
+}
+
 /* The packed lanes (AVX2 where this CPU has it, else SSE2 or the plain loop) give the bytes
  * one-row-at-a-time Gauss-Seidel gives when it takes the rows colour by colour: within a
  * colour no two rows share a movable body, so grouping them changes no operation.  Random
@@ -616,6 +654,7 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
     enum { N = 700, BODIES = 40, ITERS = 8 };
     static solver_constraint rows[N], ref[N];
     static int32_t order[N], color[N], map[N], over[N], lanes[SOLVER_PACK_BLOCKS(N) * 32];
+    static int32_t row_of[SOLVER_WIDE_ROWS(N) * SOLVER_LANES];
     static uint32_t mask[BODIES + 1];
     static solver_wide wide[SOLVER_WIDE_ROWS(N)];
     rg_real v0[2 * (BODIES + 1)], va[2 * (BODIES + 1)], vb[2 * (BODIES + 1)];
@@ -649,9 +688,14 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
     sb.rows = wide;
     sb.map = map;
     sb.over = over;
+    sb.row_of = row_of;
+    /* garbage in the lanes first: the packing must write every one */
+    memset(wide, 0xA5, sizeof wide);
     solver_pack(rows, order, N, BODIES + 1, mask, color, lanes, &sb);
     solver_pack_rows(rows, order, N, color, lanes, 0, SOLVER_PACK_BLOCKS(N), &sb);
+    if (solver_pack_wide()) solver_pack_lanes(&sb, rows, 0, sb.nrows);
     assert_true(sb.nover > 0); /* the overflow list is exercised too */
+    check_lanes(&sb, rows, N);
     memcpy(va, v0, sizeof v0);
     solver_wide_warm_start(&sb, 0, sb.nrows, va);
     solver_warm_start(rows, sb.over, sb.nover, va);
@@ -683,9 +727,13 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
     static solver_constraint again[N];
     memcpy(again, ref0, sizeof again);
     assert_true(SOLVER_PACK_BLOCKS(N) >= 2);
+    memset(wide, 0x5A, sizeof wide);
     solver_pack(again, order, N, BODIES + 1, mask, color, lanes, &sb);
     for (int32_t blk = SOLVER_PACK_BLOCKS(N) - 1; blk >= 0; blk--)
         solver_pack_rows(again, order, N, color, lanes, blk, blk + 1, &sb);
+    if (solver_pack_wide())
+        for (int32_t r = sb.nrows - 1; r >= 0; r--) solver_pack_lanes(&sb, again, r, r + 1);
+    check_lanes(&sb, again, N);
     rg_real vc[2 * (BODIES + 1)];
     memcpy(vc, v0, sizeof v0);
     for (int col = 0; col < 32; col++)
