@@ -278,22 +278,7 @@ void solver_pack_rows(const solver_constraint *c, const int32_t *order, int32_t 
                       const int32_t *lanes, int32_t blk0, int32_t blk1, solver_batch *out)
 {
     solver_wide *w = out->rows;
-    if (solver_pack_wide()) {
-        for (int32_t blk = blk0; blk < blk1; blk++) {
-            int32_t next[32];
-            memcpy(next, lanes + blk * 32, sizeof next);
-            int32_t j1 = (blk + 1) * SOLVER_PACK_BLOCK < n ? (blk + 1) * SOLVER_PACK_BLOCK : n;
-            for (int32_t j = blk * SOLVER_PACK_BLOCK; j < j1; j++) {
-                int32_t k = order[j];
-                int col = color[k];
-                if (col == 32) continue; /* the overflow list (solver_pack) */
-                int32_t slot = next[col]++;
-                out->map[k] = slot;
-                out->row_of[slot] = k;
-            }
-        }
-        return;
-    }
+    int place_only = solver_pack_wide(); /* solver_pack_lanes copies */
     for (int32_t blk = blk0; blk < blk1; blk++) {
         int32_t next[32];
         memcpy(next, lanes + blk * 32, sizeof next);
@@ -304,6 +289,10 @@ void solver_pack_rows(const solver_constraint *c, const int32_t *order, int32_t 
             if (col == 32) continue; /* the overflow list (solver_pack) */
             int32_t slot = next[col]++;
             out->map[k] = slot;
+            if (place_only) {
+                out->row_of[slot] = k;
+                continue;
+            }
             solver_wide *q = &w[slot / SOLVER_LANES];
             int l = slot % SOLVER_LANES;
             const solver_constraint *r = &c[k];
