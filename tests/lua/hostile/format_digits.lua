@@ -1,5 +1,5 @@
 -- string.format("%.99f", 1e308) writes 408 digits in C, some 9 us: charged per byte it
--- makes (uncharged, 100 000 calls ran 0.9 s for about a million units).
+-- makes (uncharged, 100 000 calls ran 0.8 s for about a million units).
 -- expect: instruction budget exhausted
 -- args: --budget 20000000
 local s
