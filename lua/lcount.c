@@ -1,7 +1,8 @@
 /* lcount.c: library functions charged by the values they move and the strings they read.
  *
- * Each runs a loop in C that no instruction counts: select and string.char walk their
- * arguments (a call may pass a million, from table.unpack), table.unpack and string.byte push
+ * Each runs a loop in C that no instruction counts (a function that walks its arguments,
+ * select or string.char, is charged them by the sandbox's call hook, as every call is: a
+ * call may pass a million, from table.unpack): table.unpack and string.byte push
  * as many results as asked, table.sort without a comparator runs n log n comparisons,
  * table.concat appends (and formats) each element, string.format formats numbers (at some
  * 20 ns a digit), string.pack, unpack and packsize read each byte of their format,
@@ -10,8 +11,8 @@
  * Each wrapper calls the stock function and charges the meter by that count: a value moved,
  * a comparison or a byte read is a unit; an element of table.concat is charged what it
  * costs as units (an instruction's 1.8 ns): a string 16, an integer 110 and a float 280
- * (table.concat of 200,000 elements, gcc -O2 build on a Zen 5 VM: 26, 194 and 510 ns per
- * element), and 280 when the table has a metatable (its __index gives the values). */
+ * (lua/bench_sandbox.lua times them: 32, 205 and 446 ns an element on a Zen 5 VM), and 280
+ * when the table has a metatable (its __index gives the values). */
 #include <string.h>
 
 #include <lauxlib.h>
@@ -20,20 +21,20 @@
 
 #include "lcount.h"
 
-enum { BY_ARGS, BY_RESULTS, BY_SORT, BY_STRINGS, BY_CONCAT, BY_FORMAT, BY_PACK, BY_GC };
+enum { BY_RESULTS, BY_SORT, BY_STRINGS, BY_CONCAT, BY_FORMAT, BY_PACK, BY_GC };
 
 /* string.format: a byte it writes that neither the format nor a string argument gave (a
- * digit it formatted, padding) -- string.format("%.99f", 1e308) writes 408 in 8.7 us, 21 ns
- * each, some 12 units. */
+ * digit it formatted, padding) -- string.format("%.99f", 1e308) writes 408, some 20 ns each
+ * (lua/bench_sandbox.lua), some 12 units. */
 #define FORMAT_BYTE 16
 
 /* string.pack, unpack and packsize: a byte of their format (an item to read or write:
- * string.unpack of 100,000 "b" takes 33 ns each). */
+ * string.unpack of 200,000 "b" takes 10-33 ns each, lua/bench_sandbox.lua). */
 #define PACK_FORMAT_BYTE 20
 
 /* collectgarbage: a heap byte for a collection or a step (a step may finish the cycle), and
- * a change of mode (which walks every object): a full collection goes through some 4 bytes a
- * ns, a step of 0 at a 30 MiB heap took 1 ms. */
+ * a change of mode (which walks every object): a full collection goes through some 4-5
+ * bytes a ns (lua/bench_sandbox.lua). */
 #define GC_BYTES_PER_UNIT 4
 
 static double lcount_gc(lua_State *L)
@@ -92,8 +93,11 @@ static int lcount_call(lua_State *L)
 {
     int mode = (int)lua_tointeger(L, lua_upvalueindex(3));
     int nargs = lua_gettop(L), nres;
-    double units = 0, given = 0;
-    if (mode == BY_ARGS) units = nargs;
+    double units = 0, strings = 0;
+    if (mode == BY_STRINGS || mode == BY_FORMAT) /* the bytes they read or may copy */
+        for (int i = 1; i <= nargs; i++)
+            if (lua_type(L, i) == LUA_TSTRING) strings += (double)lua_rawlen(L, i);
+    if (mode == BY_STRINGS) units = strings;
     if (mode == BY_SORT && lua_type(L, 1) == LUA_TTABLE) {
         double n = (double)lua_rawlen(L, 1), lg = 1;
         for (double k = n; k > 1; k /= 2) lg++;
@@ -102,12 +106,6 @@ static int lcount_call(lua_State *L)
     if (mode == BY_CONCAT) units = lcount_concat(L);
     if (mode == BY_PACK && lua_type(L, 1) == LUA_TSTRING) units = (double)lua_rawlen(L, 1) * PACK_FORMAT_BYTE;
     if (mode == BY_GC) units = lcount_gc(L);
-    if (mode == BY_FORMAT) /* the bytes it may copy: the format's and the string arguments' */
-        for (int i = 1; i <= nargs; i++)
-            if (lua_type(L, i) == LUA_TSTRING) given += (double)lua_rawlen(L, i);
-    if (mode == BY_STRINGS)
-        for (int i = 1; i <= nargs; i++)
-            if (lua_type(L, i) == LUA_TSTRING) units += (double)lua_rawlen(L, i);
     /* charged before the call: the stock function may raise, and its work is done by then */
     lcount_charge(L, units);
     lua_pushvalue(L, lua_upvalueindex(1));
@@ -116,7 +114,7 @@ static int lcount_call(lua_State *L)
     nres = lua_gettop(L);
     if (mode == BY_RESULTS) lcount_charge(L, nres);
     if (mode == BY_FORMAT && nres == 1 && lua_type(L, 1) == LUA_TSTRING)
-        lcount_charge(L, ((double)lua_rawlen(L, 1) - given) * FORMAT_BYTE);
+        lcount_charge(L, ((double)lua_rawlen(L, 1) - strings) * FORMAT_BYTE);
     return nres;
 }
 
@@ -153,7 +151,6 @@ void lcount_open(lua_State *L, const lpattern_meter *meter)
                                          "__pow", "__unm", "__idiv", NULL };
     int top = lua_gettop(L);
     lua_pushglobaltable(L);
-    lcount_wrap(L, top + 1, "select", "select", BY_ARGS, meter);
     lcount_wrap(L, top + 1, "tonumber", "tonumber", BY_STRINGS, meter);
     lcount_wrap(L, top + 1, "print", "print", BY_STRINGS, meter);   /* writes each string out */
     lcount_wrap(L, top + 1, "collectgarbage", "collectgarbage", BY_GC, meter);
@@ -163,13 +160,10 @@ void lcount_open(lua_State *L, const lpattern_meter *meter)
     lcount_wrap(L, top + 2, "concat", "table.concat", BY_CONCAT, meter);
     lua_getglobal(L, LUA_STRLIBNAME);
     lcount_wrap(L, top + 3, "byte", "string.byte", BY_RESULTS, meter);
-    lcount_wrap(L, top + 3, "char", "string.char", BY_ARGS, meter);
     lcount_wrap(L, top + 3, "format", "string.format", BY_FORMAT, meter);
     lcount_wrap(L, top + 3, "pack", "string.pack", BY_PACK, meter);
     lcount_wrap(L, top + 3, "unpack", "string.unpack", BY_PACK, meter);
     lcount_wrap(L, top + 3, "packsize", "string.packsize", BY_PACK, meter);
-    lua_getglobal(L, LUA_UTF8LIBNAME);
-    lcount_wrap(L, top + 4, "char", "utf8.char", BY_ARGS, meter);
     lua_settop(L, top);
     lua_pushliteral(L, "");
     if (lua_getmetatable(L, -1)) {

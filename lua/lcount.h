@@ -4,8 +4,7 @@
 
 #include "lpattern.h"
 
-/* Replaces, in the state's libraries, select, string.char, utf8.char (by argument count),
- * table.unpack, string.byte (by result count), table.sort (n log2 n for #t = n),
+/* Replaces, in the state's libraries, table.unpack, string.byte (by result count), table.sort (n log2 n for #t = n),
  * table.concat (by its elements, numbers costing more than strings), string.format (by
  * the bytes it writes that no string argument gave), string.pack/unpack/packsize (by the
  * length of the format), collectgarbage (by the heap, for what walks it), tonumber,

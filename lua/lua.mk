@@ -85,6 +85,8 @@ bench-lua: $(LUA_MOD) $(LUA_HOST) $(LIB_SO)
 	@$(LUA_HOST) lua/bench_calls.lua --budget 0
 	@echo "== Lua call cost (host $(LUA_HOST), sandboxed, budget hooks on)"
 	@$(LUA_HOST) lua/bench_calls.lua --budget 100000000000
+	@echo "== what the work the sandbox charges by size costs (host $(LUA_HOST), --budget 0)"
+	@$(LUA_HOST) lua/bench_sandbox.lua --budget 0
 	@if command -v $(LUAJIT_BIN) >/dev/null; then \
 	  echo "== Lua call cost ($(LUAJIT_BIN) + lua/rigid_jit.lua + $(LIB_SO))"; \
 	  LUA_PATH="lua/?.lua;;" RIGID_LIBRARY=$(LIB_SO) $(FFI_ENV) $(LUAJIT_BIN) lua/bench_calls.lua; \
