@@ -32,7 +32,7 @@
 #include "state.h"
 
 #define SNAP_MAGIC "RIGIDSNP"
-#define SNAP_VERSION 1u
+#define SNAP_VERSION 2u
 #define SNAP_HEADER 32
 
 /* The body fields a snapshot holds, in file order.  RG_BODY_FIELDS has these and the four
@@ -227,10 +227,12 @@ static inline rg_real snap_get_real(const uint8_t *p)
     return v;
 }
 
-/* ---- the hash: 64-bit words in eight lanes, each a multiply-xorshift chain (a bijection of
- * the lane for every word, so any change of any byte changes the result); tail bytes
- * zero-padded and the length mixed in at the end.  Streamed: bytes may come in any chunks. */
-#define SNAP_LANES 8
+/* ---- the hash: 64-bit words in 32 lanes (word k of each 256-byte block into lane k), each a
+ * multiply-xorshift chain (a bijection of the lane for every word, so any change of any byte
+ * changes the result); tail bytes zero-padded and the length mixed in at the end.  Streamed:
+ * bytes may come in any chunks.  Thirty-two lanes, not eight, so that the multiplies of a
+ * block need not wait on the block before (format version 2). */
+#define SNAP_LANES 32
 typedef struct snap_hasher {
     uint64_t lane[SNAP_LANES];
     uint8_t pending[8 * SNAP_LANES];
