@@ -240,17 +240,60 @@ static void restore_load_range(int32_t begin, int32_t end, int32_t worker, void 
 }
 
 /* What the snapshot leaves out: inverse masses, flags (as body_update_flags makes them) and
- * the step's displacements.  Without branches (one per body mispredicts on a mix of
- * types): the inverse mass is d / (d m + 1 - d), d = 1 for a dynamic body (1 / m exactly)
- * and 0 for the others (0 / 1), a mass being finite; in blocks of RESTORE_BLOCK (a loop of
- * known length, which GCC vectorises at -O2; with the flags in it, it does not), then one
- * by one. */
+ * the step's displacements.  Without branches (one per body mispredicts on a mix of types)
+ * and on the reals' bits, in blocks of RESTORE_BLOCK (a loop of known length), then one by
+ * one: so GCC vectorises them at -O2 (on compares of reals and a conversion of the type it
+ * did not, -fopt-info-vec: "control flow in loop", "no vectype"). */
 #define RESTORE_BLOCK 16
 
+static inline real_sbits restore_bits(rg_real x)
+{
+    real_sbits u;
+    memcpy(&u, &x, sizeof u);
+    return u;
+}
+
+static inline rg_real restore_real(real_sbits u)
+{
+    rg_real x;
+    memcpy(&x, &u, sizeof x);
+    return x;
+}
+
+/* 1 / m for a dynamic body, else +0: the reciprocal of m or of 1, masked. */
 static inline rg_real restore_inverse_mass(int32_t type, rg_real mass)
 {
-    rg_real d = (rg_real)(type == RG_BODY_DYNAMIC);
-    return d / (d * mass + (1 - d));
+    real_sbits dynamic = -(real_sbits)(type == RG_BODY_DYNAMIC);
+    real_sbits divisor = (restore_bits(mass) & dynamic) | (restore_bits(1) & ~dynamic);
+    return restore_real(restore_bits(1 / restore_real(divisor)) & dynamic);
+}
+
+/* body_flags_from on the bits: x > 0 is the bits > 0 as a signed integer (a negative real,
+ * -0 too, has the sign bit), x != 1 is bits other than 1's; for every real but NaN, which no
+ * setter lets in and the checks refuse. */
+static inline uint32_t restore_flags(int32_t type, rg_real drag_lin, rg_real drag_quad, rg_real fric,
+                                     rg_real min_speed, rg_real max_speed, rg_real gscale)
+{
+    uint32_t dynamic = type == RG_BODY_DYNAMIC, moving = type != RG_BODY_STATIC;
+    uint32_t magnitude = (restore_bits(drag_quad) > 0) | (restore_bits(fric) > 0);
+    uint32_t dissipative = magnitude | (restore_bits(drag_lin) > 0);
+    uint32_t limited = (restore_bits(min_speed) > 0) | (restore_bits(max_speed) > 0);
+    uint32_t gscaled = restore_bits(gscale) != restore_bits(1);
+    return (dynamic & dissipative) * BODY_F_DISSIPATIVE | (dynamic & magnitude) * BODY_F_MAGNITUDE |
+           (dynamic & limited) * BODY_F_LIMITED | (moving & gscaled) * BODY_F_GSCALE;
+}
+
+static void restore_flags_all(uint32_t *restrict flags, const int32_t *restrict type, const rg_real *restrict dl,
+                              const rg_real *restrict dq, const rg_real *restrict fric, const rg_real *restrict lo,
+                              const rg_real *restrict hi, const rg_real *restrict gs, int32_t n)
+{
+    int32_t i = 0;
+    for (; n - i >= RESTORE_BLOCK; i += RESTORE_BLOCK)
+        for (int k = 0; k < RESTORE_BLOCK; k++) {
+            int32_t j = i + k;
+            flags[j] = restore_flags(type[j], dl[j], dq[j], fric[j], lo[j], hi[j], gs[j]);
+        }
+    for (; i < n; i++) flags[i] = restore_flags(type[i], dl[i], dq[i], fric[i], lo[i], hi[i], gs[i]);
 }
 
 static void restore_inverse_masses(rg_real *restrict inv, const rg_real *restrict mass, const int32_t *restrict type,
@@ -265,28 +308,35 @@ static void restore_inverse_masses(rg_real *restrict inv, const rg_real *restric
 static void restore_derived(rg_world *w)
 {
     body_store *b = &w->b;
-    const int32_t *restrict type = b->type;
-    const rg_real *restrict dl = b->drag_lin, *restrict dq = b->drag_quad, *restrict fric = b->fric;
-    const rg_real *restrict lo = b->min_speed, *restrict hi = b->max_speed, *restrict gs = b->gscale;
-    uint32_t *restrict flags = b->flags;
-    int32_t n = b->count, dissipative = 0, limited = 0, gscaled = 0, magnitude = 0;
-    for (int32_t i = 0; i < n; i++) {
-        uint32_t fl = body_flags_from(type[i], dl[i], dq[i], fric[i], lo[i], hi[i], gs[i]);
-        flags[i] = fl;
-        dissipative += (fl & BODY_F_DISSIPATIVE) != 0;
-        limited += (fl & BODY_F_LIMITED) != 0;
-        gscaled += (fl & BODY_F_GSCALE) != 0;
-        magnitude += (fl & BODY_F_MAGNITUDE) != 0;
+    const uint32_t *flags = b->flags;
+    int32_t n = b->count;
+    restore_flags_all(b->flags, b->type, b->drag_lin, b->drag_quad, b->fric, b->min_speed, b->max_speed, b->gscale, n);
+    restore_inverse_masses(b->inv_mass, b->mass, b->type, n);
+    uint32_t dissipative = 0, limited = 0, gscaled = 0, magnitude = 0;
+    int32_t i = 0;
+    for (; n - i >= RESTORE_BLOCK; i += RESTORE_BLOCK)
+        for (int k = 0; k < RESTORE_BLOCK; k++) {
+            uint32_t f = flags[i + k];
+            dissipative += (f & BODY_F_DISSIPATIVE) != 0;
+            limited += (f & BODY_F_LIMITED) != 0;
+            gscaled += (f & BODY_F_GSCALE) != 0;
+            magnitude += (f & BODY_F_MAGNITUDE) != 0;
+        }
+    for (; i < n; i++) {
+        uint32_t f = flags[i];
+        dissipative += (f & BODY_F_DISSIPATIVE) != 0;
+        limited += (f & BODY_F_LIMITED) != 0;
+        gscaled += (f & BODY_F_GSCALE) != 0;
+        magnitude += (f & BODY_F_MAGNITUDE) != 0;
     }
-    restore_inverse_masses(b->inv_mass, b->mass, type, n);
     if (n > 0) {
         memset(b->dx, 0, (size_t)n * sizeof *b->dx);
         memset(b->dy, 0, (size_t)n * sizeof *b->dy);
     }
-    w->dissipative_count = dissipative;
-    w->limit_count = limited;
-    w->gscale_count = gscaled;
-    w->magnitude_count = magnitude;
+    w->dissipative_count = (int32_t)dissipative;
+    w->limit_count = (int32_t)limited;
+    w->gscale_count = (int32_t)gscaled;
+    w->magnitude_count = (int32_t)magnitude;
 }
 
 static void restore_load(rg_world *w, const snap_in *in, const restore_scratch *r)
@@ -380,7 +430,7 @@ static const char *restore_check_values(const snap_in *in)
     if (!restore_check_pool(in, in->l.bgen, in->l.bindex, s->bslots, s->bmax_gen, s->bfree, s->count,
                             in->p + in->l.field[SNAP_F_slot], in->l.stride[SNAP_F_slot]))
         return "body handles";
-    if (!restore_check_bodies(in)) return "bodies";
+    if (!restore_check_body_values(in)) return "bodies";
     if (!restore_check_springs(in)) return "springs";
     if (!restore_check_events(in, in->l.ev, s->n_ev) || !restore_check_events(in, in->l.pend, s->n_pend))
         return "events";
@@ -411,7 +461,9 @@ static rg_status restore_state(rg_world *w, const char *fn, const snap_in *in, i
     rg_status st = RG_OK;
     if (checked) {
         memset(rblock, 0, r.zeroed);
-        if (!restore_check_contacts(w, in, &r))
+        if (!restore_check_islands(in, &r))
+            st = restore_refuse(w, fn, "bodies");
+        else if (!restore_check_contacts(w, in, &r))
             st = restore_refuse(w, fn, "contacts");
         else if (!restore_check_broadphase(w, in, &r))
             st = restore_refuse(w, fn, "broadphase");

@@ -251,24 +251,31 @@ int restore_check_pool(const snap_in *in, size_t gen, size_t index, int32_t slot
     return steps == nfree;
 }
 
-int restore_check_bodies(const snap_in *in)
+/* The islands: each sleeping body's list head is a sleeping body heading its own list, and
+ * the lists cover each sleeping body once.  As the contacts' lists (restore_links.c): each
+ * next link first where it lies (a sleeping body of the same list), gathered as a dense
+ * index, then the walks from the heads along the gathered links, a chain of loads in a
+ * small array; no walk leaves its list, and walks that count every body once leave none
+ * out and run round no cycle. */
+int restore_check_islands(const snap_in *in, restore_scratch *r)
 {
     const snap_scalars *s = &in->s;
-    if (!restore_check_body_values(in)) return BAD;
-    /* the islands: each sleeping body's list head is a sleeping body heading its own list,
-     * and the lists (acyclic: no walk is longer than the sleeping bodies) cover each
-     * sleeping body once */
-    int32_t asleep = s->n_moving - s->n_active, visited = 0;
-    for (int32_t i = s->n_active; i < s->n_moving; i++) {
-        int32_t self = BF_I(in, slot, i) + 1;
-        if (BF_I(in, isl_head, i) != self) continue;
-        for (int32_t at = self, steps = 0; at != 0; steps++) {
-            int32_t j = restore_dense(in, at - 1);
-            if (steps >= asleep || j < s->n_active || j >= s->n_moving || BF_I(in, isl_head, j) != self)
-                return BAD;
-            visited++;
-            at = BF_I(in, isl_next, j);
-        }
+    int32_t na = s->n_active, asleep = s->n_moving - na, *next = r->isl_next;
+    for (int32_t k = 0; k < asleep; k++) {
+        int32_t head = BF_I(in, isl_head, na + k), at = BF_I(in, isl_next, na + k); /* in range */
+        int32_t j = restore_dense(in, head - 1);
+        if (j < na || j >= s->n_moving || BF_I(in, isl_head, j) != head) return BAD;
+        next[k] = -1;
+        if (at == 0) continue;
+        j = restore_dense(in, at - 1);
+        if (j < na || j >= s->n_moving || BF_I(in, isl_head, j) != head) return BAD;
+        next[k] = j - na;
+    }
+    int32_t visited = 0;
+    for (int32_t k = 0; k < asleep; k++) {
+        if (BF_I(in, isl_head, na + k) != BF_I(in, slot, na + k) + 1) continue;
+        for (int32_t at = k; at >= 0; at = next[at])
+            if (++visited > asleep) return BAD;
     }
     return visited == asleep;
 }

@@ -181,6 +181,7 @@ typedef struct restore_scratch {
     int32_t *chain_next;    /* [members]: the next member along the chain, and the level */
     int32_t *level_next;    /* [members] */
     rg_real *box;           /* [4 members]: the members' boxes */
+    int32_t *isl_next;      /* [asleep]: each sleeping body's next in its island (dense - n_active) */
     const snap_scalars *s;
     int checked;
 } restore_scratch;
@@ -206,14 +207,15 @@ int restore_check_scalars(snap_in *in);
 int restore_check_pool(const snap_in *in, size_t gen, size_t index, int32_t slots, uint32_t max_gen,
                       int32_t head, int32_t live, const uint8_t *slot_of, size_t slot_stride);
 /* The bodies: each field's values in the ranges of the setters they enter by, over the
- * partitions they hold in (restore_body.c), and the sleeping bodies' islands. */
-int restore_check_bodies(const snap_in *in);
+ * partitions they hold in (restore_body.c). */
 int restore_check_body_values(const snap_in *in);
 int restore_check_springs(const snap_in *in);
 int restore_check_events(const snap_in *in, size_t off, int32_t n);
 /* The scratch the two checks below fill (sized from r->s and r->checked) and the load
  * reads (restore_links.c). */
 void restore_check_scratch_layout(mem_layout *l, void *ctx);
+/* The sleeping bodies' islands (restore_check.c). */
+int restore_check_islands(const snap_in *in, restore_scratch *r);
 /* Both spread what they can over w's task system (nothing of w changes). */
 int restore_check_contacts(struct rg_world *w, const snap_in *in, restore_scratch *r);
 int restore_check_broadphase(struct rg_world *w, const snap_in *in, restore_scratch *r);

@@ -44,6 +44,7 @@ void restore_check_scratch_layout(mem_layout *l, void *ctx)
     r->chain_next = mem_take(l, checked * (size_t)s->members, sizeof(int32_t));
     r->level_next = mem_take(l, checked * (size_t)s->members, sizeof(int32_t));
     r->box = mem_take(l, checked * 4 * (size_t)s->members, sizeof(rg_real));
+    r->isl_next = mem_take(l, checked * (size_t)(s->n_moving - s->n_active), sizeof(int32_t));
 }
 
 /* ---------------------------------------------------------------- on the task system */

@@ -69,6 +69,54 @@ static void test_resimulation_after_restore_gives_identical_bytes(void **state)
 
 /* Equal states hash alike in different worlds (other handle tags); a change of one bit of
  * one body's state changes the hash. */
+/* What a snapshot leaves out, a restore derives: each body's inverse mass and the flags its
+ * settings give it (drag, surface friction, speed limits, gravity scale), as the setters
+ * make them.  The integrator's fast paths read the flags (src/integrator.c), so a body
+ * restored without its flag moves as one without the setting: a restored world stepped
+ * beside the saving one would part from it.  Each setting on a whole block of bodies, and
+ * no applied force, so that each block may take a fast path. */
+static void test_restore_derives_what_each_setting_gives_a_body(void **state)
+{
+    (void)state;
+    enum { KINDS = 9, PER = 16, N = KINDS * PER };
+    rg_world *w = gravity_world(-10), *w2;
+    assert_ok(rg_world_set_sleeping(w, 0));
+    rg_body b[N];
+    for (int i = 0; i < N; i++) {
+        b[i] = circle_body(w, RG_BODY_DYNAMIC, 0.5 + i % 7, 3.0 * i, 0, 0.5);
+        assert_ok(rg_body_set_velocity(w, b[i], v2(4, 9)));
+        switch (i / PER) {
+        case 1: assert_ok(rg_body_set_drag(w, b[i], 0.5f, 0)); break;
+        case 2: assert_ok(rg_body_set_drag(w, b[i], 0, 0.2f)); break;
+        case 3: assert_ok(rg_body_set_surface_friction(w, b[i], 0.3f, 5)); break;
+        case 4: assert_ok(rg_body_set_speed_limits(w, b[i], 12, 0)); break; /* held at rest */
+        case 5: assert_ok(rg_body_set_speed_limits(w, b[i], 0, 2)); break;  /* falls at 2 m/s */
+        case 6: assert_ok(rg_body_set_gravity_scale(w, b[i], 0.25f)); break;
+        case 7: assert_ok(rg_body_set_gravity_scale(w, b[i], -1)); break;
+        case 8: assert_ok(rg_body_set_mass(w, b[i], 0.125f)); break;
+        default: break;
+        }
+    }
+    step_n(w, 5, DT);
+    size_t size;
+    void *snap = save(w, &size);
+    assert_ok(rg_world_create(&w2));
+    assert_ok(rg_world_restore(w2, snap, size));
+    step_n(w, 60, DT);
+    step_n(w2, 60, DT);
+    for (int i = 0; i < N; i++) {
+        rg_vec2 p = pos_of(w, b[i]), p2 = pos_of(w2, b[i]), v = vel_of(w, b[i]), v2_ = vel_of(w2, b[i]);
+        assert_memory_equal(&p, &p2, sizeof p);
+        assert_memory_equal(&v, &v2_, sizeof v);
+    }
+    /* and each setting but the mass (which free flight does not feel) made its bodies move
+     * otherwise than the plain ones */
+    for (int i = PER; i < N - PER; i++) assert_true(VY(w, b[i]) != VY(w, b[0]) || VX(w, b[i]) != VX(w, b[0]));
+    free(snap);
+    rg_world_destroy(w2);
+    rg_world_destroy(w);
+}
+
 static void test_equal_states_give_equal_hashes(void **state)
 {
     (void)state;
@@ -315,6 +363,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_resimulation_after_restore_gives_identical_bytes),
+        cmocka_unit_test(test_restore_derives_what_each_setting_gives_a_body),
         cmocka_unit_test(test_equal_states_give_equal_hashes),
         cmocka_unit_test(test_save_reports_its_size_and_respects_capacity),
         cmocka_unit_test(test_corrupt_truncated_and_random_snapshots_are_rejected),
