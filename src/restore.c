@@ -275,9 +275,9 @@ static inline uint32_t restore_flags(int32_t type, rg_real drag_lin, rg_real dra
                                      rg_real min_speed, rg_real max_speed, rg_real gscale)
 {
     uint32_t dynamic = type == RG_BODY_DYNAMIC, moving = type != RG_BODY_STATIC;
-    uint32_t magnitude = (restore_bits(drag_quad) > 0) | (restore_bits(fric) > 0);
-    uint32_t dissipative = magnitude | (restore_bits(drag_lin) > 0);
-    uint32_t limited = (restore_bits(min_speed) > 0) | (restore_bits(max_speed) > 0);
+    uint32_t lin = restore_bits(drag_lin) > 0, quad = restore_bits(drag_quad) > 0, fr = restore_bits(fric) > 0;
+    uint32_t lo = restore_bits(min_speed) > 0, hi = restore_bits(max_speed) > 0;
+    uint32_t magnitude = quad | fr, dissipative = magnitude | lin, limited = lo | hi;
     uint32_t gscaled = restore_bits(gscale) != restore_bits(1);
     return (dynamic & dissipative) * BODY_F_DISSIPATIVE | (dynamic & magnitude) * BODY_F_MAGNITUDE |
            (dynamic & limited) * BODY_F_LIMITED | (moving & gscaled) * BODY_F_GSCALE;
