@@ -42,7 +42,7 @@ ALL_TARGETS += $(B)/bench
 
 # The parts every bench program shares, and those of the harness.
 BENCH_COMMON := scenes rigid gameplay v3_load
-BENCH_PARTS := $(BENCH_COMMON) quality report sweep floor
+BENCH_PARTS := $(BENCH_COMMON) quality report sweep floor cores
 BENCH_PART_OBJ := $(patsubst %,$(B)/bench_obj/bench_%.o,$(BENCH_PARTS))
 BENCH_COMMON_OBJ := $(patsubst %,$(B)/bench_obj/bench_%.o,$(BENCH_COMMON))
 

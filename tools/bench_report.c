@@ -108,6 +108,10 @@ void bench_report_machine(FILE *f)
     }
     fprintf(f, "machine: %ld cpus, %s (family %s model %s), AVX2+FMA %s; load average %s\n",
             sysconf(_SC_NPROCESSORS_ONLN), model, family, modelno, bench_cpu_has_avx2() ? "yes" : "no", load);
+    double trip = bench_cores_round_trip_ns();
+    if (trip > 0)
+        fprintf(f, "machine: a cache line to another core and back (two threads handing a counter over): %.0f ns\n",
+                trip);
 }
 
 /* ---------------------------------------------------------------- the tables */

@@ -86,6 +86,9 @@ void bench_report_row(const bench_result *r);
 void bench_report_csv_header(FILE *f);
 void bench_report_csv_row(FILE *f, const bench_result *r);
 void bench_report_machine(FILE *f);
+/* The median time of a cache line's round trip between two threads (bench_cores.c); -1
+ * with one cpu. */
+double bench_cores_round_trip_ns(void);
 /* The tables: sleeping off (medians), sleeping on (means), quality, memory, free0; the
  * stage costs, the gameplay collision, the allocator calls. */
 void bench_report_summary(const bench_result *rs, int32_t nr, const bench_entrant *who, int nwho,
