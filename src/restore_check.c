@@ -259,21 +259,26 @@ int restore_check_pool(const snap_in *in, size_t gen, size_t index, int32_t slot
  * out and run round no cycle. */
 int restore_check_islands(const snap_in *in, restore_scratch *r)
 {
-    const snap_scalars *s = &in->s;
-    int32_t na = s->n_active, asleep = s->n_moving - na, *next = r->isl_next;
+    /* what the loops read of `in` and `r` in locals: a store of a link may alias an int32_t
+     * of either, and the compiler would read them again after each */
+    const int32_t na = in->s.n_active, nm = in->s.n_moving, asleep = nm - na;
+    const uint8_t *bindex = in->p + in->l.bindex;
+    snap_col heads = col_of(in, SNAP_F_isl_head), nexts = col_of(in, SNAP_F_isl_next), slots = col_of(in, SNAP_F_slot);
+    int32_t *next = r->isl_next;
     for (int32_t k = 0; k < asleep; k++) {
-        int32_t head = BF_I(in, isl_head, na + k), at = BF_I(in, isl_next, na + k); /* in range */
-        int32_t j = restore_dense(in, head - 1);
-        if (j < na || j >= s->n_moving || BF_I(in, isl_head, j) != head) return BAD;
+        /* in range (restore_body.c): head in [1, bslots], at in [0, bslots] */
+        int32_t head = col_i32(heads, na + k), at = col_i32(nexts, na + k);
+        int32_t j = (int32_t)snap_get32(bindex + 4 * (size_t)(head - 1)); /* restore_dense */
+        if (j < na || j >= nm || col_i32(heads, j) != head) return BAD;
         next[k] = -1;
         if (at == 0) continue;
-        j = restore_dense(in, at - 1);
-        if (j < na || j >= s->n_moving || BF_I(in, isl_head, j) != head) return BAD;
+        j = (int32_t)snap_get32(bindex + 4 * (size_t)(at - 1));
+        if (j < na || j >= nm || col_i32(heads, j) != head) return BAD;
         next[k] = j - na;
     }
     int32_t visited = 0;
     for (int32_t k = 0; k < asleep; k++) {
-        if (BF_I(in, isl_head, na + k) != BF_I(in, slot, na + k) + 1) continue;
+        if (col_i32(heads, na + k) != col_i32(slots, na + k) + 1) continue;
         for (int32_t at = k; at >= 0; at = next[at])
             if (++visited > asleep) return BAD;
     }

@@ -119,12 +119,6 @@ enum { CT_ID, CT_SA, CT_SB, CT_NA, CT_PA, CT_NB, CT_PB, CT_FLAGS };
 static inline const uint8_t *ct_rec(const snap_in *in, int32_t k) { return rec(in, in->l.contacts, SNAP_CONTACT, k); }
 static inline int32_t ct_at(const uint8_t *q, int field) { return (int32_t)snap_get32(q + 4 * field); }
 
-static uint64_t restore_handle(const snap_in *in, int32_t slot)
-{
-    return ((uint64_t)in->s.btag << (POOL_SLOT_BITS + POOL_GEN_BITS)) |
-           ((uint64_t)rd_u32(in, in->l.bgen, slot) << POOL_SLOT_BITS) | (uint64_t)slot;
-}
-
 /* Per body what its contacts take from it (their sensor and one-way flags) and whether it
  * has no shape: one byte to read per body of a contact instead of four fields. */
 static void restore_body_bits(const snap_in *in, uint8_t *bits, int32_t i0, int32_t i1)
@@ -143,28 +137,37 @@ static void restore_body_bits(const snap_in *in, uint8_t *bits, int32_t i0, int3
 /* Live records k0..k1-1: ascending ids (each above the one before it, record k0's above
  * record k0 - 1's), bodies that exist, have shapes and are in handle order, flags as the
  * bodies make them, links in range, reals finite, impulses bounded; 1 when one breaks them.
- * Counts the touching records and those with an awake body (wakes). */
+ * Counts the touching records and those with an awake body (wakes).  What the loop reads
+ * of `in` and `r` is in locals first: a store of a byte (wakes) may alias anything, and the
+ * compiler would read them again after each. */
 static int restore_records_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1, int32_t *touching,
                                  int32_t *should_wake)
 {
-    const snap_scalars *s = &in->s;
     const uint32_t valid = CT_TOUCHING | CT_SENSOR | CT_SOLVE | CT_CLOSING | CT_ONEWAY | CT_PASS;
     const real_sbits impulse = real_magnitude((rg_real)CONTACT_MAX_IMPULSE), big = real_magnitude((rg_real)REAL_MAX);
-    int32_t last = k0 > 0 ? ct_at(ct_rec(in, k0 - 1), CT_ID) : -1, nt = 0, nw = 0;
+    const uint8_t *rec0 = rec(in, in->l.contacts, SNAP_CONTACT, 0), *bindex = in->p + in->l.bindex;
+    const uint8_t *bgen = in->p + in->l.bgen, *body_bits = r->body_bits;
+    uint8_t *wakes_of = r->wakes;
+    const int32_t ccap = in->s.ccap, bslots = in->s.bslots, n_active = in->s.n_active;
+    int32_t last = k0 > 0 ? ct_at(rec0 + SNAP_CONTACT * (size_t)(k0 - 1), CT_ID) : -1, nt = 0, nw = 0;
     for (int32_t k = k0; k < k1; k++) {
-        const uint8_t *q = ct_rec(in, k);
+        const uint8_t *q = rec0 + SNAP_CONTACT * (size_t)k;
         int32_t id = ct_at(q, CT_ID), sa = ct_at(q, CT_SA), sb = ct_at(q, CT_SB);
-        if (id <= last || id >= s->ccap) return 1; /* ascending ids */
+        if (id <= last || id >= ccap) return 1; /* ascending ids */
         last = id;
-        int32_t ia = restore_dense(in, sa), ib = restore_dense(in, sb);
-        if (ia < 0 || ib < 0 || sa == sb || !(restore_handle(in, sa) < restore_handle(in, sb))) return 1;
-        uint32_t flags = (uint32_t)ct_at(q, CT_FLAGS), from_bodies = (uint32_t)r->body_bits[ia] | r->body_bits[ib];
+        /* live bodies (restore_dense), distinct, in handle order: the tag is one, so by
+         * generation, then slot */
+        if ((uint32_t)sa >= (uint32_t)bslots || (uint32_t)sb >= (uint32_t)bslots) return 1;
+        int32_t ia = (int32_t)snap_get32(bindex + 4 * (size_t)sa), ib = (int32_t)snap_get32(bindex + 4 * (size_t)sb);
+        uint32_t ga = snap_get32(bgen + 4 * (size_t)sa), gb = snap_get32(bgen + 4 * (size_t)sb);
+        if (ia < 0 || ib < 0 || !(ga < gb || (ga == gb && sa < sb))) return 1;
+        uint32_t flags = (uint32_t)ct_at(q, CT_FLAGS), from_bodies = (uint32_t)body_bits[ia] | body_bits[ib];
         uint32_t bad = (flags & ~valid) != 0;
         bad |= (from_bodies & RESTORE_SHAPELESS) != 0;
         bad |= (flags & (CT_SENSOR | CT_ONEWAY)) != from_bodies;
         for (int f = CT_NA; f <= CT_PB; f++) {
             int32_t link = ct_at(q, f);
-            bad |= (link < -1) | (link >= s->ccap);
+            bad |= (link < -1) | (link >= ccap);
         }
         /* the reals finite, the warm start's impulses within what the solve keeps (state.h) */
         const uint8_t *reals = q + 32;
@@ -172,10 +175,10 @@ static int restore_records_range(const snap_in *in, restore_scratch *r, int32_t 
         bad |= (uint32_t)real_out(real_get(reals + SNAP_REAL * 8), 0, impulse, 0);
         bad |= (uint32_t)real_out(real_get(reals + SNAP_REAL * 9), 0, impulse, impulse);
         if (bad) return 1;
-        uint8_t wakes = (ia < s->n_active) | (ib < s->n_active);
-        r->wakes[k] = wakes;
+        uint32_t wakes = (uint32_t)(ia < n_active) | (uint32_t)(ib < n_active);
+        wakes_of[k] = (uint8_t)wakes;
         nt += (flags & CT_TOUCHING) != 0;
-        nw += wakes;
+        nw += (int32_t)wakes;
     }
     *touching += nt;
     *should_wake += nw;
@@ -187,16 +190,18 @@ static int restore_records_range(const snap_in *in, restore_scratch *r, int32_t 
  * back; 1 when one is not. */
 static int restore_list_links_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1)
 {
+    const uint8_t *rec0 = ct_rec(in, 0);
+    const int32_t *rec_of = r->rec_of;
     int32_t *next = r->node_next;
     for (int32_t k = k0; k < k1; k++) {
-        const uint8_t *q = ct_rec(in, k);
+        const uint8_t *q = rec0 + SNAP_CONTACT * (size_t)k;
         int32_t id = ct_at(q, CT_ID);
         for (int side = 0; side < 2; side++) {
             int32_t slot = ct_at(q, side ? CT_SB : CT_SA), n = ct_at(q, side ? CT_NB : CT_NA), to = -1;
             if (n >= 0) { /* in range (restore_records_range) */
-                int32_t rn = r->rec_of[n];
+                int32_t rn = rec_of[n];
                 if (rn <= 0) return 1;
-                const uint8_t *d = ct_rec(in, rn - 1);
+                const uint8_t *d = rec0 + SNAP_CONTACT * (size_t)(rn - 1);
                 int32_t da = ct_at(d, CT_SA), db = ct_at(d, CT_SB), dside = db == slot;
                 if ((da != slot && db != slot) || ct_at(d, dside ? CT_PB : CT_PA) != id) return 1;
                 to = 2 * (rn - 1) + dside;
@@ -211,15 +216,17 @@ static int restore_list_links_range(const snap_in *in, restore_scratch *r, int32
  * all lists together hold every live contact twice: the walks from the heads. */
 static int restore_check_lists(const snap_in *in, restore_scratch *r)
 {
-    const snap_scalars *s = &in->s;
-    const int32_t *next = r->node_next;
-    int64_t visits = 0, nodes = 2 * (int64_t)s->clive;
-    for (int32_t i = 0; i < s->count; i++) {
-        int32_t head = BF_I(in, chead, i) - 1;
+    const int32_t *next = r->node_next, *rec_of = r->rec_of;
+    const uint8_t *rec0 = ct_rec(in, 0);
+    snap_col chead = col_of(in, SNAP_F_chead), slots = col_of(in, SNAP_F_slot);
+    const int32_t count = in->s.count;
+    int64_t visits = 0, nodes = 2 * (int64_t)in->s.clive;
+    for (int32_t i = 0; i < count; i++) {
+        int32_t head = col_i32(chead, i) - 1;
         if (head < 0) continue;
-        int32_t slot = BF_I(in, slot, i), rh = r->rec_of[head];
+        int32_t slot = col_i32(slots, i), rh = rec_of[head];
         if (rh <= 0) return BAD;
-        const uint8_t *d = ct_rec(in, rh - 1);
+        const uint8_t *d = rec0 + SNAP_CONTACT * (size_t)(rh - 1);
         int32_t da = ct_at(d, CT_SA), db = ct_at(d, CT_SB), side = db == slot;
         if ((da != slot && db != slot) || ct_at(d, side ? CT_PB : CT_PA) != -1) return BAD;
         for (int32_t node = 2 * (rh - 1) + side; node >= 0; node = next[node])
