@@ -10,22 +10,34 @@
 #define BP_LIM 268435456 /* 2^28 */
 #define BP_MIN_BUCKET_BITS 6
 
-/* Cell sides 2^L m and their inverses, L = BP_LEVEL_MIN .. BP_LEVEL_MAX (exact in float);
- * the tables must list BP_LEVELS entries. */
-static const double level_cells[BP_LEVELS] = {
+/* Cell sides 2^L m, their inverses, and the sides less 1/256 (a box fits a level when its
+ * extent is at most that), L = BP_LEVEL_MIN .. BP_LEVEL_MAX: all exact in float (a power of
+ * two times 255/256 has 8 significant bits), so the tables hold the very values the
+ * arithmetic on them would give; the tables must list BP_LEVELS entries. */
+#define BP_FIT(c) ((c) * 0.99609375)
+static const rg_real level_cells[BP_LEVELS] = {
     0x1p-10, 0x1p-9, 0x1p-8, 0x1p-7, 0x1p-6, 0x1p-5, 0x1p-4, 0x1p-3,
     0x1p-2, 0x1p-1, 0x1p0, 0x1p1, 0x1p2, 0x1p3, 0x1p4, 0x1p5,
     0x1p6, 0x1p7, 0x1p8, 0x1p9, 0x1p10, 0x1p11, 0x1p12, 0x1p13,
     0x1p14, 0x1p15, 0x1p16, 0x1p17, 0x1p18, 0x1p19, 0x1p20,
 };
-static const double level_invs[BP_LEVELS] = {
+static const rg_real level_invs[BP_LEVELS] = {
     0x1p10, 0x1p9, 0x1p8, 0x1p7, 0x1p6, 0x1p5, 0x1p4, 0x1p3,
     0x1p2, 0x1p1, 0x1p0, 0x1p-1, 0x1p-2, 0x1p-3, 0x1p-4, 0x1p-5,
     0x1p-6, 0x1p-7, 0x1p-8, 0x1p-9, 0x1p-10, 0x1p-11, 0x1p-12, 0x1p-13,
     0x1p-14, 0x1p-15, 0x1p-16, 0x1p-17, 0x1p-18, 0x1p-19, 0x1p-20,
 };
-static inline rg_real level_cell(int li) { return (rg_real)level_cells[li]; }
-static inline rg_real level_inv(int li) { return (rg_real)level_invs[li]; }
+static const rg_real level_fits[BP_LEVELS] = {
+    BP_FIT(0x1p-10), BP_FIT(0x1p-9), BP_FIT(0x1p-8), BP_FIT(0x1p-7), BP_FIT(0x1p-6), BP_FIT(0x1p-5),
+    BP_FIT(0x1p-4), BP_FIT(0x1p-3), BP_FIT(0x1p-2), BP_FIT(0x1p-1), BP_FIT(0x1p0), BP_FIT(0x1p1),
+    BP_FIT(0x1p2), BP_FIT(0x1p3), BP_FIT(0x1p4), BP_FIT(0x1p5), BP_FIT(0x1p6), BP_FIT(0x1p7),
+    BP_FIT(0x1p8), BP_FIT(0x1p9), BP_FIT(0x1p10), BP_FIT(0x1p11), BP_FIT(0x1p12), BP_FIT(0x1p13),
+    BP_FIT(0x1p14), BP_FIT(0x1p15), BP_FIT(0x1p16), BP_FIT(0x1p17), BP_FIT(0x1p18), BP_FIT(0x1p19),
+    BP_FIT(0x1p20),
+};
+static inline rg_real level_cell(int li) { return level_cells[li]; }
+static inline rg_real level_inv(int li) { return level_invs[li]; }
+static inline rg_real level_fit(int li) { return level_fits[li]; }
 
 /* floor(v * inv) clamped to [-LIM, LIM - 1]; inv is a power of two, so v * inv is exact. */
 static inline int64_t cell_coord(rg_real v, rg_real inv)
@@ -51,9 +63,9 @@ static inline uint32_t bucket_of(const broadphase *bp, uint64_t key)
 
 /* The finest level whose cell exceeds the box by a 1/256 margin (which absorbs the rounding
  * of the box's width), or BP_HUGE. */
-static int level_of(rg_real lx, rg_real ly, rg_real ux, rg_real uy)
+static inline int level_of(rg_real lx, rg_real ly, rg_real ux, rg_real uy)
 {
-    rg_real w = ux - lx, h = uy - ly, top = level_cell(BP_LEVELS - 1) * RG_R(0.99609375);
+    rg_real w = ux - lx, h = uy - ly, top = level_fit(BP_LEVELS - 1);
     if (!(w <= top && h <= top)) return BP_HUGE; /* also NaN */
     rg_real ext = rg_max(w, h);
     if (!(ext > 0)) return 0;
@@ -73,7 +85,7 @@ static int level_of(rg_real lx, rg_real ly, rg_real ux, rg_real uy)
     if (biased == 0) return 0;
     int li = e - BP_LEVEL_MIN;
     if (li < 0) return 0;
-    if (!(ext <= level_cell(li) * RG_R(0.99609375))) li++;
+    if (!(ext <= level_fit(li))) li++;
     return li < BP_LEVELS ? li : BP_HUGE;
 }
 
