@@ -120,18 +120,32 @@ static inline const uint8_t *ct_rec(const snap_in *in, int32_t k) { return rec(i
 static inline int32_t ct_at(const uint8_t *q, int field) { return (int32_t)snap_get32(q + 4 * field); }
 
 /* Per body what its contacts take from it (their sensor and one-way flags) and whether it
- * has no shape: one byte to read per body of a contact instead of four fields. */
-static void restore_body_bits(const snap_in *in, uint8_t *bits, int32_t i0, int32_t i1)
+ * has no shape: one byte to read per body of a contact instead of four fields.  A column at
+ * a time, a uniform one once: the loops of a known stride vectorise. */
+static uint32_t restore_sensor_bit(uint32_t cflags) { return (cflags & CF_SENSOR) ? CT_SENSOR : 0; }
+static uint32_t restore_shapeless_bit(int32_t shape) { return shape == RG_SHAPE_NONE ? RESTORE_SHAPELESS : 0; }
+
+static void restore_body_bits(const snap_in *in, uint8_t *restrict bits, int32_t i0, int32_t i1)
 {
     snap_col cf = col_of(in, SNAP_F_cflags), ox = col_of(in, SNAP_F_owx), oy = col_of(in, SNAP_F_owy);
     snap_col shape = col_of(in, SNAP_F_shape);
-    for (int32_t i = i0; i < i1; i++) {
-        uint32_t sensor = (snap_get32(cf.p + cf.stride * (size_t)i) & CF_SENSOR) != 0;
-        rg_real x = col_real(ox, i), y = col_real(oy, i);
-        uint32_t one_way = (x != 0) | (y != 0);
-        uint32_t none = col_i32(shape, i) == RG_SHAPE_NONE;
-        bits[i] = (uint8_t)(sensor * CT_SENSOR | one_way * CT_ONEWAY | none * RESTORE_SHAPELESS);
+    uint32_t base = 0;
+    if (cf.stride == 0) base |= restore_sensor_bit(snap_get32(cf.p));
+    if (shape.stride == 0) base |= restore_shapeless_bit(col_i32(shape, 0));
+    if (ox.stride == 0 && oy.stride == 0 && (col_real(ox, 0) != 0 || col_real(oy, 0) != 0)) base |= CT_ONEWAY;
+    for (int32_t i = i0; i < i1; i++) bits[i] = (uint8_t)base;
+    if (cf.stride != 0) {
+        const uint8_t *restrict p = cf.p;
+        for (int32_t i = i0; i < i1; i++) bits[i] |= (uint8_t)restore_sensor_bit(snap_get32(p + 4 * (size_t)i));
     }
+    if (shape.stride != 0) {
+        const uint8_t *restrict p = shape.p;
+        for (int32_t i = i0; i < i1; i++)
+            bits[i] |= (uint8_t)restore_shapeless_bit((int32_t)snap_get32(p + 4 * (size_t)i));
+    }
+    if (ox.stride != 0 || oy.stride != 0)
+        for (int32_t i = i0; i < i1; i++)
+            if (col_real(ox, i) != 0 || col_real(oy, i) != 0) bits[i] |= CT_ONEWAY;
 }
 
 /* Live records k0..k1-1: ascending ids (each above the one before it, record k0's above
