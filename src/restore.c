@@ -108,12 +108,16 @@ static void restore_contacts_start(rg_world *w, const snap_in *in, int32_t *plac
 static void restore_contacts_range(rg_world *w, const snap_in *in, const int32_t *place,
                                    const restore_materials *mat, int32_t k0, int32_t k1)
 {
-    contact_store *cs = &w->coll.contacts;
+    /* what the loop reads of w and in in locals: a store into a contact may alias them */
+    contact *cc = w->coll.contacts.c;
     const body_store *b = &w->b;
+    const uint8_t *rec0 = rec(in, in->l.contacts, SNAP_CONTACT, 0);
+    const int same = mat->same;
+    const rg_real mu = mat->mu, e = mat->e;
     for (int32_t k = k0; k < k1; k++) {
-        const uint8_t *p = rec(in, in->l.contacts, SNAP_CONTACT, k);
+        const uint8_t *p = rec0 + SNAP_CONTACT * (size_t)k;
         int32_t id = (int32_t)snap_get32(p);
-        contact *c = &cs->c[id];
+        contact *c = &cc[id];
 #if SNAP_NATIVE /* the record's runs where they lie in the struct (snapshot.h) */
         uint8_t *to = (uint8_t *)c;
         memcpy(to + offsetof(contact, sa), p + SNAP_CONTACT_LINKS, 6 * 4);
@@ -142,9 +146,9 @@ static void restore_contacts_range(rg_world *w, const snap_in *in, const int32_t
         c->awake = place[id];
         c->toi = 0;
         c->decided = 0;
-        if (mat->same) {
-            c->mu = mat->mu;
-            c->e = mat->e;
+        if (same) {
+            c->mu = mu;
+            c->e = e;
             continue;
         }
         int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
@@ -180,12 +184,16 @@ static void restore_contacts_end(rg_world *w, const snap_in *in)
 static void restore_members_range(broadphase *bp, const snap_in *in, const restore_scratch *r, int32_t k0,
                                   int32_t k1)
 {
+    /* what the loop reads of bp, in and r in locals: a store into an entry may alias them */
     const int16_t *level = in->kept_level != NULL ? in->kept_level : r->level;
     const uint64_t *key = in->kept_key != NULL ? in->kept_key : r->key;
+    const uint8_t *rec0 = rec(in, in->l.members, SNAP_MEMBER, 0);
+    bp_entry *entries = bp->e;
+    int32_t *members = bp->members;
     for (int32_t k = k0; k < k1; k++) {
-        const uint8_t *p = rec(in, in->l.members, SNAP_MEMBER, k);
+        const uint8_t *p = rec0 + SNAP_MEMBER * (size_t)k;
         int32_t slot = (int32_t)snap_get32(p);
-        bp_entry *e = &bp->e[slot];
+        bp_entry *e = &entries[slot];
 #if SNAP_NATIVE /* the record's runs where they lie in the entry (snapshot.h) */
         uint8_t *to = (uint8_t *)e;
         memcpy(to + offsetof(bp_entry, lx), p + SNAP_MEMBER_BOX, 4 * SNAP_REAL);
@@ -208,7 +216,7 @@ static void restore_members_range(broadphase *bp, const snap_in *in, const resto
         e->key = key[k];
         e->member = k;
         e->mark = 0;
-        bp->members[k] = slot;
+        members[k] = slot;
     }
 }
 
