@@ -321,22 +321,20 @@ static void restore_derived(rg_world *w)
     restore_flags_all(b->flags, b->type, b->drag_lin, b->drag_quad, b->fric, b->min_speed, b->max_speed, b->gscale, n);
     restore_inverse_masses(b->inv_mass, b->mass, b->type, n);
     uint32_t dissipative = 0, limited = 0, gscaled = 0, magnitude = 0;
+#define RESTORE_COUNT(f)                               \
+    dissipative += ((f) & BODY_F_DISSIPATIVE) != 0;    \
+    limited += ((f) & BODY_F_LIMITED) != 0;            \
+    gscaled += ((f) & BODY_F_GSCALE) != 0;             \
+    magnitude += ((f) & BODY_F_MAGNITUDE) != 0;
     int32_t i = 0;
     for (; n - i >= RESTORE_BLOCK; i += RESTORE_BLOCK)
         for (int k = 0; k < RESTORE_BLOCK; k++) {
-            uint32_t f = flags[i + k];
-            dissipative += (f & BODY_F_DISSIPATIVE) != 0;
-            limited += (f & BODY_F_LIMITED) != 0;
-            gscaled += (f & BODY_F_GSCALE) != 0;
-            magnitude += (f & BODY_F_MAGNITUDE) != 0;
+            RESTORE_COUNT(flags[i + k])
         }
     for (; i < n; i++) {
-        uint32_t f = flags[i];
-        dissipative += (f & BODY_F_DISSIPATIVE) != 0;
-        limited += (f & BODY_F_LIMITED) != 0;
-        gscaled += (f & BODY_F_GSCALE) != 0;
-        magnitude += (f & BODY_F_MAGNITUDE) != 0;
+        RESTORE_COUNT(flags[i])
     }
+#undef RESTORE_COUNT
     if (n > 0) {
         memset(b->dx, 0, (size_t)n * sizeof *b->dx);
         memset(b->dy, 0, (size_t)n * sizeof *b->dy);
