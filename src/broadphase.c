@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "broadphase.h"
+#include "dispatch.h"
 #include "vec2.h"
 
 /* Cell coordinates are clamped to [-LIM, LIM): the clamp is monotone, so two boxes in
@@ -264,9 +265,76 @@ rg_status broadphase_reserve(broadphase *bp, const rg_mem *m, int32_t slots, int
 
 /* ---------------------------------------------------------------- restoring a snapshot */
 
+#if RG_AVX2_PATHS
+#include <immintrin.h>
+
+typedef char bp_huge_is_the_level_past_the_last[BP_HUGE == BP_LEVELS ? 1 : -1];
+
+/* floor(v * inv) clamped as cell_coord does it, eight lanes (|v * inv| < 2^28 converts
+ * exactly; the lanes past the clamp take its ends). */
+__attribute__((target("avx2"))) static inline __m256i bp_coord8(__m256 v, __m256 inv)
+{
+    __m256 s = _mm256_mul_ps(v, inv);
+    __m256i c = _mm256_cvttps_epi32(_mm256_floor_ps(s));
+    c = _mm256_blendv_epi8(c, _mm256_set1_epi32(BP_LIM - 1),
+                           _mm256_castps_si256(_mm256_cmp_ps(s, _mm256_set1_ps((rg_real)BP_LIM), _CMP_GE_OQ)));
+    /* !(s > -LIM), NaN included */
+    return _mm256_blendv_epi8(_mm256_set1_epi32(-BP_LIM), c,
+                              _mm256_castps_si256(_mm256_cmp_ps(s, _mm256_set1_ps(-(rg_real)BP_LIM), _CMP_GT_OQ)));
+}
+
+/* The cell keys of four lanes (cell_key), 0 where huge. */
+__attribute__((target("avx2"))) static inline __m256i bp_key4(__m128i li, __m128i cx, __m128i cy, __m128i huge)
+{
+    __m256i k = _mm256_slli_epi64(_mm256_cvtepu32_epi64(li), 58);
+    k = _mm256_or_si256(k, _mm256_slli_epi64(_mm256_cvtepu32_epi64(_mm_add_epi32(cx, _mm_set1_epi32(BP_LIM))), 29));
+    k = _mm256_or_si256(k, _mm256_cvtepu32_epi64(_mm_add_epi32(cy, _mm_set1_epi32(BP_LIM))));
+    return _mm256_andnot_si256(_mm256_cvtepi32_epi64(huge), k);
+}
+
+/* broadphase_locate_boxes for eight boxes: level_of and cell_key lane by lane, bit for bit.
+ * The tables' entries are made from their exponents: the fit of level li is 255/256 of
+ * 2^(li + BP_LEVEL_MIN), mantissa 0x7F0000 under exponent li + BP_LEVEL_MIN - 1, and its
+ * inverse 2^-(li + BP_LEVEL_MIN): the same floats. */
+__attribute__((target("avx2"))) static void bp_locate8(const rg_real *box, int16_t *level, uint64_t *key)
+{
+    const __m256i at = _mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28);
+    __m256 lx = _mm256_i32gather_ps(box, at, 4), ly = _mm256_i32gather_ps(box + 1, at, 4);
+    __m256 ux = _mm256_i32gather_ps(box + 2, at, 4), uy = _mm256_i32gather_ps(box + 3, at, 4);
+    __m256 w = _mm256_sub_ps(ux, lx), h = _mm256_sub_ps(uy, ly), top = _mm256_set1_ps(level_fit(BP_LEVELS - 1));
+    /* within the top level (not NaN) */
+    __m256i fits = _mm256_castps_si256(_mm256_and_ps(_mm256_cmp_ps(w, top, _CMP_LE_OQ), _mm256_cmp_ps(h, top, _CMP_LE_OQ)));
+    __m256 ext = _mm256_max_ps(w, h); /* rg_max: w > h ? w : h */
+    /* li from the exponent; 0 where ext is not above 0 or below level 0 (a subnormal too) */
+    __m256i li = _mm256_sub_epi32(_mm256_srli_epi32(_mm256_castps_si256(ext), 23), _mm256_set1_epi32(126 + BP_LEVEL_MIN));
+    __m256i finer = _mm256_or_si256(_mm256_castps_si256(_mm256_cmp_ps(ext, _mm256_setzero_ps(), _CMP_LE_OQ)),
+                                    _mm256_cmpgt_epi32(_mm256_setzero_si256(), li));
+    __m256 fit = _mm256_castsi256_ps(_mm256_or_si256(
+        _mm256_slli_epi32(_mm256_add_epi32(li, _mm256_set1_epi32(127 + BP_LEVEL_MIN - 1)), 23), _mm256_set1_epi32(0x7F0000)));
+    li = _mm256_sub_epi32(li, _mm256_castps_si256(_mm256_cmp_ps(ext, fit, _CMP_GT_OQ))); /* one up past the fit */
+    li = _mm256_andnot_si256(finer, li);
+    li = _mm256_blendv_epi8(_mm256_set1_epi32(BP_HUGE), li, fits);
+    __m256i huge = _mm256_cmpeq_epi32(li, _mm256_set1_epi32(BP_HUGE));
+    __m256 inv = _mm256_castsi256_ps(_mm256_slli_epi32(_mm256_sub_epi32(_mm256_set1_epi32(127 - BP_LEVEL_MIN), li), 23));
+    __m256i cx = bp_coord8(lx, inv), cy = bp_coord8(ly, inv);
+    __m128i li0 = _mm256_castsi256_si128(li), li1 = _mm256_extracti128_si256(li, 1);
+    _mm_storeu_si128((__m128i *)(void *)level, _mm_packs_epi32(li0, li1));
+    _mm256_storeu_si256((__m256i *)(void *)key, bp_key4(li0, _mm256_castsi256_si128(cx), _mm256_castsi256_si128(cy),
+                                                        _mm256_castsi256_si128(huge)));
+    _mm256_storeu_si256((__m256i *)(void *)(key + 4),
+                        bp_key4(li1, _mm256_extracti128_si256(cx, 1), _mm256_extracti128_si256(cy, 1),
+                                _mm256_extracti128_si256(huge, 1)));
+}
+#endif
+
 void broadphase_locate_boxes(const rg_real *box, int32_t n, int16_t *level, uint64_t *key)
 {
-    for (int32_t k = 0; k < n; k++, box += 4) {
+    int32_t k = 0;
+#if RG_AVX2_PATHS
+    if (__builtin_cpu_supports("avx2"))
+        for (; n - k >= 8; k += 8) bp_locate8(box + 4 * (size_t)k, level + k, key + k);
+#endif
+    for (box += 4 * (size_t)k; k < n; k++, box += 4) {
         int li = level_of(box[0], box[1], box[2], box[3]);
         uint64_t kk = 0;
         if (li != BP_HUGE) {

@@ -150,6 +150,84 @@ static void test_boxes_at_a_point_and_far_beyond_the_clamp_are_found(void **stat
     broadphase_release(&bp, &m);
 }
 
+/* broadphase_locate_boxes (a snapshot's restore: eight boxes at a time where the CPU has
+ * AVX2) gives every box the level and key that inserting it gives, bit for bit: on boxes at
+ * the edges of the arithmetic (extents exactly at a level's fit and one ulp past it, powers
+ * of two, subnormal, zero, negative, NaN and infinite extents; corners on cell boundaries,
+ * negative ones, exactly at the clamp and past it) and on random ones, in a count that
+ * leaves a tail of fewer than eight. */
+#define LOCATE_N (8 * 40 + 5)
+static void test_located_boxes_have_the_level_and_key_an_insert_gives(void **state)
+{
+    (void)state;
+    rg_mem m = {mem_default_alloc, NULL};
+    broadphase bp;
+    memset(&bp, 0, sizeof bp);
+    static rg_real boxes[4 * LOCATE_N];
+    int16_t level[LOCATE_N];
+    uint64_t key[LOCATE_N];
+    rg_real ext[40];
+    int ne = 0;
+    for (int l = -12; l <= 21; l += 3) {
+        rg_real fit = (rg_real)ldexp(0.99609375, l), pow2 = (rg_real)ldexp(1.0, l);
+        ext[ne++] = fit;
+#ifdef RG_DOUBLE
+        ext[ne++] = nextafter(fit, INFINITY);
+#else
+        ext[ne++] = nextafterf(fit, INFINITY);
+#endif
+        ext[ne++] = pow2;
+    }
+    ext[ne - 3] = 0; /* past the top level's fit: huge, and below */
+    ext[ne - 2] = (rg_real)1e-40; /* subnormal in float */
+    ext[ne - 1] = -1;
+    const rg_real corner[] = {0, -0.0f, 0.5f, -0.5f, -1, 3, -3e10f, 3e10f, 268435456.0f, -268435456.0f,
+                              (rg_real)ldexp(1.0, 18), -(rg_real)ldexp(1.0, 18), 1e-3f, -1e-3f, 12345.678f};
+    const int nc = (int)(sizeof corner / sizeof corner[0]);
+    for (int k = 0; k < LOCATE_N; k++) {
+        rg_real lx, ly, w, h;
+        if (k < 200) {
+            lx = corner[k % nc];
+            ly = corner[(k / nc + k) % nc];
+            w = ext[k % ne];
+            h = ext[(k * 7) % ne];
+        } else if (k < 210) {
+            lx = k % 2 ? NAN : 0;
+            ly = k % 3 ? -INFINITY : 1;
+            w = k % 4 ? INFINITY : 1;
+            h = 1;
+        } else {
+            box b = random_box();
+            lx = b.lx;
+            ly = b.ly;
+            w = b.ux - b.lx;
+            h = b.uy - b.ly;
+        }
+        boxes[4 * k] = lx;
+        boxes[4 * k + 1] = ly;
+        boxes[4 * k + 2] = lx + w;
+        boxes[4 * k + 3] = ly + h;
+    }
+    broadphase_locate_boxes(boxes, LOCATE_N, level, key);
+    assert_ok(broadphase_reserve(&bp, &m, LOCATE_N, LOCATE_N));
+    int levels_seen = 0, huge = 0;
+    for (int k = 0; k < LOCATE_N; k++) {
+        broadphase_insert(&bp, k, boxes[4 * k], boxes[4 * k + 1], boxes[4 * k + 2], boxes[4 * k + 3]);
+        if (level[k] != bp.e[k].level || key[k] != bp.e[k].key)
+            fail_msg("box %d (%g %g %g %g): located at level %d key %llx, inserted at %d key %llx", k,
+                     (double)boxes[4 * k], (double)boxes[4 * k + 1], (double)boxes[4 * k + 2], (double)boxes[4 * k + 3],
+                     level[k], (unsigned long long)key[k], bp.e[k].level, (unsigned long long)bp.e[k].key);
+        if (level[k] == BP_HUGE) huge++;
+        else levels_seen |= 1 << (level[k] % 31);
+    }
+    /* the edges reached what they aim at: huge boxes, and boxes at many levels */
+    assert_true(huge >= 10);
+    int distinct = 0;
+    for (int l = 0; l < 31; l++) distinct += (levels_seen >> l) & 1;
+    assert_true(distinct >= 10);
+    broadphase_release(&bp, &m);
+}
+
 static void test_non_finite_boxes_go_to_the_huge_list_and_match_nothing(void **state)
 {
     (void)state;
@@ -344,6 +422,7 @@ int main(void)
         cmocka_unit_test(test_queries_find_exactly_what_brute_force_finds),
         cmocka_unit_test(test_boxes_at_a_point_and_far_beyond_the_clamp_are_found),
         cmocka_unit_test(test_non_finite_boxes_go_to_the_huge_list_and_match_nothing),
+        cmocka_unit_test(test_located_boxes_have_the_level_and_key_an_insert_gives),
         cmocka_unit_test(test_raycast_visits_every_box_the_segment_meets),
         cmocka_unit_test(test_reserve_that_fails_changes_nothing),
         cmocka_unit_test(test_world_pairs_match_brute_force_on_random_scenes),
