@@ -163,15 +163,17 @@ static inline void restore_member(const snap_in *in, int32_t k, snap_member *m)
 
 /* What the contact and broadphase checks work with (restore_links.c), kept for the load:
  * per contact id its record + 1 (live) or -1 (free); per slot its member index + 1; per
- * member its level and key (computed once); marks for the bucket heads, huge indices and
- * active places; what the walks of the lists follow.  The load of a kept state (checked 0)
- * needs rec_of and member_of alone, and the rest is not made. */
+ * member its level and key (computed once); marks for the bucket heads, huge indices,
+ * active places and the bodies island links lead to; the lists' links gathered as indices
+ * (for restore_acyclic).  The load of a kept state (checked 0) needs rec_of and member_of
+ * alone, and the rest is not made. */
 typedef struct restore_scratch {
     int32_t *rec_of;        /* [ccap] */
     int32_t *member_of;     /* [bslots] */
     uint8_t *bucket_head;   /* [2^bucket_bits] */
     uint8_t *huge_used;     /* [n_huge] */
     uint8_t *active_used;   /* [n_bp_active] */
+    uint8_t *isl_in;        /* [asleep]: the island links that lead to a sleeping body */
     size_t zeroed;          /* the block's bytes up to here start at zero, the rest is written */
     uint64_t *key;          /* [members] */
     int16_t *level;         /* [members] */
@@ -214,6 +216,12 @@ int restore_check_events(const snap_in *in, size_t off, int32_t n);
 /* The scratch the two checks below fill (sized from r->s and r->checked) and the load
  * reads (restore_links.c). */
 void restore_check_scratch_layout(mem_layout *l, void *ctx);
+/* Whether the links next[0..n) (a node, -1 at an end, below -1 for none) run round no cycle
+ * (restore_links.c): every cycle has a link that does not lead to a lower node, so walks
+ * start from those links alone, each marking the links it passes (next is scratch: it is
+ * overwritten); a walk that meets its own mark has run round a cycle, one that meets an
+ * earlier walk's mark joins a path already seen to end.  Each link is passed once. */
+int restore_acyclic(int32_t *next, int32_t n);
 /* The sleeping bodies' islands (restore_check.c). */
 int restore_check_islands(const snap_in *in, restore_scratch *r);
 /* Both spread what they can over w's task system (nothing of w changes). */

@@ -2,13 +2,15 @@
  * contacts with their bodies' lists and the awake list, the broadphase's members with their
  * bucket chains and level lists.
  *
- * A list is checked link by link where it lies (each next link leads to a node of the same
- * list that links back), then walked from its head along indices gathered by that pass: the
- * walk is a chain of dependent loads, kept short (an index in a small array, not a record
- * found through a slot).  That is the walk's full check: no two links lead to one node (it
- * links back to one), none to a head (it links back to nothing), so walks from the heads
- * never repeat a node, and walks that count every node once leave no node out and no
- * cycle. */
+ * A list is checked link by link where it lies: each next link leads to a node of the same
+ * list that links back, so no two links lead to one node (it links back to one) and none to
+ * a head (it links back to nothing); and there are as many links as nodes that are not
+ * heads, so every node but a head has one link leading to it.  With no cycle (restore_acyclic,
+ * along the indices that pass gathered), each node is then reached from one head, once:
+ * following the links back from a node ends, and only at a head.  No list is walked from
+ * its head: the walks were chains of dependent loads, one step per node, where the links
+ * that can close a cycle (those that lead to a higher node) are few (a list grows at its
+ * head, so a link leads to an older, lower node). */
 #include "body.h"
 #include "broadphase.h"
 #include "contact.h"
@@ -35,6 +37,7 @@ void restore_check_scratch_layout(mem_layout *l, void *ctx)
     r->bucket_head = mem_take(l, checked * (s->bucket_bits > 0 ? (size_t)1 << s->bucket_bits : 0), 1);
     r->huge_used = mem_take(l, checked * (size_t)s->n_huge, 1);
     r->active_used = mem_take(l, checked * (size_t)s->n_bp_active, 1);
+    r->isl_in = mem_take(l, checked * (size_t)(s->n_moving - s->n_active), 1);
     r->zeroed = l->size;
     r->key = mem_take(l, checked * (size_t)s->members, sizeof(uint64_t));
     r->level = mem_take(l, checked * (size_t)s->members, sizeof(int16_t));
@@ -62,15 +65,18 @@ typedef struct restore_pass {
     restore_scratch *r;
     int what;
     uint8_t bad[RG_MAX_WORKERS];
-    int32_t sums[RG_MAX_WORKERS][2]; /* RESTORE_RECORDS: touching, with an awake body */
+    int32_t sums[RG_MAX_WORKERS][4]; /* RESTORE_RECORDS: touching, with an awake body;
+                                      * RESTORE_LIST_LINKS and RESTORE_MEMBER_LINKS: links
+                                      * and heads (of the chains, then of the levels) */
 } restore_pass;
 
 static void restore_body_bits(const snap_in *in, uint8_t *bits, int32_t i0, int32_t i1);
 static int restore_records_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1, int32_t *touching,
                                  int32_t *should_wake);
-static int restore_list_links_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1);
+static int restore_list_links_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1, int32_t *counts);
 static int restore_boxes_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1);
-static int restore_member_links_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1);
+static int restore_member_links_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1,
+                                      int32_t *counts);
 
 static void restore_pass_range(int32_t begin, int32_t end, int32_t worker, void *context)
 {
@@ -81,15 +87,15 @@ static void restore_pass_range(int32_t begin, int32_t end, int32_t worker, void 
     case RESTORE_RECORDS:
         bad = restore_records_range(p->in, p->r, begin, end, &p->sums[worker][0], &p->sums[worker][1]);
         break;
-    case RESTORE_LIST_LINKS: bad = restore_list_links_range(p->in, p->r, begin, end); break;
+    case RESTORE_LIST_LINKS: bad = restore_list_links_range(p->in, p->r, begin, end, p->sums[worker]); break;
     case RESTORE_BOXES: bad = restore_boxes_range(p->in, p->r, begin, end); break;
-    default: bad = restore_member_links_range(p->in, p->r, begin, end); break;
+    default: bad = restore_member_links_range(p->in, p->r, begin, end, p->sums[worker]); break;
     }
     if (bad) p->bad[worker] = 1;
 }
 
 /* Pass `what` over count items; 1 when no range found a broken invariant (and sums, when
- * given, the records' counts). */
+ * given, the pass's four counts added to it). */
 static int restore_spread(rg_world *w, const snap_in *in, restore_scratch *r, int what, int32_t count, int32_t *sums)
 {
     restore_pass p;
@@ -103,12 +109,35 @@ static int restore_spread(rg_world *w, const snap_in *in, restore_scratch *r, in
     int ok = 1;
     for (int32_t k = 0; k < workers; k++) {
         ok &= !p.bad[k];
-        if (sums != NULL) {
-            sums[0] += p.sums[k][0];
-            sums[1] += p.sums[k][1];
-        }
+        if (sums != NULL)
+            for (int c = 0; c < 4; c++) sums[c] += p.sums[k][c];
     }
     return ok;
+}
+
+/* Links per block of restore_acyclic's search for walks to start: a block without one is
+ * passed in a loop the compiler vectorises. */
+#define ACYCLIC_BLOCK 256
+
+int restore_acyclic(int32_t *next, int32_t n)
+{
+    int32_t mark = -4; /* below every end (-1) and no-node (-3) */
+    for (int32_t b = 0; b < n; b += ACYCLIC_BLOCK) {
+        int32_t e = n - b > ACYCLIC_BLOCK ? b + ACYCLIC_BLOCK : n, up = 0;
+        for (int32_t s = b; s < e; s++) up |= next[s] >= s;
+        if (!up) continue;
+        for (int32_t s = b; s < e; s++) {
+            if (next[s] < s) continue; /* an end, a lower node, or passed by a walk */
+            for (int32_t at = s; at >= 0;) {
+                int32_t to = next[at];
+                if (to == mark) return BAD;
+                next[at] = mark;
+                at = to;
+            }
+            mark--;
+        }
+    }
+    return 1;
 }
 
 /* ---------------------------------------------------------------- contacts */
@@ -201,18 +230,21 @@ static int restore_records_range(const snap_in *in, restore_scratch *r, int32_t 
 
 /* Records k0..k1-1's next nodes in their bodies' lists (node 2k + side is record k in the
  * list of its body a, side 0, or b, side 1): each a node of the same body's list that links
- * back; 1 when one is not. */
-static int restore_list_links_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1)
+ * back; 1 when one is not.  Counts the links (counts[0]) and the heads (counts[1]). */
+static int restore_list_links_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1, int32_t *counts)
 {
     const uint8_t *rec0 = ct_rec(in, 0);
     const int32_t *rec_of = r->rec_of;
     int32_t *next = r->node_next;
+    int32_t links = 0, heads = 0;
     for (int32_t k = k0; k < k1; k++) {
         const uint8_t *q = rec0 + SNAP_CONTACT * (size_t)k;
         int32_t id = ct_at(q, CT_ID);
         for (int side = 0; side < 2; side++) {
             int32_t slot = ct_at(q, side ? CT_SB : CT_SA), n = ct_at(q, side ? CT_NB : CT_NA), to = -1;
+            heads += ct_at(q, side ? CT_PB : CT_PA) == -1;
             if (n >= 0) { /* in range (restore_records_range) */
+                links++;
                 int32_t rn = rec_of[n];
                 if (rn <= 0) return 1;
                 const uint8_t *d = rec0 + SNAP_CONTACT * (size_t)(rn - 1);
@@ -223,18 +255,22 @@ static int restore_list_links_range(const snap_in *in, restore_scratch *r, int32
             next[2 * k + side] = to;
         }
     }
+    counts[0] += links;
+    counts[1] += heads;
     return 0;
 }
 
-/* Each body's list: its contacts, each once, linked both ways (restore_list_links_range);
- * all lists together hold every live contact twice: the walks from the heads. */
-static int restore_check_lists(const snap_in *in, restore_scratch *r)
+/* Each body's list: its contacts, each once, linked both ways (restore_list_links_range,
+ * whose links and heads are counts[0] and counts[1]); all lists together hold every live
+ * contact twice: each body's head a node of its own that heads a list, as many heads as
+ * that, and no cycle. */
+static int restore_check_lists(const snap_in *in, restore_scratch *r, const int32_t *counts)
 {
-    const int32_t *next = r->node_next, *rec_of = r->rec_of;
+    const int32_t *rec_of = r->rec_of;
     const uint8_t *rec0 = ct_rec(in, 0);
     snap_col chead = col_of(in, SNAP_F_chead), slots = col_of(in, SNAP_F_slot);
-    const int32_t count = in->s.count;
-    int64_t visits = 0, nodes = 2 * (int64_t)in->s.clive;
+    const int32_t count = in->s.count, nodes = 2 * in->s.clive;
+    int32_t heads = 0;
     for (int32_t i = 0; i < count; i++) {
         int32_t head = col_i32(chead, i) - 1;
         if (head < 0) continue;
@@ -243,16 +279,15 @@ static int restore_check_lists(const snap_in *in, restore_scratch *r)
         const uint8_t *d = rec0 + SNAP_CONTACT * (size_t)(rh - 1);
         int32_t da = ct_at(d, CT_SA), db = ct_at(d, CT_SB), side = db == slot;
         if ((da != slot && db != slot) || ct_at(d, side ? CT_PB : CT_PA) != -1) return BAD;
-        for (int32_t node = 2 * (rh - 1) + side; node >= 0; node = next[node])
-            if (++visits > nodes) return BAD;
+        heads++; /* a node of body i's own: the heads are distinct */
     }
-    return visits == nodes;
+    return heads == counts[1] && counts[0] == nodes - counts[1] && restore_acyclic(r->node_next, nodes);
 }
 
 int restore_check_contacts(rg_world *w, const snap_in *in, restore_scratch *r)
 {
     const snap_scalars *s = &in->s;
-    int32_t sums[2] = { 0, 0 };
+    int32_t sums[4] = { 0, 0, 0, 0 };
     restore_spread(w, in, r, RESTORE_BODY_BITS, s->count, NULL);
     if (!restore_spread(w, in, r, RESTORE_RECORDS, s->clive, sums)) return BAD;
     if (sums[0] != s->n_touching || sums[1] != s->n_awake) return BAD;
@@ -275,7 +310,8 @@ int restore_check_contacts(rg_world *w, const snap_in *in, restore_scratch *r)
         int32_t id = rd_i32(in, in->l.awake, k);
         r->rec_of[id] = -(r->rec_of[id] + 2);
     }
-    return restore_spread(w, in, r, RESTORE_LIST_LINKS, s->clive, NULL) && restore_check_lists(in, r);
+    int32_t counts[4] = { 0, 0, 0, 0 };
+    return restore_spread(w, in, r, RESTORE_LIST_LINKS, s->clive, counts) && restore_check_lists(in, r, counts);
 }
 
 /* ---------------------------------------------------------------- the broadphase */
@@ -302,19 +338,6 @@ static int32_t restore_next_member(const snap_in *in, const restore_scratch *r, 
     return broadphase_bucket(bits, r->key[kn]) == broadphase_bucket(bits, r->key[k]) ? kn : -2;
 }
 
-/* The members of the chains and level lists, walked from their heads; -1 when a walk runs
- * past them all. */
-static int32_t restore_count_lists(const snap_in *in, const int32_t *next, int which_prev)
-{
-    int32_t n = 0;
-    for (int32_t k = 0; k < in->s.members; k++) {
-        if (next[k] == -3 || restore_link(in, k, which_prev) != -1) continue; /* huge, or not a head */
-        for (int32_t at = k; at >= 0; at = next[at])
-            if (++n > in->s.members) return -1;
-    }
-    return n;
-}
-
 /* Members k0..k1-1's boxes, finite and ordered, with their levels and keys; 1 when one is
  * not. */
 static int restore_boxes_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1)
@@ -335,9 +358,12 @@ static int restore_boxes_range(const snap_in *in, restore_scratch *r, int32_t k0
 }
 
 /* Members k0..k1-1's next links where they lie (-3: huge, in no list); 1 when one is
- * broken. */
-static int restore_member_links_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1)
+ * broken.  Counts the links and heads of the chains (counts[0], counts[1]) and of the
+ * levels (counts[2], counts[3]). */
+static int restore_member_links_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1,
+                                      int32_t *counts)
 {
+    int32_t n[4] = { 0, 0, 0, 0 };
     for (int32_t k = k0; k < k1; k++) {
         if (r->level[k] == BP_HUGE) {
             r->chain_next[k] = r->level_next[k] = -3;
@@ -348,7 +374,12 @@ static int restore_member_links_range(const snap_in *in, restore_scratch *r, int
         if (c == -2 || l == -2) return 1;
         r->chain_next[k] = c;
         r->level_next[k] = l;
+        n[0] += c >= 0;
+        n[1] += restore_link(in, k, 1) == -1;
+        n[2] += l >= 0;
+        n[3] += restore_link(in, k, 3) == -1;
     }
+    for (int c = 0; c < 4; c++) counts[c] += n[c];
     return 0;
 }
 
@@ -388,10 +419,12 @@ int restore_check_broadphase(rg_world *w, const snap_in *in, restore_scratch *r)
         }
     }
     if (huge != s->n_huge || moved != s->n_moved || active != s->n_bp_active) return BAD;
-    /* every next link where it lies, then the walks */
-    if (!restore_spread(w, in, r, RESTORE_MEMBER_LINKS, s->members, NULL)) return BAD;
-    if (restore_count_lists(in, r->chain_next, 1) != s->members - s->n_huge ||
-        restore_count_lists(in, r->level_next, 3) != s->members - s->n_huge)
+    /* every next link where it lies; as many links as members that head no chain (and no
+     * level list), and no cycle (the file's opening comment) */
+    int32_t counts[4] = { 0, 0, 0, 0 }, listed = s->members - s->n_huge;
+    if (!restore_spread(w, in, r, RESTORE_MEMBER_LINKS, s->members, counts)) return BAD;
+    if (counts[0] != listed - counts[1] || counts[2] != listed - counts[3] ||
+        !restore_acyclic(r->chain_next, s->members) || !restore_acyclic(r->level_next, s->members))
         return BAD;
     /* the move buffer: members marked moved, each listed once (a listing flips the sign of
      * member_of; the load reads it through its absolute value) */
