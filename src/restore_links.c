@@ -115,17 +115,25 @@ static int restore_spread(rg_world *w, const snap_in *in, restore_scratch *r, in
     return ok;
 }
 
-/* Links per block of restore_acyclic's search for walks to start: a block without one is
- * passed in a loop the compiler vectorises. */
+/* Links per block of restore_acyclic's search for walks to start: a whole block without one
+ * is passed in a loop of a known count, which the compiler vectorises. */
 #define ACYCLIC_BLOCK 256
+
+/* Whether a link of the block at b leads to a node not below its own. */
+static int restore_block_up(const int32_t *restrict next, int32_t b)
+{
+    const int32_t *p = next + b;
+    int32_t up = 0;
+    for (int32_t j = 0; j < ACYCLIC_BLOCK; j++) up |= p[j] >= b + j;
+    return up;
+}
 
 int restore_acyclic(int32_t *next, int32_t n)
 {
     int32_t mark = -4; /* below every end (-1) and no-node (-3) */
     for (int32_t b = 0; b < n; b += ACYCLIC_BLOCK) {
-        int32_t e = n - b > ACYCLIC_BLOCK ? b + ACYCLIC_BLOCK : n, up = 0;
-        for (int32_t s = b; s < e; s++) up |= next[s] >= s;
-        if (!up) continue;
+        int32_t e = n - b > ACYCLIC_BLOCK ? b + ACYCLIC_BLOCK : n;
+        if (e - b == ACYCLIC_BLOCK && !restore_block_up(next, b)) continue;
         for (int32_t s = b; s < e; s++) {
             if (next[s] < s) continue; /* an end, a lower node, or passed by a walk */
             for (int32_t at = s; at >= 0;) {
@@ -230,11 +238,13 @@ static int restore_records_range(const snap_in *in, restore_scratch *r, int32_t 
 
 /* Records k0..k1-1's next nodes in their bodies' lists (node 2k + side is record k in the
  * list of its body a, side 0, or b, side 1): each a node of the same body's list that links
- * back; 1 when one is not.  Counts the links (counts[0]) and the heads (counts[1]). */
+ * back; and a node that links back to nothing is its body's head; 1 when one is not.
+ * Counts the links (counts[0]) and the heads (counts[1]). */
 static int restore_list_links_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1, int32_t *counts)
 {
-    const uint8_t *rec0 = ct_rec(in, 0);
+    const uint8_t *rec0 = ct_rec(in, 0), *bindex = in->p + in->l.bindex;
     const int32_t *rec_of = r->rec_of;
+    snap_col chead = col_of(in, SNAP_F_chead);
     int32_t *next = r->node_next;
     int32_t links = 0, heads = 0;
     for (int32_t k = k0; k < k1; k++) {
@@ -242,7 +252,11 @@ static int restore_list_links_range(const snap_in *in, restore_scratch *r, int32
         int32_t id = ct_at(q, CT_ID);
         for (int side = 0; side < 2; side++) {
             int32_t slot = ct_at(q, side ? CT_SB : CT_SA), n = ct_at(q, side ? CT_NB : CT_NA), to = -1;
-            heads += ct_at(q, side ? CT_PB : CT_PA) == -1;
+            if (ct_at(q, side ? CT_PB : CT_PA) == -1) {
+                /* the body is live (restore_records_range) */
+                if (col_i32(chead, (int32_t)snap_get32(bindex + 4 * (size_t)slot)) != id + 1) return 1;
+                heads++;
+            }
             if (n >= 0) { /* in range (restore_records_range) */
                 links++;
                 int32_t rn = rec_of[n];
@@ -262,26 +276,19 @@ static int restore_list_links_range(const snap_in *in, restore_scratch *r, int32
 
 /* Each body's list: its contacts, each once, linked both ways (restore_list_links_range,
  * whose links and heads are counts[0] and counts[1]); all lists together hold every live
- * contact twice: each body's head a node of its own that heads a list, as many heads as
- * that, and no cycle. */
+ * contact twice: each head a node of its body's that the body names (that pass), as many
+ * bodies naming a head as there are heads (so each names one), as many links as nodes that
+ * head no list, and no cycle. */
 static int restore_check_lists(const snap_in *in, restore_scratch *r, const int32_t *counts)
 {
-    const int32_t *rec_of = r->rec_of;
-    const uint8_t *rec0 = ct_rec(in, 0);
-    snap_col chead = col_of(in, SNAP_F_chead), slots = col_of(in, SNAP_F_slot);
+    snap_col chead = col_of(in, SNAP_F_chead);
     const int32_t count = in->s.count, nodes = 2 * in->s.clive;
-    int32_t heads = 0;
-    for (int32_t i = 0; i < count; i++) {
-        int32_t head = col_i32(chead, i) - 1;
-        if (head < 0) continue;
-        int32_t slot = col_i32(slots, i), rh = rec_of[head];
-        if (rh <= 0) return BAD;
-        const uint8_t *d = rec0 + SNAP_CONTACT * (size_t)(rh - 1);
-        int32_t da = ct_at(d, CT_SA), db = ct_at(d, CT_SB), side = db == slot;
-        if ((da != slot && db != slot) || ct_at(d, side ? CT_PB : CT_PA) != -1) return BAD;
-        heads++; /* a node of body i's own: the heads are distinct */
-    }
-    return heads == counts[1] && counts[0] == nodes - counts[1] && restore_acyclic(r->node_next, nodes);
+    int32_t named = 0;
+    if (chead.stride == 0)
+        named = col_i32(chead, 0) > 0 ? count : 0;
+    else
+        for (int32_t i = 0; i < count; i++) named += (int32_t)snap_get32(chead.p + 4 * (size_t)i) > 0;
+    return named == counts[1] && counts[0] == nodes - counts[1] && restore_acyclic(r->node_next, nodes);
 }
 
 int restore_check_contacts(rg_world *w, const snap_in *in, restore_scratch *r)
