@@ -323,7 +323,8 @@ int restore_check_contacts(rg_world *w, const snap_in *in, restore_scratch *r)
 
 /* ---------------------------------------------------------------- the broadphase */
 
-/* A member's link (0 next, 1 prev, 2 lnext, 3 lprev, 4 moved) without reading the rest. */
+/* A member's link (0 next, 1 prev, 2 lnext, 3 lprev), moved flag (4) or active place (5)
+ * without reading the rest. */
 static inline int32_t restore_link(const snap_in *in, int32_t k, int which)
 {
     return (int32_t)snap_get32(rec(in, in->l.members, SNAP_MEMBER, k) + 4 + 4 * SNAP_REAL + 4 * (size_t)which);
@@ -345,13 +346,20 @@ static int32_t restore_next_member(const snap_in *in, const restore_scratch *r, 
     return broadphase_bucket(bits, r->key[kn]) == broadphase_bucket(bits, r->key[k]) ? kn : -2;
 }
 
-/* Members k0..k1-1's boxes, finite and ordered, with their levels and keys; 1 when one is
- * not. */
+/* Members k0..k1-1's bodies, live and shaped, their moved flags and active places in range
+ * (an awake body's member has one), and their boxes, finite and ordered, with their levels
+ * and keys; 1 when one is not. */
 static int restore_boxes_range(const snap_in *in, restore_scratch *r, int32_t k0, int32_t k1)
 {
     rg_real *box = r->box;
+    const int32_t n_active = in->s.n_active, n_bp_active = in->s.n_bp_active;
+    snap_col shape = col_of(in, SNAP_F_shape);
     for (int32_t k = k0; k < k1; k++) {
-        const uint8_t *q = rec(in, in->l.members, SNAP_MEMBER, k) + 4;
+        const uint8_t *m = rec(in, in->l.members, SNAP_MEMBER, k), *q = m + 4;
+        int32_t i = restore_dense(in, (int32_t)snap_get32(m));
+        int32_t moved = restore_link(in, k, 4), apos = restore_link(in, k, 5);
+        if (i < 0 || col_i32(shape, i) == RG_SHAPE_NONE || (moved & ~1) != 0) return 1;
+        if ((apos >= 0) != (i < n_active) || apos < -1 || apos >= n_bp_active) return 1;
         rg_real lx = snap_get_real(q), ly = snap_get_real(q + SNAP_REAL);
         rg_real ux = snap_get_real(q + 2 * SNAP_REAL), uy = snap_get_real(q + 3 * SNAP_REAL);
         if (!(rg_finite(lx) && rg_finite(ly) && rg_finite(ux) && rg_finite(uy) && lx <= ux && ly <= uy)) return 1;
@@ -401,26 +409,26 @@ int restore_check_broadphase(rg_world *w, const snap_in *in, restore_scratch *r)
     uint32_t level_seen = 0;
     /* the boxes first, and their levels and keys */
     if (!restore_spread(w, in, r, RESTORE_BOXES, s->members, NULL)) return BAD;
+    /* the marks of what a member may share with another, on this thread: its slot, active
+     * place, huge index, and bucket or level as a head (the rest is in range: the boxes'
+     * pass) */
     for (int32_t k = 0; k < s->members; k++) {
-        snap_member m;
-        restore_member(in, k, &m);
-        int32_t i = restore_dense(in, m.slot);
-        if (i < 0 || BF_I(in, shape, i) == RG_SHAPE_NONE || r->member_of[m.slot] != 0) return BAD;
-        r->member_of[m.slot] = k + 1;
-        if ((m.moved & ~1) != 0) return BAD;
-        moved += m.moved;
-        if ((m.apos >= 0) != (i < s->n_active) || m.apos < -1 || m.apos >= s->n_bp_active) return BAD;
-        if (m.apos >= 0) {
-            if (r->active_used[m.apos]++) return BAD;
+        int32_t slot = (int32_t)snap_get32(rec(in, in->l.members, SNAP_MEMBER, k)), apos = restore_link(in, k, 5);
+        if (r->member_of[slot] != 0) return BAD;
+        r->member_of[slot] = k + 1;
+        moved += restore_link(in, k, 4);
+        if (apos >= 0) {
+            if (r->active_used[apos]++) return BAD;
             active++;
         }
         if (r->level[k] == BP_HUGE) {
-            if (m.next < 0 || m.next >= s->n_huge || r->huge_used[m.next]++) return BAD;
+            int32_t at = restore_link(in, k, 0);
+            if (at < 0 || at >= s->n_huge || r->huge_used[at]++) return BAD;
             huge++;
             continue;
         }
-        if (m.prev == -1 && r->bucket_head[broadphase_bucket(s->bucket_bits, r->key[k])]++) return BAD;
-        if (m.lprev == -1) {
+        if (restore_link(in, k, 1) == -1 && r->bucket_head[broadphase_bucket(s->bucket_bits, r->key[k])]++) return BAD;
+        if (restore_link(in, k, 3) == -1) {
             if (level_seen & (1u << r->level[k])) return BAD; /* two lists of one level */
             level_seen |= 1u << r->level[k];
         }
