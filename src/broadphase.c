@@ -298,9 +298,16 @@ __attribute__((target("avx2"))) static inline __m256i bp_key4(__m128i li, __m128
  * inverse 2^-(li + BP_LEVEL_MIN): the same floats. */
 __attribute__((target("avx2"))) static void bp_locate8(const rg_real *box, int16_t *level, uint64_t *key)
 {
-    const __m256i at = _mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28);
-    __m256 lx = _mm256_i32gather_ps(box, at, 4), ly = _mm256_i32gather_ps(box + 1, at, 4);
-    __m256 ux = _mm256_i32gather_ps(box + 2, at, 4), uy = _mm256_i32gather_ps(box + 3, at, 4);
+    /* two boxes a load, unpacked into lanes of boxes 0 2 4 6 1 3 5 7, then put in order */
+    __m256 y0 = _mm256_loadu_ps(box), y1 = _mm256_loadu_ps(box + 8);
+    __m256 y2 = _mm256_loadu_ps(box + 16), y3 = _mm256_loadu_ps(box + 24);
+    __m256 t0 = _mm256_unpacklo_ps(y0, y1), t1 = _mm256_unpackhi_ps(y0, y1);
+    __m256 t2 = _mm256_unpacklo_ps(y2, y3), t3 = _mm256_unpackhi_ps(y2, y3);
+    const __m256i order = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
+    __m256 lx = _mm256_permutevar8x32_ps(_mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(1, 0, 1, 0)), order);
+    __m256 ly = _mm256_permutevar8x32_ps(_mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(3, 2, 3, 2)), order);
+    __m256 ux = _mm256_permutevar8x32_ps(_mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(1, 0, 1, 0)), order);
+    __m256 uy = _mm256_permutevar8x32_ps(_mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(3, 2, 3, 2)), order);
     __m256 w = _mm256_sub_ps(ux, lx), h = _mm256_sub_ps(uy, ly), top = _mm256_set1_ps(level_fit(BP_LEVELS - 1));
     /* within the top level (not NaN) */
     __m256i fits = _mm256_castps_si256(_mm256_and_ps(_mm256_cmp_ps(w, top, _CMP_LE_OQ), _mm256_cmp_ps(h, top, _CMP_LE_OQ)));
