@@ -109,6 +109,15 @@ static void test_an_island_forged_into_a_cycle_or_leaving_a_body_out_is_refused(
     reseal(bad, size);
     assert_status(rg_world_restore(w, bad, size), RG_ERR_INVALID_ARGUMENT);
     assert_true(world_hash(w) == h0);
+    /* c names b, which heads nothing, as its head; then a, b and c all name b */
+    memcpy(bad, snap, size);
+    for (int way = 0; way < 2; way++) {
+        for (int k = way ? 0 : 2; k < 3; k++)
+            snap_put32(island_at(&in, bad, SNAP_F_isl_head, order[k]), b_link);
+        reseal(bad, size);
+        assert_status(rg_world_restore(w, bad, size), RG_ERR_INVALID_ARGUMENT);
+        assert_true(world_hash(w) == h0);
+    }
     /* and the world steps on as before */
     step_n(w, 10, DT);
     assert_int_equal(rg_world_awake_body_count(w), 0);
