@@ -29,6 +29,18 @@ static uint8_t *save_of(rg_world *w, size_t *size)
     return p;
 }
 
+/* The world's snapshot, read where it lies (in), and a buffer of its size for forgeries. */
+static uint8_t *saved_and_read(rg_world *w, size_t *size, uint8_t **bad, snap_in *in)
+{
+    uint8_t *snap = save_of(w, size);
+    *bad = malloc(*size);
+    assert_non_null(*bad);
+    memset(in, 0, sizeof *in);
+    assert_true(restore_check_header(w, in, snap, *size, 1));
+    assert_true(restore_check_scalars(in));
+    return snap;
+}
+
 /* Where island field f of dense body i lies in the snapshot. */
 static uint8_t *island_at(const snap_in *in, uint8_t *p, int f, int32_t i)
 {
@@ -66,12 +78,8 @@ static void test_an_island_forged_into_a_cycle_or_leaving_a_body_out_is_refused(
     (void)state;
     rg_world *w = sleeping_stack();
     size_t size;
-    uint8_t *snap = save_of(w, &size), *bad = malloc(size);
-    assert_non_null(bad);
     snap_in in;
-    memset(&in, 0, sizeof in);
-    assert_true(restore_check_header(w, &in, snap, size, 1));
-    assert_true(restore_check_scalars(&in));
+    uint8_t *bad, *snap = saved_and_read(w, &size, &bad, &in);
     int32_t order[3]; /* head a, then b, then c */
     island_order(&in, snap, order);
     uint32_t b_link = (uint32_t)BF_I(&in, slot, order[1]) + 1;
@@ -230,12 +238,8 @@ static void test_contact_and_broadphase_lists_forged_into_cycles_or_leaving_a_no
     (void)state;
     rg_world *w = crowded();
     size_t size;
-    uint8_t *snap = save_of(w, &size), *bad = malloc(size);
-    assert_non_null(bad);
     snap_in in;
-    memset(&in, 0, sizeof in);
-    assert_true(restore_check_header(w, &in, snap, size, 1));
-    assert_true(restore_check_scalars(&in));
+    uint8_t *bad, *snap = saved_and_read(w, &size, &bad, &in);
     uint64_t h0 = world_hash(w);
     memcpy(bad, snap, size);
     reseal(bad, size);
