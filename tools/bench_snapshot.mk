@@ -18,3 +18,19 @@ bench-snapshot: $(BENCH_SNAPSHOT) $(if $(filter bench,$(MAKECMDGOALS)),bench-mai
 	@v3=$$($(MAKE) --no-print-directory bench-v3 | tail -n 1); \
 	 echo "== snapshots: bytes, save, restore, hash ($(BENCH_SNAPSHOT) --v3 $$v3 $(BENCH_SNAPSHOT_SIZES))"; \
 	 $(BENCH_SNAPSHOT) --v3 $$v3 $(BENCH_SNAPSHOT_SIZES)
+
+# Two builds' restores side by side (tools/bench_ab.c): make bench-ab AB_A=old.so AB_B=new.so
+# [AB_ARGS="N STEPS PAIRS"], the .so files from make build/librigid.so in two trees.
+BENCH_AB := $(B)/bench-ab
+ALL_TARGETS += $(BENCH_AB)
+.PHONY: bench-ab
+$(B)/bench_obj/bench_ab.o: tools/bench_ab.c tools/bench.h
+	@mkdir -p $(@D)
+	$(CC) $(BENCH_CFLAGS) -c $< -o $@
+
+$(BENCH_AB): $(B)/bench_obj/bench_ab.o $(BENCH_COMMON_OBJ) $(LIB_A)
+	$(CC) $(LDFLAGS) -o $@ $^ $(BENCH_LIBS)
+
+bench-ab: $(BENCH_AB)
+	@test -n "$(AB_A)" -a -n "$(AB_B)" || { echo "make bench-ab AB_A=a.so AB_B=b.so [AB_ARGS=\"N STEPS PAIRS\"]"; exit 2; }
+	$(BENCH_AB) $(AB_A) $(AB_B) $(AB_ARGS)
