@@ -310,19 +310,22 @@ __attribute__((target("avx2"))) static void bp_locate8(const rg_real *box, int16
     __m256 uy = _mm256_permutevar8x32_ps(_mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(3, 2, 3, 2)), order);
     __m256 w = _mm256_sub_ps(ux, lx), h = _mm256_sub_ps(uy, ly), top = _mm256_set1_ps(level_fit(BP_LEVELS - 1));
     /* within the top level (not NaN) */
-    __m256i fits = _mm256_castps_si256(_mm256_and_ps(_mm256_cmp_ps(w, top, _CMP_LE_OQ), _mm256_cmp_ps(h, top, _CMP_LE_OQ)));
+    __m256i fits =
+        _mm256_castps_si256(_mm256_and_ps(_mm256_cmp_ps(w, top, _CMP_LE_OQ), _mm256_cmp_ps(h, top, _CMP_LE_OQ)));
     __m256 ext = _mm256_max_ps(w, h); /* rg_max: w > h ? w : h */
     /* li from the exponent; 0 where ext is not above 0 or below level 0 (a subnormal too) */
-    __m256i li = _mm256_sub_epi32(_mm256_srli_epi32(_mm256_castps_si256(ext), 23), _mm256_set1_epi32(126 + BP_LEVEL_MIN));
+    __m256i li =
+        _mm256_sub_epi32(_mm256_srli_epi32(_mm256_castps_si256(ext), 23), _mm256_set1_epi32(126 + BP_LEVEL_MIN));
     __m256i finer = _mm256_or_si256(_mm256_castps_si256(_mm256_cmp_ps(ext, _mm256_setzero_ps(), _CMP_LE_OQ)),
                                     _mm256_cmpgt_epi32(_mm256_setzero_si256(), li));
-    __m256 fit = _mm256_castsi256_ps(_mm256_or_si256(
-        _mm256_slli_epi32(_mm256_add_epi32(li, _mm256_set1_epi32(127 + BP_LEVEL_MIN - 1)), 23), _mm256_set1_epi32(0x7F0000)));
+    __m256i fit_exp = _mm256_slli_epi32(_mm256_add_epi32(li, _mm256_set1_epi32(127 + BP_LEVEL_MIN - 1)), 23);
+    __m256 fit = _mm256_castsi256_ps(_mm256_or_si256(fit_exp, _mm256_set1_epi32(0x7F0000)));
     li = _mm256_sub_epi32(li, _mm256_castps_si256(_mm256_cmp_ps(ext, fit, _CMP_GT_OQ))); /* one up past the fit */
     li = _mm256_andnot_si256(finer, li);
     li = _mm256_blendv_epi8(_mm256_set1_epi32(BP_HUGE), li, fits);
     __m256i huge = _mm256_cmpeq_epi32(li, _mm256_set1_epi32(BP_HUGE));
-    __m256 inv = _mm256_castsi256_ps(_mm256_slli_epi32(_mm256_sub_epi32(_mm256_set1_epi32(127 - BP_LEVEL_MIN), li), 23));
+    __m256 inv =
+        _mm256_castsi256_ps(_mm256_slli_epi32(_mm256_sub_epi32(_mm256_set1_epi32(127 - BP_LEVEL_MIN), li), 23));
     __m256i cx = bp_coord8(lx, inv), cy = bp_coord8(ly, inv);
     __m128i li0 = _mm256_castsi256_si128(li), li1 = _mm256_extracti128_si256(li, 1);
     _mm_storeu_si128((__m128i *)(void *)level, _mm_packs_epi32(li0, li1));

@@ -173,7 +173,7 @@ typedef struct restore_scratch {
     uint8_t *bucket_head;   /* [2^bucket_bits] */
     uint8_t *huge_used;     /* [n_huge] */
     uint8_t *active_used;   /* [n_bp_active] */
-    uint8_t *isl_in;        /* [asleep]: the island links that lead to a sleeping body */
+    uint8_t *isl_in;        /* [asleep]: whether an island link leads to the sleeping body */
     size_t zeroed;          /* the block's bytes up to here start at zero, the rest is written */
     uint64_t *key;          /* [members] */
     int16_t *level;         /* [members] */
