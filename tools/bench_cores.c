@@ -1,10 +1,13 @@
 /* bench_cores.c: what moving data between two cores costs on this machine, for the bench's
  * machine line.  Two threads hand a counter back and forth, each waiting (spinning) for the
- * other's write: one round trip is a cache line gone to the other core and back.  A step
- * spread over workers moves its data between cores stage after stage, so what a second
- * worker gains depends on this (README, Known limits).  Where the two threads cannot run at
- * once (one cpu, or under valgrind, which runs one thread at a time and would take hours
- * over the spins) the hand-overs stop at a deadline and nothing is reported. */
+ * other's write: one round trip is a cache line gone to the other core and back.  And the
+ * main thread reads, in a random order (independent loads, as a stage's reads of bodies
+ * through its pairs), 8192 lines the other thread has just written, then the same lines
+ * after writing them itself.  A step spread over workers moves its data between cores stage
+ * after stage, so what a second worker gains depends on these (README, Known limits).
+ * Where the two threads cannot run at once (one cpu, or under valgrind, which runs one
+ * thread at a time and would take hours over the spins) the hand-overs stop at a deadline
+ * and nothing is reported. */
 #undef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L
 #include <pthread.h>
@@ -61,6 +64,67 @@ static double cores_run(void)
     return t;
 }
 
+/* ---------------------------------------------------------------- lines another core wrote */
+
+#define CORES_LINES 8192 /* 512 KB: within a core's own cache */
+
+typedef struct cores_line {
+    uint64_t v[8];
+} cores_line;
+
+static cores_line *cores_lines;
+static uint32_t *cores_order; /* a random order of the lines */
+static volatile uint64_t cores_sink;
+
+static void cores_write(uint64_t base)
+{
+    for (uint32_t i = 0; i < CORES_LINES; i++) cores_lines[i].v[0] = base + i;
+}
+
+/* The time a line of reading the lines in cores_order, s. */
+static double cores_read(void)
+{
+    double t0 = cores_now();
+    uint64_t sum = 0;
+    for (uint32_t i = 0; i < CORES_LINES; i++) sum += cores_lines[cores_order[i]].v[0];
+    double t = (cores_now() - t0) / CORES_LINES;
+    cores_sink = sum;
+    return t;
+}
+
+static void *cores_writer(void *arg)
+{
+    (void)arg;
+    while (__atomic_load_n(&cores_counter, __ATOMIC_ACQUIRE) != 1)
+        if (__atomic_load_n(&cores_stop, __ATOMIC_RELAXED)) return NULL;
+    cores_write(1000);
+    __atomic_store_n(&cores_counter, 2, __ATOMIC_RELEASE);
+    return NULL;
+}
+
+/* One run: the time a line of reading lines the other thread wrote (t[0]) and lines this
+ * thread wrote (t[1]), s; 0 past the deadline. */
+static int cores_lines_run(double t[2])
+{
+    pthread_t other;
+    cores_write(0); /* both threads' caches start from the same state: lines this thread wrote */
+    __atomic_store_n(&cores_counter, 0, __ATOMIC_RELEASE);
+    __atomic_store_n(&cores_stop, 0, __ATOMIC_RELEASE);
+    if (pthread_create(&other, NULL, cores_writer, NULL) != 0) return 0;
+    double t0 = cores_now();
+    __atomic_store_n(&cores_counter, 1, __ATOMIC_RELEASE);
+    for (uint32_t spins = 1; __atomic_load_n(&cores_counter, __ATOMIC_ACQUIRE) != 2; spins++)
+        if (spins % 4096 == 0 && cores_now() - t0 > CORES_DEADLINE_S) break;
+    int ok = __atomic_load_n(&cores_counter, __ATOMIC_ACQUIRE) == 2;
+    __atomic_store_n(&cores_stop, 1, __ATOMIC_RELEASE);
+    pthread_join(other, NULL);
+    if (!ok) return 0;
+    t[0] = cores_read();
+    cores_write(2000);
+    t[1] = cores_read();
+    return 1;
+}
+
 static int cores_cmp(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -75,4 +139,42 @@ double bench_cores_round_trip_ns(void)
         if ((t[r] = cores_run()) < 0) return -1;
     qsort(t, CORES_RUNS, sizeof t[0], cores_cmp);
     return t[CORES_RUNS / 2] * 1e9;
+}
+
+int bench_cores_lines_ns(double *other, double *own)
+{
+    if (sysconf(_SC_NPROCESSORS_ONLN) < 2) return 0;
+    cores_lines = malloc(CORES_LINES * sizeof *cores_lines);
+    cores_order = malloc(CORES_LINES * sizeof *cores_order);
+    int ok = cores_lines != NULL && cores_order != NULL;
+    double t[2][CORES_RUNS];
+    if (ok) {
+        uint32_t x = 2463534242u; /* xorshift: a fixed shuffle */
+        for (uint32_t i = 0; i < CORES_LINES; i++) cores_order[i] = i;
+        for (uint32_t i = CORES_LINES - 1; i > 0; i--) {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            uint32_t j = x % (i + 1), k = cores_order[i];
+            cores_order[i] = cores_order[j];
+            cores_order[j] = k;
+        }
+        for (int r = 0; r < CORES_RUNS && ok; r++) {
+            double tr[2];
+            ok = cores_lines_run(tr);
+            t[0][r] = tr[0];
+            t[1][r] = tr[1];
+        }
+    }
+    if (ok) {
+        qsort(t[0], CORES_RUNS, sizeof t[0][0], cores_cmp);
+        qsort(t[1], CORES_RUNS, sizeof t[1][0], cores_cmp);
+        *other = t[0][CORES_RUNS / 2] * 1e9;
+        *own = t[1][CORES_RUNS / 2] * 1e9;
+    }
+    free(cores_lines);
+    free(cores_order);
+    cores_lines = NULL;
+    cores_order = NULL;
+    return ok;
 }

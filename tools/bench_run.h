@@ -89,6 +89,10 @@ void bench_report_machine(FILE *f);
 /* The median time of a cache line's round trip between two threads (bench_cores.c); -1
  * with one cpu. */
 double bench_cores_round_trip_ns(void);
+/* The median time a line of reading, in a random order, 8192 cache lines another thread has
+ * just written (*other) and lines this thread wrote (*own) (bench_cores.c); 0 with one cpu
+ * or when the threads cannot run at once. */
+int bench_cores_lines_ns(double *other, double *own);
 /* The tables: sleeping off (medians), sleeping on (means), quality, memory, free0; the
  * stage costs, the gameplay collision, the allocator calls. */
 void bench_report_summary(const bench_result *rs, int32_t nr, const bench_entrant *who, int nwho,
