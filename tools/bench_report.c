@@ -112,8 +112,8 @@ void bench_report_machine(FILE *f)
     if (trip > 0)
         fprintf(f, "machine: a cache line to another core and back (two threads handing a counter over): %.0f ns\n",
                 trip);
-    double other, own;
-    if (bench_cores_lines_ns(&other, &own))
+    double other, own; /* only where the threads run at once, as the round trip shows */
+    if (trip > 0 && bench_cores_lines_ns(&other, &own))
         fprintf(f, "machine: reading 8192 cache lines at random: %.1f ns a line another core has just written, "
                 "%.1f ns a line of this core's own\n", other, own);
 }
