@@ -163,8 +163,8 @@ static void contact_list(const snap_in *in, int32_t i, dlist *d)
         size_t at = contact_at(in, id);
         int side = (int32_t)snap_get32(in->p + at + 4) == slot ? 0 : 1;
         d->value[d->n] = id;
-        d->next[d->n] = at + 12 + 8 * (size_t)side;
-        d->prev[d->n] = at + 16 + 8 * (size_t)side;
+        d->next[d->n] = at + SNAP_CONTACT_LINKS + 8 + 8 * (size_t)side; /* after sa, sb: na, pa, nb, pb */
+        d->prev[d->n] = d->next[d->n] + 4;
         id = (int32_t)snap_get32(in->p + d->next[d->n]);
     }
 }
@@ -185,7 +185,7 @@ static void member_list(const snap_in *in, int32_t k, int level, dlist *d)
     }
 }
 
-/* The longest list a body's contacts, a chain (level 0) or a level list (1) make. */
+/* The longest list of a kind: 0 a body's contacts, 1 a bucket chain, 2 a level list. */
 static void longest_list(const snap_in *in, int kind, dlist *best)
 {
     dlist d;
