@@ -32,12 +32,42 @@ static double cores_now(void)
     return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
 }
 
+/* The other thread's wait for the counter to reach v: 0 when the main thread gave up. */
+static int cores_other_waits(uint64_t v)
+{
+    while (__atomic_load_n(&cores_counter, __ATOMIC_ACQUIRE) != v)
+        if (__atomic_load_n(&cores_stop, __ATOMIC_RELAXED)) return 0;
+    return 1;
+}
+
+/* The main thread's wait for the counter to reach v: 0 past the deadline from t0. */
+static int cores_main_waits(uint64_t v, double t0)
+{
+    for (uint32_t spins = 1; __atomic_load_n(&cores_counter, __ATOMIC_ACQUIRE) != v; spins++)
+        if (spins % 4096 == 0 && cores_now() - t0 > CORES_DEADLINE_S) return 0;
+    return 1;
+}
+
+/* Starts fn as the other thread, the counter at 0; 0 when it cannot. */
+static int cores_start(pthread_t *other, void *(*fn)(void *))
+{
+    __atomic_store_n(&cores_counter, 0, __ATOMIC_RELEASE);
+    __atomic_store_n(&cores_stop, 0, __ATOMIC_RELEASE);
+    return pthread_create(other, NULL, fn, NULL) == 0;
+}
+
+/* Stops the other thread (past a deadline, it returns from its wait) and joins it. */
+static void cores_join(pthread_t other)
+{
+    __atomic_store_n(&cores_stop, 1, __ATOMIC_RELEASE);
+    pthread_join(other, NULL);
+}
+
 static void *cores_other(void *arg)
 {
     (void)arg;
     for (uint64_t i = 0; i < CORES_TRIPS; i++) {
-        while (__atomic_load_n(&cores_counter, __ATOMIC_ACQUIRE) != 2 * i + 1)
-            if (__atomic_load_n(&cores_stop, __ATOMIC_RELAXED)) return NULL;
+        if (!cores_other_waits(2 * i + 1)) return NULL;
         __atomic_store_n(&cores_counter, 2 * i + 2, __ATOMIC_RELEASE);
     }
     return NULL;
@@ -47,20 +77,15 @@ static void *cores_other(void *arg)
 static double cores_run(void)
 {
     pthread_t other;
-    __atomic_store_n(&cores_counter, 0, __ATOMIC_RELEASE);
-    __atomic_store_n(&cores_stop, 0, __ATOMIC_RELEASE);
-    if (pthread_create(&other, NULL, cores_other, NULL) != 0) return -1;
+    if (!cores_start(&other, cores_other)) return -1;
     double t0 = cores_now(), t = -1;
     uint64_t i = 0;
     for (; i < CORES_TRIPS; i++) {
         __atomic_store_n(&cores_counter, 2 * i + 1, __ATOMIC_RELEASE);
-        for (uint32_t spins = 1; __atomic_load_n(&cores_counter, __ATOMIC_ACQUIRE) != 2 * i + 2; spins++)
-            if (spins % 4096 == 0 && cores_now() - t0 > CORES_DEADLINE_S) break;
-        if (__atomic_load_n(&cores_counter, __ATOMIC_ACQUIRE) != 2 * i + 2) break;
+        if (!cores_main_waits(2 * i + 2, t0)) break;
     }
     if (i == CORES_TRIPS) t = (cores_now() - t0) / CORES_TRIPS;
-    __atomic_store_n(&cores_stop, 1, __ATOMIC_RELEASE);
-    pthread_join(other, NULL);
+    cores_join(other);
     return t;
 }
 
@@ -95,8 +120,7 @@ static double cores_read(void)
 static void *cores_writer(void *arg)
 {
     (void)arg;
-    while (__atomic_load_n(&cores_counter, __ATOMIC_ACQUIRE) != 1)
-        if (__atomic_load_n(&cores_stop, __ATOMIC_RELAXED)) return NULL;
+    if (!cores_other_waits(1)) return NULL;
     cores_write(1000);
     __atomic_store_n(&cores_counter, 2, __ATOMIC_RELEASE);
     return NULL;
@@ -108,16 +132,11 @@ static int cores_lines_run(double t[2])
 {
     pthread_t other;
     cores_write(0); /* both threads' caches start from the same state: lines this thread wrote */
-    __atomic_store_n(&cores_counter, 0, __ATOMIC_RELEASE);
-    __atomic_store_n(&cores_stop, 0, __ATOMIC_RELEASE);
-    if (pthread_create(&other, NULL, cores_writer, NULL) != 0) return 0;
+    if (!cores_start(&other, cores_writer)) return 0;
     double t0 = cores_now();
     __atomic_store_n(&cores_counter, 1, __ATOMIC_RELEASE);
-    for (uint32_t spins = 1; __atomic_load_n(&cores_counter, __ATOMIC_ACQUIRE) != 2; spins++)
-        if (spins % 4096 == 0 && cores_now() - t0 > CORES_DEADLINE_S) break;
-    int ok = __atomic_load_n(&cores_counter, __ATOMIC_ACQUIRE) == 2;
-    __atomic_store_n(&cores_stop, 1, __ATOMIC_RELEASE);
-    pthread_join(other, NULL);
+    int ok = cores_main_waits(2, t0);
+    cores_join(other);
     if (!ok) return 0;
     t[0] = cores_read();
     cores_write(2000);
