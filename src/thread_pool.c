@@ -7,7 +7,12 @@
  * when it comes.  Each part has its cursor, the task's generation (high 32 bits) and the
  * start of the part's next range (low 32 bits); a thread claims a range by a compare-and-swap
  * of the cursor, so it runs a range of the current task only (a stale generation fails), and
- * the task cannot end, nor the next one be written, before that range is done.  Before it
+ * the task cannot end, nor the next one be written, before that range is counted done.  A
+ * thread counts the items of its ranges itself and adds them to the task's count of items
+ * done once, when it finds no range left (one write to a line the waiting caller reads, per
+ * thread and task, rather than one per range: where moving a line between two cores costs
+ * some hundreds of ns, as on the VMs of the README's figures, that is most of a task's
+ * cost).  Before it
  * writes the next task, enqueue closes the last one's generation in every part: a thread late
  * from the last task, holding a spent cursor, may read the next task's count (larger than
  * where the last one's ranges ran out), and its claim must then fail rather than run a range
@@ -86,9 +91,10 @@ static inline int32_t pool_part_end(int32_t count, int32_t parts, int32_t k)
     return (int32_t)((int64_t)count * (k + 1) / parts);
 }
 
-/* Claims and runs ranges of part k of the task of generation gen until none is left there;
- * returns 0 when the generation has passed. */
-static int pool_work_part(rg_thread_pool *p, uint32_t gen, int32_t k, int32_t worker)
+/* Claims and runs ranges of part k of the task of generation gen until none is left there,
+ * adding their items to *ran; returns 0 when the generation has passed (then the thread
+ * holds no range of it: the task ended, which it cannot while a range is not counted). */
+static int pool_work_part(rg_thread_pool *p, uint32_t gen, int32_t k, int32_t worker, int32_t *ran)
 {
     uint64_t *cur = &p->part[k].cursor;
     for (;;) {
@@ -109,16 +115,17 @@ static int pool_work_part(rg_thread_pool *p, uint32_t gen, int32_t k, int32_t wo
         /* the claim holds the task: it cannot end before this range is counted done */
         rg_task_fn *fn = POOL_RELAXED(&p->fn);
         fn(begin, end, worker, POOL_RELAXED(&p->context));
-        POOL_ADD(&p->done, end - begin);
+        *ran += end - begin;
     }
 }
 
-/* The worker's own part, then the others'. */
+/* The worker's own part, then the others'; then what it ran counted done, at once. */
 static void pool_work(rg_thread_pool *p, uint32_t gen, int32_t worker)
 {
-    int32_t parts = POOL_LOAD(&p->parts);
+    int32_t parts = POOL_LOAD(&p->parts), ran = 0;
     for (int32_t k = 0; k < parts; k++)
-        if (!pool_work_part(p, gen, (worker + k) % parts, worker)) return;
+        if (!pool_work_part(p, gen, (worker + k) % parts, worker, &ran)) break;
+    if (ran > 0) POOL_ADD(&p->done, ran);
 }
 
 static void *pool_main(void *arg)
