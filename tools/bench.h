@@ -125,6 +125,9 @@ typedef struct bench_gameplay_row {
 void bench_gameplay_report(const bench_gameplay_row *rows, int32_t nrows);
 
 extern const bench_engine bench_rigid_engine;
+/* The rg_world of a world bench_rigid_engine.create made (as void *: this header names no
+ * engine's types), for tools that set what the engine interface has no call for. */
+void *bench_rigid_world(void *ctx);
 extern const bench_engine bench_floor_engine;   /* tools/bench_floor.c */
 #ifdef RG_BENCH_PEERS
 extern const bench_engine bench_box2d_engine;

@@ -168,6 +168,8 @@ fail:
     return NULL;
 }
 
+void *bench_rigid_world(void *ctx) { return ((rigid_ctx *)ctx)->w; }
+
 static void rigid_step(void *p, double dt)
 {
     rigid_ctx *c = p;
