@@ -7,12 +7,13 @@
  * when it comes.  Each part has its cursor, the task's generation (high 32 bits) and the
  * start of the part's next range (low 32 bits); a thread claims a range by a compare-and-swap
  * of the cursor, so it runs a range of the current task only (a stale generation fails), and
- * the task cannot end, nor the next one be written, before that range is counted done.  A
- * thread counts the items of its ranges itself and adds them to the task's count of items
- * done once, when it finds no range left (one write to a line the waiting caller reads, per
- * thread and task, rather than one per range: where moving a line between two cores costs
- * some hundreds of ns, as on the VMs of the README's figures, that is most of a task's
- * cost).  Before it
+ * the task cannot end, nor the next one be written, before that range is counted done.  The
+ * count of items done is kept per part, beside its cursor: a thread counts the items of the
+ * ranges it ran in a part and adds them to that part's count once, when it finds nothing left
+ * there, so that the owner of a part writes only its own line, and the caller, done with its
+ * own part, finds on one line of another part both what is left to take and what is done
+ * (where moving a line between two cores costs some hundreds of ns, as on the VMs of the
+ * README's figures, those moves are most of a task's cost).  Before it
  * writes the next task, enqueue closes the last one's generation in every part: a thread late
  * from the last task, holding a spent cursor, may read the next task's count (larger than
  * where the last one's ranges ran out), and its claim must then fail rather than run a range
@@ -41,10 +42,11 @@
 /* The start of a closed generation's next range: past any count, so nothing is claimed. */
 #define POOL_CLOSED 0x7FFFFFFFu
 
-/* A part's cursor on its own cache line. */
+/* A part's cursor and count of items done, on a cache line of their own. */
 typedef struct pool_part {
     uint64_t cursor;             /* atomic: generation << 32 | the part's next range's start */
-    char pad[64 - sizeof(uint64_t)];
+    int32_t done;                /* atomic: the part's items run and counted */
+    char pad[64 - sizeof(uint64_t) - sizeof(int32_t)];
 } pool_part;
 
 /* Spins of an idle thread before it sleeps (a pause each: some 0.1-1 ms). */
@@ -80,7 +82,6 @@ struct rg_thread_pool {
     int32_t count, least, parts; /* least: min_range; parts: up to threads, each at least
                                   * least items */
     uint64_t state;              /* atomic: generation << 32 */
-    int32_t done;                /* atomic: items done */
     pool_part *part;             /* threads */
 };
 
@@ -92,11 +93,13 @@ static inline int32_t pool_part_end(int32_t count, int32_t parts, int32_t k)
 }
 
 /* Claims and runs ranges of part k of the task of generation gen until none is left there,
- * adding their items to *ran; returns 0 when the generation has passed (then the thread
- * holds no range of it: the task ended, which it cannot while a range is not counted). */
-static int pool_work_part(rg_thread_pool *p, uint32_t gen, int32_t k, int32_t worker, int32_t *ran)
+ * then adds their items to the part's count; returns 0 when the generation has passed
+ * (then the thread ran nothing there: the task ended, which it cannot while a range of it is
+ * not counted). */
+static int pool_work_part(rg_thread_pool *p, uint32_t gen, int32_t k, int32_t worker)
 {
     uint64_t *cur = &p->part[k].cursor;
+    int32_t ran = 0;
     for (;;) {
         uint64_t st = POOL_LOAD(cur);
         if ((uint32_t)(st >> 32) != gen) return 0;
@@ -104,7 +107,10 @@ static int pool_work_part(rg_thread_pool *p, uint32_t gen, int32_t k, int32_t wo
          * see the close, and fail */
         int32_t begin = (int32_t)(uint32_t)st, count = POOL_LOAD(&p->count), least = POOL_LOAD(&p->least);
         int32_t pend = pool_part_end(count, POOL_LOAD(&p->parts), k);
-        if (begin >= pend) return 1;
+        if (begin >= pend) {
+            if (ran > 0) POOL_ADD(&p->part[k].done, ran);
+            return 1;
+        }
         /* half of what is left of the part (guided: the ranges shrink toward the end, so
          * the threads finish together), at least `least`, and all of it when less than
          * `least` would remain */
@@ -115,17 +121,16 @@ static int pool_work_part(rg_thread_pool *p, uint32_t gen, int32_t k, int32_t wo
         /* the claim holds the task: it cannot end before this range is counted done */
         rg_task_fn *fn = POOL_RELAXED(&p->fn);
         fn(begin, end, worker, POOL_RELAXED(&p->context));
-        *ran += end - begin;
+        ran += end - begin;
     }
 }
 
-/* The worker's own part, then the others'; then what it ran counted done, at once. */
+/* The worker's own part, then the others'. */
 static void pool_work(rg_thread_pool *p, uint32_t gen, int32_t worker)
 {
-    int32_t parts = POOL_LOAD(&p->parts), ran = 0;
+    int32_t parts = POOL_LOAD(&p->parts);
     for (int32_t k = 0; k < parts; k++)
-        if (!pool_work_part(p, gen, (worker + k) % parts, worker, &ran)) break;
-    if (ran > 0) POOL_ADD(&p->done, ran);
+        if (!pool_work_part(p, gen, (worker + k) % parts, worker)) return;
 }
 
 static void *pool_main(void *arg)
@@ -178,7 +183,8 @@ static void *pool_enqueue(rg_task_fn *fn, int32_t count, int32_t min_range, void
     POOL_STORE(&p->count, count);
     POOL_STORE(&p->least, min_range);
     POOL_STORE(&p->parts, parts);
-    POOL_SET(&p->done, 0);
+    /* no thread holds a range of the last task (it ended), so none adds to a count now */
+    for (int32_t k = 0; k < parts; k++) POOL_SET(&p->part[k].done, 0);
     /* each cursor publishes the fields above to the threads that claim from it */
     for (int32_t k = 0; k < parts; k++) {
         uint32_t start = k > 0 ? (uint32_t)pool_part_end(count, parts, k - 1) : 0u;
@@ -189,9 +195,12 @@ static void *pool_enqueue(rg_task_fn *fn, int32_t count, int32_t min_range, void
     if (p->sleepers > 0) pthread_cond_broadcast(&p->wake);
     pthread_mutex_unlock(&p->lock);
     pool_work(p, gen, 0);
-    for (int spins = 0; POOL_LOAD(&p->done) < count; spins++) {
-        if (spins < POOL_SPINS) pool_relax();
-        else sched_yield();
+    for (int32_t k = 0, spins = 0; k < parts; k++) {
+        int32_t items = pool_part_end(count, parts, k) - (k > 0 ? pool_part_end(count, parts, k - 1) : 0);
+        for (; POOL_LOAD(&p->part[k].done) < items; spins++) {
+            if (spins < POOL_SPINS) pool_relax();
+            else sched_yield();
+        }
     }
     pthread_mutex_unlock(&p->task_lock);
     return NULL;
