@@ -197,9 +197,13 @@ static void *pool_enqueue(rg_task_fn *fn, int32_t count, int32_t min_range, void
     pool_work(p, gen, 0);
     for (int32_t k = 0, spins = 0; k < parts; k++) {
         int32_t items = pool_part_end(count, parts, k) - (k > 0 ? pool_part_end(count, parts, k - 1) : 0);
-        for (; POOL_LOAD(&p->part[k].done) < items; spins++) {
-            if (spins < POOL_SPINS) pool_relax();
-            else sched_yield();
+        while (POOL_LOAD(&p->part[k].done) < items) {
+            if (spins < POOL_SPINS) {
+                spins++;
+                pool_relax();
+            } else {
+                sched_yield();
+            }
         }
     }
     pthread_mutex_unlock(&p->task_lock);
