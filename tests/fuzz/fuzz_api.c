@@ -83,13 +83,20 @@ static fworld kept_model[NW][KEPT];
 static uint64_t kept_hash[NW][KEPT];
 static int kept_valid[NW][KEPT];
 
+/* The world closed, and with it the model of its kept states (they are the world's own
+ * memory: a later world in its place has none). */
+static void forget_world(fworld *fw)
+{
+    world_close(fw);
+    memset(kept_valid[fw - W], 0, sizeof kept_valid[0]);
+}
+
 static void create_world(input *in, fworld *fw)
 {
     uint8_t how = u8(in);
     rg_world *w = NULL;
     rg_status st;
-    world_close(fw);
-    memset(kept_valid[fw - W], 0, sizeof kept_valid[0]);
+    forget_world(fw);
     if (how < 16) {                       /* the argument checks */
         if (rg_world_create(NULL) != RG_ERR_INVALID_ARGUMENT) FAIL("create(NULL)");
         if (rg_world_create_with_allocator(NULL, NULL, &w) != RG_ERR_INVALID_ARGUMENT || w != NULL)
@@ -348,7 +355,7 @@ static int32_t run_op(input *in, int op, int *is_step, int *is_const)
     case OP_CREATE_WORLD: create_world(in, fw); return RG_OK;
     case OP_DESTROY_WORLD:
         if (u8(in) < 16) rg_world_destroy(NULL);
-        else world_close(fw);
+        else forget_world(fw);
         return RG_OK;
     case OP_ARM_ALLOC:
         if (fw->al != NULL) fw->al->fail_at = (u8(in) < 64) ? -1 : fw->al->calls + (long)(u8(in) % 32);
