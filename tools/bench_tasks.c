@@ -202,7 +202,7 @@ static int tasks_scene(const char *arg, int steps, const rg_task_system *pool)
         printf("so two workers over one, about:                      %.3f\n", qb[1] * qc[1]);
         printf("task  items  min_range  step with this task alone inline, over every task on the pool\n");
     }
-    int faster = 0, slower = 0, tasks = most < TASKS_MAX ? most : TASKS_MAX;
+    int gain = 0, lose = 0, tasks = most < TASKS_MAX ? most : TASKS_MAX;
     for (int32_t k = 0; k < tasks && ok; k++) {
         /* the task's items (median over the last half) and min_range ('*' when it varies) */
         int32_t m = 0, least = -1, same = 1;
@@ -214,13 +214,13 @@ static int tasks_scene(const char *arg, int steps, const rg_task_system *pool)
         }
         if (m == 0) continue;
         qsort(col, (size_t)m, sizeof *col, tasks_cmp_i32);
-        int32_t sig = 0;
-        ok = tasks_race(&s, steps, pool, -1, k, NULL, qb, qc, &sig);
+        int32_t most_k = 0;
+        ok = tasks_race(&s, steps, pool, -1, k, NULL, qb, qc, &most_k);
         if (!ok) break;
         /* inline faster: the pool loses on this task */
         const char *verdict = qc[2] < 1 ? "  loses" : qc[0] > 1 ? "  gains" : "";
-        slower += qc[2] < 1;
-        faster += qc[0] > 1;
+        lose += qc[2] < 1;
+        gain += qc[0] > 1;
         char mr[16];
         if (same)
             snprintf(mr, sizeof mr, "%d", (int)least);
@@ -231,7 +231,7 @@ static int tasks_scene(const char *arg, int steps, const rg_task_system *pool)
     }
     if (ok)
         printf("%d tasks: on the pool, %d gain and %d lose (the quartiles of the step with the task inline clear of 1)\n",
-               tasks, faster, slower);
+               tasks, gain, lose);
     else
         printf("bench-tasks: %s %d failed (a world not made, or the worlds' states differed)\n", name, n);
     tasks_machine("after");
