@@ -631,7 +631,15 @@ RG_API rg_status rg_world_save(const rg_world *world, void *out, size_t capacity
    checked before anything is changed, so no snapshot, however forged, can make a later call
    misbehave.  With a task system (rg_world_set_task_system) the checks and the load of the
    contacts and the broadphase run on its workers, and the checksum beside the other checks;
-   what is refused, and why, and what is loaded are the same as on one thread. */
+   what is refused, and why, and what is loaded are the same as on one thread.
+   A world knows its own snapshots again: once it has restored one (of any origin), it tags
+   its next 64 saves with a keyed hash whose key it draws at its creation and never writes
+   out, and bytes equal to one of its last 64 tagged saves (the tags compared: other bytes
+   pass with a chance of about 2^-64) are loaded without the checks, as a kept state is: a
+   state the world has been in breaks no invariant.  This is the rollback loop, which
+   restores its own saves again and again at under half the checked cost; the first restore
+   of a loop, any snapshot of another world or from a file, and any changed byte are checked
+   whole.  A world that never restores does not tag: its saves cost what they did. */
 RG_API rg_status rg_world_restore(rg_world *world, const void *data, size_t size);
 
 /* A 64-bit hash of the simulation state: equal states give equal hashes, and the same

@@ -1,6 +1,8 @@
 /* restore.c: rg_world_restore: a snapshot (snapshot.h) checked against every structural
- * invariant of the state while still in its buffer (restore_check.c), then loaded.  Nothing
- * of the world changes until the snapshot is known good and every allocation has succeeded. */
+ * invariant of the state while still in its buffer (restore_check.c), then loaded; one of
+ * the world's own last saves, byte for byte (own.h), and a kept state (slots.c) are loaded
+ * unchecked.  Nothing of the world changes until the snapshot is known good and every
+ * allocation has succeeded. */
 #include "body.h"
 #include "broadphase.h"
 #include "contact.h"
@@ -443,8 +445,9 @@ static const char *restore_check_values(const snap_in *in)
     return NULL;
 }
 
-/* A state this world wrote itself (a kept slot): of the scratch the checks would fill, the
- * load needs the members' places (the levels and keys are in the state's tail). */
+/* A state this world wrote itself (a kept slot, or one of its own saves): of the scratch
+ * the checks would fill, the load needs the members' places (and, but for a kept state,
+ * whose tail holds them, their levels and keys: restore_locate_range). */
 static void restore_fill_scratch(const snap_in *in, restore_scratch *r)
 {
     memset(r->member_of, 0, (size_t)in->s.bslots * sizeof *r->member_of);
@@ -452,8 +455,31 @@ static void restore_fill_scratch(const snap_in *in, restore_scratch *r)
         r->member_of[(int32_t)snap_get32(rec(in, in->l.members, SNAP_MEMBER, k))] = k + 1;
 }
 
-/* Checks the state's contacts and broadphase unless it is the world's own (checked 0; the
- * rest is checked before), then grows the world to hold it and loads it. */
+/* Members begin..end-1's levels and keys from their boxes, as the checks compute them
+ * (restore_links.c), in blocks gathered from the records. */
+#define RESTORE_LOCATE 64
+typedef struct restore_locate {
+    const snap_in *in;
+    restore_scratch *r;
+} restore_locate;
+
+static void restore_locate_range(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    const restore_locate *t = context;
+    rg_real box[4 * RESTORE_LOCATE];
+    (void)worker;
+    for (int32_t k0 = begin; k0 < end; k0 += RESTORE_LOCATE) {
+        int32_t n = end - k0 < RESTORE_LOCATE ? end - k0 : RESTORE_LOCATE;
+        for (int32_t k = 0; k < n; k++) {
+            const uint8_t *q = rec(t->in, t->in->l.members, SNAP_MEMBER, k0 + k) + SNAP_MEMBER_BOX;
+            for (int j = 0; j < 4; j++) box[4 * k + j] = snap_get_real(q + (size_t)j * SNAP_REAL);
+        }
+        broadphase_locate_boxes(box, n, t->r->level + k0, t->r->key + k0);
+    }
+}
+
+/* Checks the state's contacts and broadphase when it comes from outside (RESTORE_CHECKED;
+ * the rest is checked before), then grows the world to hold it and loads it. */
 static rg_status restore_state(rg_world *w, const char *fn, const snap_in *in, int checked)
 {
     const snap_scalars *s = &in->s;
@@ -465,7 +491,7 @@ static rg_status restore_state(rg_world *w, const char *fn, const snap_in *in, i
     void *rblock = mem_block(m, restore_check_scratch_layout, &r, &rsize);
     if (rblock == NULL) return error_alloc(w, fn, RG_ERR_OUT_OF_MEMORY, "restore scratch", "RG_MAX_BODIES");
     rg_status st = RG_OK;
-    if (checked) {
+    if (checked == RESTORE_CHECKED) {
         memset(rblock, 0, r.zeroed);
         if (!restore_check_islands(in, &r))
             st = restore_refuse(w, fn, "bodies");
@@ -475,6 +501,10 @@ static rg_status restore_state(rg_world *w, const char *fn, const snap_in *in, i
             st = restore_refuse(w, fn, "broadphase");
     } else {
         restore_fill_scratch(in, &r);
+        if (checked == RESTORE_OWN) {
+            restore_locate t = { in, &r };
+            task_for(w, restore_locate_range, s->members, RESTORE_LOCATE, &t);
+        }
     }
     /* room: growth keeps the world as it is; the contact storage (of exactly the saved
      * capacity, which decides the ids of new contacts) and the bucket table (of exactly the
@@ -543,7 +573,7 @@ rg_status restore_kept(rg_world *w, const void *data, size_t size)
     const uint8_t *tail = in.p + size; /* snapshot.h: snap_kept_tail_size */
     in.kept_key = (const uint64_t *)(const void *)tail;
     in.kept_level = (const int16_t *)(const void *)(tail + (size_t)in.s.members * sizeof(uint64_t));
-    return restore_state(w, "rg_world_restore_slot", &in, 0);
+    return restore_state(w, "rg_world_restore_slot", &in, RESTORE_KEPT);
 }
 
 RG_API rg_status rg_world_restore(rg_world *world, const void *data, size_t size)
@@ -553,11 +583,19 @@ RG_API rg_status rg_world_restore(rg_world *world, const void *data, size_t size
     snap_in in;
     memset(&in, 0, sizeof in);
     if (!restore_check_header(world, &in, data, size, 1)) return RG_ERR_INVALID_ARGUMENT;
+    if (own_knows(world->own, in.p, size)) { /* the world's own: as a kept state */
+        if (!restore_check_scalars(&in)) return restore_refuse(world, "rg_world_restore", "settings and counts");
+        rg_status st = restore_state(world, "rg_world_restore", &in, RESTORE_OWN);
+        if (st == RG_OK) own_arm(world->own);
+        return st;
+    }
     restore_first f;
     f.in = &in;
     task_for(world, restore_first_range, 2, 1, &f);
     if (!f.sum_ok) return error_set(world, RG_ERR_INVALID_ARGUMENT, "rg_world_restore", "checksum mismatch (the snapshot is corrupted)");
     if (!f.scalars_ok) return restore_refuse(world, "rg_world_restore", "settings and counts");
     if (f.bad != NULL) return restore_refuse(world, "rg_world_restore", f.bad);
-    return restore_state(world, "rg_world_restore", &in, 1);
+    rg_status st = restore_state(world, "rg_world_restore", &in, RESTORE_CHECKED);
+    if (st == RG_OK) own_arm(world->own); /* a world that restores: its saves are tagged (own.h) */
+    return st;
 }

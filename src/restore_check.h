@@ -165,8 +165,14 @@ static inline void restore_member(const snap_in *in, int32_t k, snap_member *m)
  * per contact id its record + 1 (live) or -1 (free); per slot its member index + 1; per
  * member its level and key (computed once); marks for the bucket heads, huge indices,
  * active places and the bodies island links lead to; the lists' links gathered as indices
- * (for restore_acyclic).  The load of a kept state (checked 0) needs rec_of and member_of
- * alone, and the rest is not made. */
+ * (for restore_acyclic).  The load of a kept state (RESTORE_KEPT) needs rec_of and
+ * member_of alone, that of the world's own snapshot (RESTORE_OWN) also key and level, and
+ * the rest is not made. */
+enum {
+    RESTORE_KEPT,    /* a kept state (slots.c): unchecked, the levels and keys in its tail */
+    RESTORE_CHECKED, /* a snapshot from outside: every invariant checked */
+    RESTORE_OWN      /* one of the world's own last saves (own.h): unchecked */
+};
 typedef struct restore_scratch {
     int32_t *rec_of;        /* [ccap] */
     int32_t *member_of;     /* [bslots] */
@@ -185,7 +191,7 @@ typedef struct restore_scratch {
     rg_real *box;           /* [4 members]: the members' boxes */
     int32_t *isl_next;      /* [asleep]: each sleeping body's next in its island (dense - n_active) */
     const snap_scalars *s;
-    int checked;
+    int checked; /* RESTORE_* */
 } restore_scratch;
 
 /* Dense index of a live body slot, or -1. */

@@ -30,7 +30,8 @@ void restore_check_scratch_layout(mem_layout *l, void *ctx)
 {
     restore_scratch *r = ctx;
     const snap_scalars *s = r->s;
-    size_t checked = r->checked != 0; /* a kept state needs the places alone */
+    size_t checked = r->checked == RESTORE_CHECKED; /* a kept state needs the places alone, */
+    size_t located = r->checked != RESTORE_KEPT;    /* the world's own also the levels and keys */
     /* first what starts at zero (restore_state clears it), then what is written whole */
     r->rec_of = mem_take(l, (size_t)s->ccap, sizeof(int32_t));
     r->member_of = mem_take(l, (size_t)s->bslots, sizeof(int32_t));
@@ -39,8 +40,8 @@ void restore_check_scratch_layout(mem_layout *l, void *ctx)
     r->active_used = mem_take(l, checked * (size_t)s->n_bp_active, 1);
     r->isl_in = mem_take(l, checked * (size_t)(s->n_moving - s->n_active), 1);
     r->zeroed = l->size;
-    r->key = mem_take(l, checked * (size_t)s->members, sizeof(uint64_t));
-    r->level = mem_take(l, checked * (size_t)s->members, sizeof(int16_t));
+    r->key = mem_take(l, located * (size_t)s->members, sizeof(uint64_t));
+    r->level = mem_take(l, located * (size_t)s->members, sizeof(int16_t));
     r->body_bits = mem_take(l, checked * (size_t)s->count, 1);
     r->wakes = mem_take(l, checked * (size_t)s->clive, 1);
     r->node_next = mem_take(l, checked * 2 * (size_t)s->clive, sizeof(int32_t));

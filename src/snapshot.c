@@ -169,8 +169,9 @@ size_t snap_scalars_size(void)
 }
 
 /* Where the stream goes: a buffer (save) or a hash (hash), which takes it in chunks.  A
- * save hashes its buffer as it goes (the checksum), a few KB behind the writer, so that
- * the bytes are hashed while they are still in the cache. */
+ * save hashes its buffer as it goes (the checksum, and the keyed tags by which the world
+ * knows it again: own.h), a few KB behind the writer, so that the bytes are hashed while
+ * they are still in the cache. */
 #define SNAP_CHUNK 4096
 #define SNAP_HASH_BEHIND (4 * SNAP_CHUNK)
 typedef struct snap_out {
@@ -178,6 +179,7 @@ typedef struct snap_out {
     size_t at;
     size_t hashed;      /* save: bytes of buf hashed so far */
     snap_hasher *hash;  /* NULL: a kept state (slots.c), written unsealed */
+    keyed_hasher *keyed; /* a save's keyed tags, or NULL */
     int anonymous;      /* the world tag left out (rg_world_hash) */
     const int *uniform; /* per body field: all its values equal */
     uint64_t *kept_key; /* a kept state's tail (snap_kept_tail_size), or NULL */
@@ -185,6 +187,14 @@ typedef struct snap_out {
     size_t nchunk;
     uint8_t chunk[SNAP_CHUNK];
 } snap_out;
+
+/* A save's bytes written since the last call into its hashes. */
+static void snap_hash_behind(snap_out *o)
+{
+    snap_hash_bytes(o->hash, o->buf + o->hashed, o->at - o->hashed);
+    if (o->keyed != NULL) keyed_bytes(o->keyed, o->buf + o->hashed, o->at - o->hashed);
+    o->hashed = o->at;
+}
 
 static void snap_flush(snap_out *o)
 {
@@ -197,10 +207,7 @@ static void snap_emit(snap_out *o, const void *p, size_t n)
     o->at += n;
     if (o->buf != NULL) {
         memcpy(o->buf + o->at - n, p, n);
-        if (o->hash != NULL && o->at - o->hashed >= SNAP_HASH_BEHIND) {
-            snap_hash_bytes(o->hash, o->buf + o->hashed, o->at - o->hashed);
-            o->hashed = o->at;
-        }
+        if (o->hash != NULL && o->at - o->hashed >= SNAP_HASH_BEHIND) snap_hash_behind(o);
         return;
     }
     if (o->nchunk + n > SNAP_CHUNK) snap_flush(o);
@@ -217,10 +224,7 @@ static void snap_emit(snap_out *o, const void *p, size_t n)
 static uint8_t *snap_record(snap_out *o, size_t n)
 {
     if (o->buf != NULL) {
-        if (o->hash != NULL && o->at - o->hashed >= SNAP_HASH_BEHIND) {
-            snap_hash_bytes(o->hash, o->buf + o->hashed, o->at - o->hashed);
-            o->hashed = o->at;
-        }
+        if (o->hash != NULL && o->at - o->hashed >= SNAP_HASH_BEHIND) snap_hash_behind(o);
         o->at += n;
         return o->buf + o->at - n;
     }
@@ -581,11 +585,15 @@ void snap_write_planned(const rg_world *w, const snap_plan *plan, uint8_t *p, in
     snap_put64(p + 24, 0);
     snap_hasher h;
     snap_hash_init(&h);
+    keyed_hasher kh;
+    keyed_init(&kh, &w->own->key);
+    own_header(&kh, p);
     snap_out o;
     o.buf = p;
     o.at = SNAP_HEADER;
     o.hashed = SNAP_HEADER;
     o.hash = sealed ? &h : NULL;
+    o.keyed = sealed && own_tagging(w->own) ? &kh : NULL;
     o.anonymous = 0;
     o.uniform = plan->uniform;
     o.nchunk = 0;
@@ -595,7 +603,11 @@ void snap_write_planned(const rg_world *w, const snap_plan *plan, uint8_t *p, in
     snap_write(w, &o, &plan->s);
     if (!sealed) return;
     snap_hash_bytes(&h, p + o.hashed, plan->size - o.hashed);
-    snap_put64(p + 24, snap_hash_final(&h)); /* = snap_hash(p + SNAP_HEADER, size - SNAP_HEADER) */
+    uint64_t sum = snap_hash_final(&h); /* = snap_hash(p + SNAP_HEADER, size - SNAP_HEADER) */
+    snap_put64(p + 24, sum);
+    if (o.keyed == NULL) return;
+    keyed_bytes(&kh, p + o.hashed, plan->size - o.hashed);
+    own_remember(w->own, &kh, (uint64_t)plan->size, sum);
 }
 
 RG_API rg_status rg_world_save(const rg_world *world, void *out, size_t capacity, size_t *out_size)
@@ -630,6 +642,7 @@ RG_API rg_status rg_world_hash(const rg_world *world, uint64_t *out_hash)
     o.at = SNAP_HEADER;
     o.hashed = 0;
     o.hash = &h;
+    o.keyed = NULL;
     o.anonymous = 1;
     o.uniform = uniform;
     o.nchunk = 0;

@@ -10,6 +10,7 @@
 #include "broadphase.h"
 #include "error.h"
 #include "mem.h"
+#include "own.h"
 #include "pool.h"
 #include "rigid.h"
 #include "solver.h"
@@ -281,6 +282,7 @@ typedef struct collide_step {
 struct rg_world {
     rg_mem mem;
     char *err;             /* the last error (error.h): ERROR_SIZE bytes allocated with the world */
+    own_saves *own;        /* its last saves (own.h), allocated with the world after err */
     pool body_pool;
     body_store b;          /* dense structure-of-arrays body storage */
     spring_store springs;

@@ -53,36 +53,48 @@ static uint64_t world_ticks(void)
 #endif
 }
 
-/* The tag that makes one world's handles foreign to another: per world and random, from
- * the world's address (every bit of it), the machine's tick counter and the time, mixed.
- * No state outlives a world, so nothing but chance (2^-20) lets two live worlds, or a
- * world and the one destroyed before it in the same block (a level reload), share a tag;
- * an address alone would give a reloaded level its predecessor's tag every time.  The tag
- * decides no result: every handle of a world carries the same one. */
-static uint32_t world_tag(const rg_world *w)
+/* 64 bits from the world's address (every bit of it), the machine's tick counter, the time
+ * and the address of a local (where the system places the heap and the stack at random),
+ * mixed; each call differs in the ticks at least. */
+static uint64_t world_entropy(const rg_world *w)
 {
+    int local = 0;
     uint64_t z = (uint64_t)(uintptr_t)w ^ world_ticks() * 0x9E3779B97F4A7C15ull ^ (uint64_t)time(NULL) << 32 ^
-                 (uint64_t)clock() << 16;
+                 (uint64_t)clock() << 16 ^ (uint64_t)(uintptr_t)&local * 0xC2B2AE3D27D4EB4Full;
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return (uint32_t)z & POOL_TAG_MASK;
+    return z ^ (z >> 31);
 }
+
+/* The tag that makes one world's handles foreign to another: per world and random
+ * (world_entropy).  No state outlives a world, so nothing but chance (2^-20) lets two live
+ * worlds, or a world and the one destroyed before it in the same block (a level reload),
+ * share a tag; an address alone would give a reloaded level its predecessor's tag every
+ * time.  The tag decides no result: every handle of a world carries the same one. */
+static uint32_t world_tag(const rg_world *w)
+{
+    return (uint32_t)world_entropy(w) & POOL_TAG_MASK;
+}
+
+/* The world, the text of its last error and its last saves (own.h), in one block. */
+#define WORLD_BLOCK (sizeof(rg_world) + ERROR_SIZE + sizeof(own_saves))
+typedef char world_error_size_keeps_alignment[ERROR_SIZE % 8 == 0 ? 1 : -1];
 
 RG_API rg_status rg_world_create_with_allocator(rg_alloc_fn alloc, void *user, rg_world **out_world)
 {
     if (alloc == NULL || out_world == NULL) return RG_ERR_INVALID_ARGUMENT;
-    /* the world and the text of its last error, in one block */
-    rg_world *w = alloc(user, NULL, 0, sizeof *w + ERROR_SIZE);
+    rg_world *w = alloc(user, NULL, 0, WORLD_BLOCK);
     if (w == NULL) return RG_ERR_OUT_OF_MEMORY;
     memset(w, 0, sizeof *w + ERROR_SIZE);
     w->err = (char *)(w + 1);
+    w->own = (own_saves *)(void *)(w->err + ERROR_SIZE);
     w->mem.fn = alloc;
     w->mem.user = user;
     uint32_t tag = world_tag(w);
     pool_init(&w->body_pool, tag, 0, RG_MAX_BODIES);
     /* Springs carry another tag so that a body handle is never taken for a spring. */
     pool_init(&w->springs.pool, tag ^ (1u << (POOL_TAG_BITS - 1)), 0, RG_MAX_SPRINGS);
+    own_init(w->own, world_entropy(w)); /* a second draw: the tag, which handles show, is not the key */
     w->integrator = RG_INTEGRATOR_SEMI_IMPLICIT_EULER;
     w->fixed_dt = 1.0 / 60.0;
     w->max_steps = 8;
@@ -105,7 +117,7 @@ RG_API void rg_world_destroy(rg_world *world)
     rg_mem mem = world->mem;
     for (int k = 0; k < RG_MAX_SLOTS; k++) /* the kept states (slots.c) */
         if (world->kept[k].p != NULL) mem_free(&mem, world->kept[k].p, world->kept[k].cap);
-    mem_free(&mem, world, sizeof *world + ERROR_SIZE);
+    mem_free(&mem, world, WORLD_BLOCK);
 }
 
 RG_API rg_status rg_world_set_gravity(rg_world *world, rg_vec2 gravity)
