@@ -43,8 +43,7 @@ static void keyed_absorb(uint64_t *poly, uint64_t r, uint64_t e)
     *poly = x >= KEYED_P ? x - KEYED_P : x;
 }
 
-/* The sums of `words` words at p, the keys k0, k1 from the words' places in the chunk. */
-static void keyed_nh_scalar(uint64_t nh[2], const uint8_t *p, size_t words, const uint32_t *k0, const uint32_t *k1)
+void keyed_nh_scalar(uint64_t nh[2], const uint8_t *p, size_t words, const uint32_t *k0, const uint32_t *k1)
 {
     uint64_t a = nh[0], b = nh[1];
     for (size_t i = 0; i < words; i++) {
@@ -60,11 +59,10 @@ static void keyed_nh_scalar(uint64_t nh[2], const uint8_t *p, size_t words, cons
 
 /* On x86-64 (little-endian: a word's low half is its first four bytes, as the scalar loop
  * reads it) the sums also run four or eight words to a register, picked per call. */
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(RG_NO_DISPATCH)
-#define KEYED_VECTOR 1
+#if KEYED_VECTOR
 #include <immintrin.h>
 
-__attribute__((target("avx2"))) static void keyed_nh_avx2(uint64_t nh[2], const uint8_t *p, size_t words,
+__attribute__((target("avx2"))) void keyed_nh_avx2(uint64_t nh[2], const uint8_t *p, size_t words,
                                                           const uint32_t *k0, const uint32_t *k1)
 {
     __m256i a = _mm256_setzero_si256(), b = _mm256_setzero_si256();
@@ -84,7 +82,7 @@ __attribute__((target("avx2"))) static void keyed_nh_avx2(uint64_t nh[2], const 
     keyed_nh_scalar(nh, p + 8 * i, words - i, k0 + 2 * i, k1 + 2 * i);
 }
 
-__attribute__((target("avx512f"))) static void keyed_nh_avx512(uint64_t nh[2], const uint8_t *p, size_t words,
+__attribute__((target("avx512f"))) void keyed_nh_avx512(uint64_t nh[2], const uint8_t *p, size_t words,
                                                               const uint32_t *k0, const uint32_t *k1)
 {
     /* two registers a tag, sixteen words a turn: the loads of one half overlap the other's */
@@ -117,8 +115,6 @@ __attribute__((target("avx512f"))) static void keyed_nh_avx512(uint64_t nh[2], c
     }
     keyed_nh_scalar(nh, p + 8 * i, words - i, k0 + 2 * i, k1 + 2 * i);
 }
-#else
-#define KEYED_VECTOR 0
 #endif
 
 static void keyed_nh(uint64_t nh[2], const uint8_t *p, size_t words, const uint32_t *k0, const uint32_t *k1)

@@ -51,4 +51,15 @@ void keyed_final(keyed_hasher *h, uint64_t tag[2]);
 /* a b modulo 2^61 - 1, for a, b < 2^61 (portable: four 32-bit products). */
 uint64_t keyed_mulmod(uint64_t a, uint64_t b);
 
+/* The NH sums of `words` words at p added to nh[0], nh[1], the keys k0, k1 from the words'
+ * places in their chunk: the paths keyed_bytes picks from per call, named for the tests. */
+void keyed_nh_scalar(uint64_t nh[2], const uint8_t *p, size_t words, const uint32_t *k0, const uint32_t *k1);
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(RG_NO_DISPATCH)
+#define KEYED_VECTOR 1
+void keyed_nh_avx2(uint64_t nh[2], const uint8_t *p, size_t words, const uint32_t *k0, const uint32_t *k1);
+void keyed_nh_avx512(uint64_t nh[2], const uint8_t *p, size_t words, const uint32_t *k0, const uint32_t *k1);
+#else
+#define KEYED_VECTOR 0
+#endif
+
 #endif

@@ -110,6 +110,44 @@ static void test_tags_follow_the_definition_in_any_pieces(void **state)
     free(p);
 }
 
+/* Each vector path the CPU has gives the scalar loop's sums, at every length up to a chunk
+ * and at every place in the chunk's key (the sums are taken modulo 2^64 in another order). */
+static void test_every_path_gives_the_scalar_sums(void **state)
+{
+    (void)state;
+#if KEYED_VECTOR
+    static keyed_key key;
+    keyed_key_init(&key, 77);
+    uint8_t *p = malloc(KEYED_CHUNK);
+    assert_non_null(p);
+    uint64_t s = 3;
+    for (size_t i = 0; i < KEYED_CHUNK; i++) p[i] = (uint8_t)lcg(&s);
+    int paths = 0;
+    for (int path = 0; path < 2; path++) {
+        if (!(path ? __builtin_cpu_supports("avx512f") : __builtin_cpu_supports("avx2"))) {
+            print_message("no %s on this CPU: that path is not run\n", path ? "AVX-512" : "AVX2");
+            continue;
+        }
+        paths++;
+        for (size_t at = 0; at < KEYED_WORDS; at += 37)
+            for (size_t words = 0; at + words <= KEYED_WORDS; words += 1 + words / 3) {
+                uint64_t want[2] = { 11, 22 }, got[2] = { 11, 22 };
+                const uint32_t *k0 = key.nh[0] + 2 * at, *k1 = key.nh[1] + 2 * at;
+                keyed_nh_scalar(want, p + 8 * at, words, k0, k1);
+                if (path)
+                    keyed_nh_avx512(got, p + 8 * at, words, k0, k1);
+                else
+                    keyed_nh_avx2(got, p + 8 * at, words, k0, k1);
+                assert_memory_equal(got, want, sizeof want);
+            }
+    }
+    print_message("vector paths run: %d of 2\n", paths);
+    free(p);
+#else
+    skip();
+#endif
+}
+
 /* Any one bit of three chunks flipped changes both tags.  Per flip each tag stays with
  * chance 2^-32 + n 2^-61 at most (keyed.h), both with about 2^-64: over 98,304 flips a
  * miss is a fault, not chance. */
@@ -331,6 +369,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mulmod_is_the_product_modulo_the_prime),
         cmocka_unit_test(test_tags_follow_the_definition_in_any_pieces),
+        cmocka_unit_test(test_every_path_gives_the_scalar_sums),
         cmocka_unit_test(test_every_flipped_bit_changes_both_tags),
         cmocka_unit_test(test_only_a_world_that_restores_tags_its_saves),
         cmocka_unit_test(test_a_save_is_known_byte_for_byte_and_nowhere_else),

@@ -3,9 +3,11 @@
  * to save, to restore and to hash, for the bench's rain scene (tools/bench_scenes.c, sleeping
  * on) at N = 1000 and 10000, taken while the pile is still moving (step 60) and once it
  * rests (step 600).  Each engine restores into a second world built from the same scene, and
- * the restored world's hash must equal the saved one's.  Then the rollback a game makes: the
- * world saves, steps 8 frames and restores (for rigid also with a kept state, which v3 has
- * no counterpart of), the step not timed.  Then a whole rollback of 8 frames as the game
+ * the restored world's hash must equal the saved one's (for rigid a snapshot from outside,
+ * checked whole).  Then the rollback a game makes: the world saves, steps 8 frames and
+ * restores (for rigid also with a kept state, which v3 has no counterpart of), the step not
+ * timed: rigid's world restores its own save, which from the second time on it knows again
+ * and loads unchecked (src/own.h), as every rollback after a game's first does.  Then a whole rollback of 8 frames as the game
  * pays for it in the frame where a late input arrives: back to the state of 8 frames ago, and
  * each of the 8 frames saved again and stepped, timed as one, against a 60 Hz frame's 16.7
  * ms.  Medians of 31 timings each.  Then rigid again with its pool of two threads
@@ -201,7 +203,8 @@ int main(int argc, char **argv)
     for (int b = 0; b < 2; b++)
         if (v3[b] != NULL) engines[ne++] = v3[b];
     printf("snapshots: the bench's rain (sleeping on); medians of %d timings; B/body counts every body "
-           "(static too); restore: into a second world of the scene\nengines:", REPS);
+           "(static too); restore: into a second world of the scene (rigid: checked whole); rollback: "
+           "the world's own save (rigid: known again, unchecked)\nengines:", REPS);
     for (int k = 0; k < ne; k++) printf(" [%s]", engines[k]->version());
     printf("\n");
     if (why[0] != 0) printf("(%s)\n", why);
