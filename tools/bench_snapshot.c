@@ -7,7 +7,8 @@
  * checked whole).  Then the rollback a game makes: the world saves, steps 8 frames and
  * restores (for rigid also with a kept state, which v3 has no counterpart of), the step not
  * timed: rigid's world restores its own save, which from the second time on it knows again
- * and loads unchecked (src/own.h), as every rollback after a game's first does.  Then a whole rollback of 8 frames as the game
+ * and loads unchecked (src/own.h), as every rollback after a game's first does; and, like
+ * for like, the same bytes saved by another world in the same state (checked whole).  Then a whole rollback of 8 frames as the game
  * pays for it in the frame where a late input arrives: back to the state of 8 frames ago, and
  * each of the 8 frames saved again and stepped, timed as one, against a 60 Hz frame's 16.7
  * ms.  Medians of 31 timings each.  Then rigid again with its pool of two threads
@@ -44,20 +45,26 @@ static double median(double *v, int n)
 }
 
 /* The rollback pattern: save (or keep) at a frame, step ROLLBACK frames, restore (or go
- * back); each time from the same frame, whose hash the restored world must have.  Medians
- * of REPS; 0 when a call failed or the hash differed. */
+ * back); each time from the same frame, whose hash the restored world must have.  The save
+ * is the world's own (ROLL_OWN; rigid knows it again from the second time on: unchecked),
+ * a kept state (ROLL_KEPT), or the snapshot of another world in the same state (ROLL_OTHER,
+ * src: for rigid a snapshot from outside, checked whole), the same bytes but the handle tag
+ * (the restore takes src's).
+ * Medians of REPS; 0 when a call failed or the hash differed. */
 #define ROLLBACK 8
-static int rollback(const bench_engine *e, void *w, void *buf, size_t size, int kept, double *save, double *restore)
+enum { ROLL_OWN, ROLL_OTHER, ROLL_KEPT };
+static int rollback(const bench_engine *e, void *w, void *src, void *buf, size_t size, int mode, double *save,
+                    double *restore)
 {
     double ts[REPS], tr[REPS];
     uint64_t h = e->hash(w);
     for (int r = 0; r < REPS; r++) {
         double t0 = now();
-        int ok = kept ? e->keep(w, 0) : e->save(w, buf, size) == size;
+        int ok = mode == ROLL_KEPT ? e->keep(w, 0) : e->save(mode == ROLL_OTHER ? src : w, buf, size) == size;
         double t1 = now();
         for (int k = 0; k < ROLLBACK; k++) e->step(w, 1.0 / 60.0);
         double t2 = now();
-        ok = ok && (kept ? e->back(w, 0) : e->restore(w, buf, size));
+        ok = ok && (mode == ROLL_KEPT ? e->back(w, 0) : e->restore(w, buf, size));
         double t3 = now();
         if (!ok || e->hash(w) != h) return 0;
         ts[r] = t1 - t0;
@@ -138,14 +145,19 @@ static int measure(const bench_engine *e, const char *name, const bench_scene *s
     } else {
         printf("%-10s rain %6d  step %3d  the snapshot failed\n", name, (int)s->size, steps);
     }
-    for (int kept = 0; kept <= (e->keep != NULL) && ok; kept++) {
+    /* the other world: built and stepped as w was, so in its state, but with a handle tag of
+     * its own (target, restored from w's bytes, would save those very bytes, which w knows) */
+    void *twin = ok ? e->create(s) : NULL;
+    for (int k = 0; k < steps && twin != NULL; k++) e->step(twin, 1.0 / 60.0);
+    ok = ok && twin != NULL;
+    static const char *const how[] = { "own snapshot:", "other's:", "kept in a slot:" };
+    for (int mode = ROLL_OWN; mode <= (e->keep != NULL ? ROLL_KEPT : ROLL_OTHER) && ok; mode++) {
         double save, restore;
-        ok = rollback(e, w, buf, size, kept, &save, &restore);
+        ok = rollback(e, w, twin, buf, size, mode, &save, &restore);
         if (ok)
-            printf("%-10s rain %6d  step %3d  rollback of %d steps, %-14s save %7.1f us  restore %7.1f us  "
+            printf("%-10s rain %6d  step %3d  rollback of %d steps, %-15s save %7.1f us  restore %7.1f us  "
                    "save+restore %7.1f us\n",
-                   name, (int)s->size, steps, ROLLBACK, kept ? "kept in a slot:" : "snapshot:", save * 1e6,
-                   restore * 1e6, (save + restore) * 1e6);
+                   name, (int)s->size, steps, ROLLBACK, how[mode], save * 1e6, restore * 1e6, (save + restore) * 1e6);
         else
             printf("%-10s rain %6d  step %3d  the rollback failed\n", name, (int)s->size, steps);
     }
@@ -167,6 +179,7 @@ static int measure(const bench_engine *e, const char *name, const bench_scene *s
             printf("%-10s rain %6d  step %3d  the resimulated rollback failed\n", name, (int)s->size, steps);
     }
     for (int k = 0; k < have; k++) free(ring[k]);
+    if (twin != NULL) e->destroy(twin);
     free(buf);
     e->destroy(target);
     e->destroy(w);
@@ -203,8 +216,8 @@ int main(int argc, char **argv)
     for (int b = 0; b < 2; b++)
         if (v3[b] != NULL) engines[ne++] = v3[b];
     printf("snapshots: the bench's rain (sleeping on); medians of %d timings; B/body counts every body "
-           "(static too); restore: into a second world of the scene (rigid: checked whole); rollback: "
-           "the world's own save (rigid: known again, unchecked)\nengines:", REPS);
+           "(static too); restore: into a second world of the scene (rigid: checked whole); rollback, own "
+           "snapshot: rigid knows it again (unchecked); other's: saved by a world in the same state (checked)\nengines:", REPS);
     for (int k = 0; k < ne; k++) printf(" [%s]", engines[k]->version());
     printf("\n");
     if (why[0] != 0) printf("(%s)\n", why);
