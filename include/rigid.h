@@ -637,7 +637,7 @@ RG_API rg_status rg_world_save(const rg_world *world, void *out, size_t capacity
    out, and bytes equal to one of its last 64 tagged saves (the tags compared: other bytes
    pass with a chance of about 2^-64) are loaded without the checks, as a kept state is: a
    state the world has been in breaks no invariant.  This is the rollback loop, which
-   restores its own saves again and again at under half the checked cost; the first restore
+   restores its own saves again and again at 0.4-0.6 of the checked cost; the first restore
    of a loop, any snapshot of another world or from a file, and any changed byte are checked
    whole.  A world that never restores does not tag: its saves cost what they did. */
 RG_API rg_status rg_world_restore(rg_world *world, const void *data, size_t size);
@@ -656,8 +656,8 @@ RG_API rg_status rg_world_hash(const rg_world *world, uint64_t *out_hash);
  * rg_world_restore_slot brings it back exactly as rg_world_restore would bring back that
  * snapshot (the same handles, the same steps after).  It skips the checks of every value and
  * link that a snapshot from outside needs, since nothing outside the library can reach the
- * kept bytes (the header and settings are still checked), and takes under half the time of
- * a checked restore (README; make bench).
+ * kept bytes (the header and settings are still checked), and takes about half the time of
+ * a checked restore or less (README; make bench).
  *   rg_world_save_slot(w, frame % 8);                 at every frame
  *   ...                                               a late input arrives for frame k
  *   rg_world_restore_slot(w, k % 8);                  back to frame k
