@@ -586,14 +586,17 @@ void snap_write_planned(const rg_world *w, const snap_plan *plan, uint8_t *p, in
     snap_hasher h;
     snap_hash_init(&h);
     keyed_hasher kh;
-    keyed_init(&kh, &w->own->key);
-    own_header(&kh, p);
     snap_out o;
+    o.keyed = NULL;
+    if (sealed && own_tagging(w->own)) { /* a world that restores: own.h */
+        keyed_init(&kh, &w->own->key);
+        own_header(&kh, p);
+        o.keyed = &kh;
+    }
     o.buf = p;
     o.at = SNAP_HEADER;
     o.hashed = SNAP_HEADER;
     o.hash = sealed ? &h : NULL;
-    o.keyed = sealed && own_tagging(w->own) ? &kh : NULL;
     o.anonymous = 0;
     o.uniform = plan->uniform;
     o.nchunk = 0;
@@ -606,8 +609,8 @@ void snap_write_planned(const rg_world *w, const snap_plan *plan, uint8_t *p, in
     uint64_t sum = snap_hash_final(&h); /* = snap_hash(p + SNAP_HEADER, size - SNAP_HEADER) */
     snap_put64(p + 24, sum);
     if (o.keyed == NULL) return;
-    keyed_bytes(&kh, p + o.hashed, plan->size - o.hashed);
-    own_remember(w->own, &kh, (uint64_t)plan->size, sum);
+    keyed_bytes(o.keyed, p + o.hashed, plan->size - o.hashed);
+    own_remember(w->own, o.keyed, (uint64_t)plan->size, sum);
 }
 
 RG_API rg_status rg_world_save(const rg_world *world, void *out, size_t capacity, size_t *out_size)
