@@ -33,7 +33,7 @@ uint64_t keyed_mulmod(uint64_t a, uint64_t b)
     uint64_t a0 = a & 0xFFFFFFFFu, a1 = a >> 32, b0 = b & 0xFFFFFFFFu, b1 = b >> 32;
     uint64_t hi = a1 * b1, mid = a1 * b0 + a0 * b1, lo = a0 * b0;
     uint64_t s = (hi << 3) + (mid >> 29) + ((mid & ((1u << 29) - 1)) << 32) + (lo & KEYED_P) + (lo >> 61);
-    s = (s & KEYED_P) + (s >> 61); /* each term below 2^61 + 2^33: s < 2^63 before, 2^61 + 4 after */
+    s = (s & KEYED_P) + (s >> 61); /* the five terms sum below 2^63; folded, below 2^61 + 4 */
     return s >= KEYED_P ? s - KEYED_P : s;
 }
 
