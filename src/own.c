@@ -2,9 +2,6 @@
 #include <string.h>
 
 #include "own.h"
-#include "snapshot.h"
-
-typedef char own_checksum_ends_the_header[OWN_HEAD + 8 == SNAP_HEADER ? 1 : -1];
 
 void own_init(own_saves *o, uint64_t seed)
 {
@@ -27,10 +24,10 @@ void own_remember(own_saves *o, keyed_hasher *h, uint64_t size, uint64_t sum)
     o->armed--;
 }
 
-int own_knows(const own_saves *o, const uint8_t *data, size_t size)
+int own_knows(const own_saves *o, const uint8_t *data, size_t size, uint64_t sum)
 {
-    if (size <= SNAP_HEADER) return 0;
-    uint64_t sum = snap_get64(data + OWN_HEAD), tag[2];
+    if (size < OWN_HEAD + 8) return 0;
+    uint64_t tag[2];
     int hashed = 0;
     for (int k = 0; k < OWN_SAVES; k++) {
         if (o->save[k].size != (uint64_t)size || o->save[k].sum != sum) continue;
@@ -38,7 +35,7 @@ int own_knows(const own_saves *o, const uint8_t *data, size_t size)
             keyed_hasher h;
             keyed_init(&h, &o->key);
             own_header(&h, data);
-            keyed_bytes(&h, data + SNAP_HEADER, size - SNAP_HEADER);
+            keyed_bytes(&h, data + OWN_HEAD + 8, size - (OWN_HEAD + 8));
             keyed_final(&h, tag);
             hashed = 1;
         }

@@ -16,7 +16,7 @@
 #include "keyed.h"
 
 #define OWN_SAVES 64
-#define OWN_HEAD 24 /* the header's bytes before its checksum (snapshot.h) */
+#define OWN_HEAD 24 /* the header's bytes before its checksum, 8 bytes (snapshot.h) */
 
 typedef struct own_saves {
     keyed_key key;
@@ -38,8 +38,8 @@ static inline int own_tagging(const own_saves *o) { return o->armed > 0; }
 void own_header(keyed_hasher *h, const uint8_t *header);
 /* A save of size bytes with checksum sum, whose bytes but the checksum h has taken. */
 void own_remember(own_saves *o, keyed_hasher *h, uint64_t size, uint64_t sum);
-/* Whether the size bytes at data (a header of SNAP_HEADER bytes, then what its checksum
- * covers) are one of the remembered saves, byte for byte. */
-int own_knows(const own_saves *o, const uint8_t *data, size_t size);
+/* Whether the size bytes at data (a header of OWN_HEAD bytes, the checksum, whose value is
+ * sum, then what it covers) are one of the remembered saves, byte for byte. */
+int own_knows(const own_saves *o, const uint8_t *data, size_t size, uint64_t sum);
 
 #endif

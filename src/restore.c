@@ -583,7 +583,7 @@ RG_API rg_status rg_world_restore(rg_world *world, const void *data, size_t size
     snap_in in;
     memset(&in, 0, sizeof in);
     if (!restore_check_header(world, &in, data, size, 1)) return RG_ERR_INVALID_ARGUMENT;
-    if (own_knows(world->own, in.p, size)) { /* the world's own: as a kept state */
+    if (own_knows(world->own, in.p, size, snap_get64(in.p + OWN_HEAD))) { /* the world's own: as a kept state */
         if (!restore_check_scalars(&in)) return restore_refuse(world, "rg_world_restore", "settings and counts");
         rg_status st = restore_state(world, "rg_world_restore", &in, RESTORE_OWN);
         if (st == RG_OK) own_arm(world->own);

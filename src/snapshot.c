@@ -3,6 +3,8 @@
 #include "error.h"
 #include "snapshot.h"
 
+typedef char snap_checksum_ends_the_header[OWN_HEAD + 8 == SNAP_HEADER ? 1 : -1]; /* own.h */
+
 #define SNAP_COUNT(T, name) +1
 typedef char snap_fields_are_all_there[(0 RG_BODY_FIELDS(SNAP_COUNT)) == SNAP_FIELDS + SNAP_DERIVED_FIELDS ? 1 : -1];
 #undef SNAP_COUNT

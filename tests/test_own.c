@@ -179,6 +179,12 @@ static void test_every_flipped_bit_changes_both_tags(void **state)
 
 /* ---------------------------------------------------------------- worlds */
 
+/* Whether w knows the size bytes at p as one of its own saves (as rg_world_restore asks). */
+static int knows(const rg_world *w, const uint8_t *p, size_t size)
+{
+    return own_knows(w->own, p, size, snap_get64(p + OWN_HEAD));
+}
+
 static rg_world *scene_world(scene *s)
 {
     rg_world *w;
@@ -206,11 +212,11 @@ static void test_only_a_world_that_restores_tags_its_saves(void **state)
     rg_world *w = scene_world(&s);
     size_t asize, size;
     uint8_t *a = save(w, &asize);
-    assert_false(own_knows(w->own, a, asize));
+    assert_false(knows(w, a, asize));
     uint8_t junk[64] = { 0 };
     assert_status(rg_world_restore(w, junk, sizeof junk), RG_ERR_INVALID_ARGUMENT);
     uint8_t *b = save(w, &size);
-    assert_false(own_knows(w->own, b, size));
+    assert_false(knows(w, b, size));
     free(b);
     assert_ok(rg_world_restore(w, a, asize)); /* checked: a was not tagged */
     uint8_t *last = NULL;
@@ -219,12 +225,12 @@ static void test_only_a_world_that_restores_tags_its_saves(void **state)
         assert_ok(rg_world_step(w, (rg_real)(1.0 / 60)));
         free(last);
         last = save(w, &last_size);
-        assert_true(own_knows(w->own, last, last_size));
+        assert_true(knows(w, last, last_size));
     }
     assert_ok(rg_world_step(w, (rg_real)(1.0 / 60)));
     uint8_t *after = save(w, &size);
-    assert_false(own_knows(w->own, after, size));
-    assert_true(own_knows(w->own, last, last_size)); /* still remembered */
+    assert_false(knows(w, after, size));
+    assert_true(knows(w, last, last_size)); /* still remembered */
     free(after);
     free(last);
     free(a);
@@ -244,39 +250,39 @@ static void test_a_save_is_known_byte_for_byte_and_nowhere_else(void **state)
     arm(w);
     size_t size;
     uint8_t *b = save(w, &size);
-    assert_true(own_knows(w->own, b, size));
+    assert_true(knows(w, b, size));
     uint8_t *c = malloc(size);
     assert_non_null(c);
     memcpy(c, b, size);
-    assert_true(own_knows(w->own, c, size)); /* the bytes, wherever they lie */
+    assert_true(knows(w, c, size)); /* the bytes, wherever they lie */
     for (size_t i = 0; i < size; i++) {
         c[i] ^= 0x01;
-        if (own_knows(w->own, c, size)) fail_msg("byte %lu of %lu flipped, still known", (unsigned long)i, (unsigned long)size);
+        if (knows(w, c, size)) fail_msg("byte %lu of %lu flipped, still known", (unsigned long)i, (unsigned long)size);
         c[i] ^= 0x01;
     }
     /* a changed body position, resealed: only the remembered checksum made to match passes
      * the first test, and the tags refuse it */
     c[SNAP_HEADER + 100] ^= 0x10;
     reseal(c, size);
-    assert_false(own_knows(w->own, c, size));
+    assert_false(knows(w, c, size));
     int entry = (int)((w->own->next + OWN_SAVES - 1) % OWN_SAVES);
     assert_true(w->own->save[entry].size == size);
     uint64_t kept_sum = w->own->save[entry].sum;
     w->own->save[entry].sum = snap_get64(c + OWN_HEAD);
-    assert_false(own_knows(w->own, c, size));
+    assert_false(knows(w, c, size));
     w->own->save[entry].sum = kept_sum;
     /* another world of the same scene, restoring too */
     scene s2;
     rg_world *w2 = scene_world(&s2);
     arm(w2);
-    assert_false(own_knows(w2->own, b, size));
+    assert_false(knows(w2, b, size));
     /* OWN_SAVES saves of other states, each followed by a restore that keeps the world
      * tagging: b is forgotten */
     for (int k = 0; k < OWN_SAVES; k++) {
         assert_ok(rg_world_step(w, (rg_real)(1.0 / 60)));
         arm(w);
     }
-    assert_false(own_knows(w->own, b, size));
+    assert_false(knows(w, b, size));
     free(c);
     free(b);
     rg_world_destroy(w2);
@@ -324,7 +330,7 @@ static void test_a_known_save_restores_unchecked_as_the_checked_restore_does(voi
         rg_body late;
         assert_ok(rg_body_create(w, RG_BODY_DYNAMIC, 1, v2(0, 9), &late));
         uint8_t *c = save(w, &csize); /* the state both restores start from */
-        assert_true(own_knows(w->own, b, size) && own_knows(w->own, c, csize));
+        assert_true(knows(w, b, size) && knows(w, c, csize));
         long long before = ta.bytes;
         assert_ok(rg_world_restore(w, b, size));
         long long own_bytes = ta.bytes - before;
@@ -340,7 +346,7 @@ static void test_a_known_save_restores_unchecked_as_the_checked_restore_does(voi
             assert_ok(rg_world_step(w, (rg_real)(1.0 / 60)));
             arm(w);
         }
-        assert_false(own_knows(w->own, b, size) || own_knows(w->own, c, csize));
+        assert_false(knows(w, b, size) || knows(w, c, csize));
         assert_ok(rg_world_restore(w, c, csize)); /* checked, back to where the first began */
         before = ta.bytes;
         assert_ok(rg_world_restore(w, b, size));
