@@ -1,18 +1,19 @@
 /* bench_snapshot.c: what a snapshot costs, rigid beside Box2D v3 (b2World_Snapshot,
  * b2World_Restore, b2World_GetStateHash) in the same run: bytes per body, and microseconds
- * to save, to restore and to hash, for the bench's rain scene (tools/bench_scenes.c, sleeping
- * on) at N = 1000 and 10000, taken while the pile is still moving (step 60) and once it
- * rests (step 600).  Each engine restores into a second world built from the same scene, and
- * the restored world's hash must equal the saved one's (for rigid a snapshot from outside,
- * checked whole).  Then the rollback a game makes: the world saves, steps 8 frames and
- * restores (for rigid also with a kept state, which v3 has no counterpart of), the step not
- * timed: rigid's world restores its own save, which from the second time on it knows again
- * and loads unchecked (src/own.h), as every rollback after a game's first does; and, like
- * for like, the same bytes saved by another world in the same state (checked whole).  Then a whole rollback of 8 frames as the game
- * pays for it in the frame where a late input arrives: back to the state of 8 frames ago, and
- * each of the 8 frames saved again and stepped, timed as one, against a 60 Hz frame's 16.7
- * ms.  Medians of 31 timings each.  Then rigid again with its pool of two threads
- * (rigid-2w), which its restore spreads over.
+ * to save, to restore and to hash, for the bench's rain scene (tools/bench_scenes.c,
+ * sleeping on) at N = 1000 and 10000, taken while the pile is still moving (step 60) and
+ * once it rests (step 600). Each engine restores into a second world built from the same
+ * scene, and the restored world's hash must equal the saved one's (for rigid a snapshot
+ * from outside, checked whole). Then the rollback a game makes: the world saves, steps 8
+ * frames and restores (for rigid also with a kept state, which v3 has no counterpart of),
+ * the step not timed: rigid's world restores its own save, which from the second time on it
+ * knows again and loads unchecked (src/own.h), as every rollback after a game's first does;
+ * and, like for like, the same state saved by another world (its own handle tag: checked
+ * whole). Then a whole rollback of 8 frames as the game pays for it in the frame where a
+ * late input arrives: back to the state of 8 frames ago, and each of the 8 frames saved
+ * again and stepped, timed as one, against a 60 Hz frame's 16.7 ms. Medians of 31 timings
+ * each. Then rigid again with its pool of two threads (rigid-2w), which its restore spreads
+ * over.
  *   build/bench-snapshot [--v3 DIR|none] [N ...] */
 #define _GNU_SOURCE 1 /* mallopt */
 #include <malloc.h>
