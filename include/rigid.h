@@ -637,9 +637,10 @@ RG_API rg_status rg_world_save(const rg_world *world, void *out, size_t capacity
    out, and bytes equal to one of its last 64 tagged saves (the tags compared: other bytes
    pass with a chance of about 2^-64) are loaded without the checks, as a kept state is: a
    state the world has been in breaks no invariant.  This is the rollback loop, which
-   restores its own saves again and again at 0.4-0.6 of the checked cost; the first restore
-   of a loop, any snapshot of another world or from a file, and any changed byte are checked
-   whole.  A world that never restores does not tag: its saves cost what they did. */
+   restores its own saves again and again in 0.37-0.62 of a checked restore's time (README:
+   make bench's snapshot lines); the first restore of a loop, any snapshot of another world
+   or from a file, and any changed byte are checked whole.  A world that never restores
+   does not tag: its saves cost what they did. */
 RG_API rg_status rg_world_restore(rg_world *world, const void *data, size_t size);
 
 /* A 64-bit hash of the simulation state: equal states give equal hashes, and the same

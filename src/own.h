@@ -6,10 +6,11 @@
  * a kept state (restore.c): a state this world has been in breaks no invariant.  Any other
  * bytes (another world's snapshot, a file, one changed in any byte) are checked whole.
  *
- * The tags cost a save some 15-40% more (README), so only a world that restores pays: its
- * saves are tagged from a restore on, for the next OWN_SAVES saves (a rollback loop,
- * restoring again and again, keeps them tagged); a world that only saves (for a replay, a
- * save game, the network) saves as before, and the first restore of a rollback is checked. */
+ * The tags cost a save of 10,000 bodies some 25-70 us more (README: make bench's snapshot
+ * lines), so only a world that restores pays: its saves are tagged from a restore on, for
+ * the next OWN_SAVES saves (a rollback loop, restoring again and again, keeps them tagged);
+ * a world that only saves (for a replay, a save game, the network) saves as before, and the
+ * first restore of a rollback is checked. */
 #ifndef RG_OWN_H
 #define RG_OWN_H
 
