@@ -149,11 +149,14 @@ TSAN_B := build/tsan
 tsan: deps
 	@tools/install-deps.sh --fuzz
 	@$(MAKE) --no-print-directory B=$(TSAN_B) CC=clang OPT=-O1 EXTRA_CFLAGS="-fsanitize=thread -g" \
-	  EXTRA_LDFLAGS="-fsanitize=thread" $(TSAN_B)/tests/test_threads $(TSAN_B)/tests/test_restore_threads
+	  EXTRA_LDFLAGS="-fsanitize=thread" $(TSAN_B)/tests/test_threads $(TSAN_B)/tests/test_restore_threads \
+	  $(TSAN_B)/tests/test_bands
 	@echo "== $(TSAN_B)/tests/test_threads under ThreadSanitizer"
 	@TSAN_OPTIONS="suppressions=tests/tsan.supp halt_on_error=1" $(TSAN_B)/tests/test_threads
 	@echo "== $(TSAN_B)/tests/test_restore_threads under ThreadSanitizer"
 	@TSAN_OPTIONS="suppressions=tests/tsan.supp halt_on_error=1" $(TSAN_B)/tests/test_restore_threads
+	@echo "== $(TSAN_B)/tests/test_bands under ThreadSanitizer"
+	@TSAN_OPTIONS="suppressions=tests/tsan.supp halt_on_error=1" $(TSAN_B)/tests/test_bands
 
 # ---------------------------------------------------------------- install
 # The header, the library (static, shared with its SONAME and links) and its pc file; the

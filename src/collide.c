@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "arg.h"
+#include "bands.h"
 #include "collide.h"
 #include "contact.h"
 #include "island.h"
@@ -76,6 +77,8 @@ rg_status collide_prepare(rg_world *w)
     cw->scap = n;
     memset(cw->resolve.sstamp, 0, (size_t)n * sizeof *cw->resolve.sstamp);
     cw->resolve.gen = 0;
+    memset(cw->resolve.sband, 0, (size_t)n * BANDS_MAX);
+    cw->resolve.bgen = 0;
     return RG_OK;
 }
 

@@ -1,6 +1,7 @@
 /* resolve.c: the solve driver (see resolve.h). */
 #include <string.h>
 
+#include "bands.h"
 #include "body.h"
 #include "continuous.h"
 #include "dispatch.h"
@@ -18,6 +19,7 @@ void resolve_layout(mem_layout *l, resolve_state *s, int32_t n)
     s->sstamp = mem_take(l, (size_t)n, sizeof(uint32_t));
     s->cmask = mem_take(l, (size_t)n, sizeof(uint32_t));
     s->sbody = mem_take(l, (size_t)n, sizeof(int32_t));
+    s->sband = mem_take(l, (size_t)n, BANDS_MAX);
 }
 
 void resolve_next_gen(resolve_state *s, int32_t n)
@@ -168,6 +170,10 @@ typedef struct resolve_task {
     int what, timed;
     int listed;     /* the body passes walk the list of the bodies the rows meet (solver_rows_few) */
     int32_t nbody;  /* listed: how many (rs->sbody) */
+    int32_t bands;  /* the colour passes run in bands (bands.h) when above 1 */
+    int32_t last;   /* bands: the first phase of the last sweep, whose rows unpack as they end */
+    int ncol;       /* the colours that have rows, in order */
+    int cols[32];
     int32_t pushing[RG_MAX_WORKERS];
 } resolve_task;
 
@@ -374,6 +380,125 @@ static void resolve_wide(resolve_task *t, int what)
         resolve_pass(t, what, t->sb->cstart[col], t->sb->cstart[col + 1] - t->sb->cstart[col]);
 }
 
+/* ---- the colour passes in bands (bands.h) */
+
+/* Wide rows per band at least: below it the colours run as passes. */
+#define RESOLVE_BAND_ROWS 64
+
+/* Where band b begins among colour col's wide rows: each colour is split evenly, and its rows
+ * keep their order along gravity (solver_pack), so band b holds about the same slice of the
+ * scene in every colour and few bodies are met by two bands. */
+static int32_t resolve_band_at(const solver_batch *sb, int col, int32_t b, int32_t bands)
+{
+    int32_t n = sb->cstart[col + 1] - sb->cstart[col];
+    return sb->cstart[col] + (int32_t)((int64_t)n * b / bands);
+}
+
+/* How many bands the colour passes run in (one per worker, at most BANDS_MAX, each of at
+ * least RESOLVE_BAND_ROWS wide rows; below 2: passes, as also with rows in the overflow list,
+ * which the calling thread solves between the sweeps); lists the colours that have rows. */
+static int32_t resolve_bands_for(const rg_world *w, resolve_task *t)
+{
+    const solver_batch *sb = t->sb;
+    t->ncol = 0;
+    for (int col = 0; col < 32; col++)
+        if (sb->cstart[col + 1] > sb->cstart[col]) t->cols[t->ncol++] = col;
+    if (!bands_available() || sb->nover > 0) return 0;
+    int32_t bands = task_workers(w);
+    if (bands > BANDS_MAX) bands = BANDS_MAX;
+    if (bands > sb->nrows / RESOLVE_BAND_ROWS) bands = sb->nrows / RESOLVE_BAND_ROWS;
+    return bands;
+}
+
+/* Items are bands: each fills its wide rows where solver_pack_lanes does (so that the thread
+ * that solves a band's rows is likely the one that wrote them), then stamps the movable
+ * bodies its rows meet, in a byte of its own. */
+static void resolve_band_stamp(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    const resolve_task *t = context;
+    solver_batch *sb = t->sb;
+    resolve_state *rs = &t->w->coll.resolve;
+    int fill = solver_pack_wide();
+    (void)worker;
+    for (int32_t b = begin; b < end; b++)
+        for (int k = 0; k < t->ncol; k++) {
+            int32_t r0 = resolve_band_at(sb, t->cols[k], b, t->bands), r1 = resolve_band_at(sb, t->cols[k], b + 1, t->bands);
+            if (fill) solver_pack_lanes(sb, t->con, r0, r1);
+            for (int32_t r = r0; r < r1; r++) {
+                const solver_wide *q = &sb->rows[r];
+                for (int l = 0; l < SOLVER_LANES; l++) {
+                    if (q->ima[l] > 0) rs->sband[(size_t)q->a[l] * BANDS_MAX + (size_t)b] = rs->bgen;
+                    if (q->imb[l] > 0) rs->sband[(size_t)q->b[l] * BANDS_MAX + (size_t)b] = rs->bgen;
+                }
+            }
+        }
+}
+
+/* Items are bands: each flags its wide rows that meet a body another band stamped.  Only
+ * movable bodies are stamped, so every lane may be tested: eight bands' bytes at once, those
+ * of the other bands compared with the generation (a byte of x is zero where they match). */
+static void resolve_band_flag(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    const resolve_task *t = context;
+    const solver_batch *sb = t->sb;
+    const resolve_state *rs = &t->w->coll.resolve;
+    uint8_t *edge = t->w->coll.rows.edge;
+    const uint64_t ones = 0x0101010101010101u, lows = 0x7F7F7F7F7F7F7F7Fu;
+    (void)worker;
+    for (int32_t b = begin; b < end; b++) {
+        /* 0xFF in the bytes not compared: band b's own and those past the last band */
+        uint8_t skip[8];
+        for (int u = 0; u < 8; u++) skip[u] = (uint8_t)(u == b || u >= t->bands ? 0xFF : 0);
+        uint64_t ignore, gen = ones * rs->bgen;
+        memcpy(&ignore, skip, sizeof ignore);
+        for (int k = 0; k < t->ncol; k++) {
+            int32_t r1 = resolve_band_at(sb, t->cols[k], b + 1, t->bands);
+            for (int32_t r = resolve_band_at(sb, t->cols[k], b, t->bands); r < r1; r++) {
+                const solver_wide *q = &sb->rows[r];
+                uint64_t zero = 0;
+                for (int l = 0; l < SOLVER_LANES; l++) {
+                    uint64_t x, y;
+                    memcpy(&x, rs->sband + (size_t)q->a[l] * BANDS_MAX, sizeof x);
+                    memcpy(&y, rs->sband + (size_t)q->b[l] * BANDS_MAX, sizeof y);
+                    x = (x ^ gen) | ignore;
+                    y = (y ^ gen) | ignore;
+                    zero |= ~(((x & lows) + lows) | x) | ~(((y & lows) + lows) | y); /* the high bit of each zero byte */
+                }
+                edge[r] = (uint8_t)((zero & ~lows) != 0);
+            }
+        }
+    }
+}
+
+/* The bands' phases (bands_fn): t->what's colours in order (RESOLVE_WARM: the warm start's,
+ * then the velocity iterations'), each band's edge rows or its inner rows, in runs.  In the
+ * last sweep each run's impulses go back to their rows of c at once (the pass RESOLVE_UNPACK
+ * or RESOLVE_UNPACK_POSITION would do after the sweeps), read where they were just written. */
+static void resolve_band_phase(int32_t band, int32_t phase, int edge, void *context)
+{
+    const resolve_task *t = context;
+    const uint8_t *flag = t->w->coll.rows.edge;
+    int col = t->cols[phase % t->ncol];
+    int what = t->what == RESOLVE_WARM && phase >= t->ncol ? RESOLVE_VELOCITY : t->what;
+    int32_t r = resolve_band_at(t->sb, col, band, t->bands), r1 = resolve_band_at(t->sb, col, band + 1, t->bands);
+    while (r < r1) {
+        if ((flag[r] != 0) != (edge != 0)) {
+            r++;
+            continue;
+        }
+        int32_t e = r + 1;
+        while (e < r1 && (flag[e] != 0) == (edge != 0)) e++;
+        if (what == RESOLVE_WARM)
+            solver_wide_warm_start(t->sb, r, e, t->v);
+        else if (what == RESOLVE_VELOCITY)
+            solver_wide_iterate(t->sb, r, e, t->v);
+        else
+            solver_wide_iterate_position(t->sb, r, e, t->pv);
+        if (phase >= t->last) solver_unpack_wide(t->sb, t->con, r, e, what == RESOLVE_POSITION);
+        r = e;
+    }
+}
+
 /* The solve's first part in two halves that share nothing, so that they may run at once:
  * item 0 the solving order and the colours; item 1 what the narrowphase left (x->late), the
  * bodies the rows meet (stamped), their velocities loaded, and the rows against an immovable
@@ -463,14 +588,28 @@ void resolve_run(rg_world *w, collide_step *x)
     int shock = h.shock;
     const int32_t *ord = rows->ord;
     resolve_pass(&t, RESOLVE_PACK, 0, SOLVER_PACK_BLOCKS(nc));
-    if (solver_pack_wide()) resolve_pass(&t, RESOLVE_PACK_LANES, 0, sb->nrows);
-    resolve_wide(&t, RESOLVE_WARM);
-    solver_warm_start(con, sb->over, sb->nover, v);
-    for (int32_t it = 0; it < cw->iterations; it++) {
-        resolve_wide(&t, RESOLVE_VELOCITY);
-        solver_iterate(con, sb->over, sb->nover, v);
+    t.bands = resolve_bands_for(w, &t);
+    if (t.bands > 1) {
+        if (++rs->bgen == 0) {
+            memset(rs->sband, 0, (size_t)cw->scap * BANDS_MAX);
+            rs->bgen = 1;
+        }
+        rs->banded++;
+        task_for(w, resolve_band_stamp, t.bands, 1, &t);
+        task_for(w, resolve_band_flag, t.bands, 1, &t);
+        t.what = RESOLVE_WARM;
+        t.last = t.ncol * cw->iterations;
+        bands_run(w, t.bands, t.ncol * (1 + cw->iterations), resolve_band_phase, &t);
+    } else {
+        if (solver_pack_wide()) resolve_pass(&t, RESOLVE_PACK_LANES, 0, sb->nrows);
+        resolve_wide(&t, RESOLVE_WARM);
+        solver_warm_start(con, sb->over, sb->nover, v);
+        for (int32_t it = 0; it < cw->iterations; it++) {
+            resolve_wide(&t, RESOLVE_VELOCITY);
+            solver_iterate(con, sb->over, sb->nover, v);
+        }
     }
-    resolve_pass(&t, RESOLVE_UNPACK, 0, nc);
+    if (t.bands < 2) resolve_pass(&t, RESOLVE_UNPACK, 0, nc);
     if (shock) solver_shock(con, ord, nc, v, gx, gy);
     solver_fixed_rows(con, rows->fixed, h.nfixed, v, 0);
     /* positions move with the solved velocities, then by the pseudo-velocities of the
@@ -495,11 +634,17 @@ void resolve_run(rg_world *w, collide_step *x)
         }
         resolve_pass(&t, RESOLVE_CLEAR_POSITION, 0, sb->nrows);
         resolve_pass(&t, RESOLVE_PACK_POSITION, 0, nc);
-        for (int32_t it = 0; it < cw->position; it++) {
-            resolve_wide(&t, RESOLVE_POSITION);
-            solver_iterate_position(con, sb->over, sb->nover, pv);
+        if (t.bands > 1) {
+            t.what = RESOLVE_POSITION;
+            t.last = t.ncol * (cw->position - 1);
+            bands_run(w, t.bands, t.ncol * cw->position, resolve_band_phase, &t);
+        } else {
+            for (int32_t it = 0; it < cw->position; it++) {
+                resolve_wide(&t, RESOLVE_POSITION);
+                solver_iterate_position(con, sb->over, sb->nover, pv);
+            }
         }
-        resolve_pass(&t, RESOLVE_UNPACK_POSITION, 0, nc);
+        if (t.bands < 2) resolve_pass(&t, RESOLVE_UNPACK_POSITION, 0, nc);
         if (shock) solver_shock_position(con, ord, nc, pv, gx, gy);
         solver_fixed_rows(con, rows->fixed, h.nfixed, pv, 1);
         rs->pv_valid = 1;

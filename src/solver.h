@@ -156,7 +156,7 @@ typedef struct solver_batch {
     int32_t nrows;
     int32_t cstart[33];  /* colour c's rows: [cstart[c], cstart[c + 1]) */
     int32_t *map;        /* per row of c: its wide slot (row * SOLVER_LANES + lane), or -1 */
-    int32_t *row_of;     /* per wide slot: its row of c, -1 for padding (solver_pack_lanes) */
+    int32_t *row_of;     /* per wide slot: its row of c, -1 for padding */
     int32_t *over;       /* rows of c in the overflow list, [0, nover) */
     int32_t nover;
 } solver_batch;
@@ -194,6 +194,8 @@ void solver_wide_iterate(solver_batch *s, int32_t r0, int32_t r1, rg_real *v);
 /* Copies the accumulated impulses pn, pt (or the pseudo impulses pp) of rows [k0, k1) of c
  * back into c. */
 void solver_unpack(const solver_batch *s, solver_constraint *c, int32_t k0, int32_t k1, int position);
+/* The same for the rows in wide rows [r0, r1) (through row_of). */
+void solver_unpack_wide(const solver_batch *s, solver_constraint *c, int32_t r0, int32_t r1, int position);
 /* The position rows: wide rows [r0, r1) cleared (pmin, pp = 0, padding included), then c's
  * rows [k0, k1) copied into their lanes (pmin; pp = 0).  Each row writes its own lanes. */
 void solver_clear_position(solver_batch *s, int32_t r0, int32_t r1);
@@ -214,6 +216,8 @@ typedef struct solver_rows {
     int32_t *lanes;           /* [0, SOLVER_PACK_BLOCKS(cap) * 32): packing scratch */
     int32_t *imp;             /* [0, cap): staged rows that are impacts (toi > 0) */
     int32_t *fixed;           /* [0, cap): rows against an immovable body (solver_fixed_list) */
+    uint8_t *edge;            /* per wide row: it meets a body that another band's rows meet
+                               * (resolve.c, when the colours run in bands) */
     int32_t *late;            /* [0, 3 cap): what the parallel staging leaves for the commit
                                * (narrow.c): bodies to ground [0, 2 cap), contacts with an
                                * event [2 cap, 3 cap) */

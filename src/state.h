@@ -231,6 +231,9 @@ typedef struct resolve_state {
     uint32_t *cmask;          /* q: colouring, the colours each body is in */
     int32_t *sbody;           /* the solver bodies the rows meet, each once (stamping order),
                                  listed where the rows are few (resolve.c) */
+    uint8_t *sband;           /* q * BANDS_MAX + b: == bgen when band b's rows meet q */
+    uint8_t bgen;             /* their generation (one per solve in bands) */
+    int64_t banded;           /* solves whose colours ran in bands (test_bands.c reads it) */
 } resolve_state;
 
 typedef struct collide_world {
