@@ -106,6 +106,7 @@ typedef struct narrow_task {
     collide_step *x;
     int wide;                         /* narrow_wide_ready */
     int32_t n;                        /* staging: the contacts decided in parallel */
+    int count;                        /* the measuring counts each block's rows for the staging */
     int32_t in_order[RG_MAX_WORKERS]; /* the worker met a contact decided in order */
 } narrow_task;
 
@@ -419,12 +420,9 @@ static inline uint32_t narrow_decide_here(rg_world *w, contact *c, int32_t ia, i
     return narrow_decide(w, c, ia, ib, A, B, far, 1);
 }
 
-/* Contacts per measuring range: the manifolds cost some 30-100 ns each. */
-#define NARROW_RANGE 64
-
-/* Staging in parallel: the awake contacts in fixed blocks, whose rows (and impacts) are
- * counted, summed in block order, then written at those offsets: the rows of the serial
- * walk, in its order.  rows.color and rows.tord (scratch of the solve, unused until then)
+/* Measuring and staging in parallel: the awake contacts in fixed blocks (a block's manifolds
+ * cost some 10-25 us), measured and decided, their rows (and impacts) counted, summed in
+ * block order, then written at those offsets: the rows of the serial walk, in its order.  rows.color and rows.tord (scratch of the solve, unused until then)
  * hold each block's first row and first impact.  The same passes list, for the commit, the
  * bodies that the touching contacts ground and the contacts with an event (rows.late, in
  * contact order; rows.lanes, the packing's scratch, holds each block's first of both). */
@@ -498,14 +496,24 @@ static void narrow_stage_range(int32_t begin, int32_t end, int32_t worker, void 
     }
 }
 
-/* Stages the rows of the first n awake contacts, all decided in parallel. */
-static void narrow_stage(rg_world *w, narrow_task *t, int32_t n)
+/* Items are blocks of NARROW_BLOCK awake contacts: each measured and decided, then (t->count)
+ * counted for the staging while its contacts are at hand. */
+static void narrow_measure_decide_blocks(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    narrow_task *t = context;
+    for (int32_t blk = begin; blk < end; blk++) {
+        int32_t k1 = (blk + 1) * NARROW_BLOCK < t->n ? (blk + 1) * NARROW_BLOCK : t->n;
+        narrow_measure_decide_range(blk * NARROW_BLOCK, k1, worker, context);
+        if (t->count) narrow_count_range(blk, blk + 1, worker, context);
+    }
+}
+
+/* Stages the rows of the first t->n awake contacts, all decided and counted in parallel. */
+static void narrow_stage(rg_world *w, narrow_task *t)
 {
     solver_rows *rows = &w->coll.rows;
     collide_step *x = t->x;
-    int32_t blocks = (n + NARROW_BLOCK - 1) / NARROW_BLOCK;
-    t->n = n;
-    task_for(w, narrow_count_range, blocks, 1, t);
+    int32_t blocks = (t->n + NARROW_BLOCK - 1) / NARROW_BLOCK;
     int32_t row = 0, imp = 0, ground = 0, event = 0;
     for (int32_t blk = 0; blk < blocks; blk++) {
         int32_t r = rows->color[blk], m = rows->tord[blk], g = rows->lanes[2 * blk], e = rows->lanes[2 * blk + 1];
@@ -559,13 +567,15 @@ void narrow_run(rg_world *w, collide_step *x)
      * below, block by block, the same work as a pass of its own before it. */
     if (workers < 2 && w->b.n_moving == w->b.n_active) measured = 0;
     for (int32_t k = 0; k < workers; k++) t.in_order[k] = 0;
-    task_for(w, narrow_measure_decide_range, measured, NARROW_RANGE, &t);
+    t.n = measured;
+    t.count = workers > 1;
+    task_for(w, narrow_measure_decide_blocks, (measured + NARROW_BLOCK - 1) / NARROW_BLOCK, 1, &t);
     for (int32_t k = 0; k < workers; k++) in_order |= t.in_order[k];
     /* with workers and without a contact decided in order, the rows are staged in parallel
      * (the same rows in the same order as the walk below stages them on one thread) */
     int serial = in_order || workers < 2;
     if (!serial) {
-        narrow_stage(w, &t, measured);
+        narrow_stage(w, &t);
         /* No body asleep: nothing wakes (a static body never does), so the walk below would
          * only commit, and the solve runs that beside its own first part. */
         if (w->b.n_moving == w->b.n_active) {

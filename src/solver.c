@@ -74,42 +74,10 @@ void solver_iterate(solver_constraint *c, const int32_t *list, int32_t k, rg_rea
     }
 }
 
-/* The passes that walk the rows in solving order (the colouring, the shock sweeps) read them
- * scattered over c, one after the other: each asks SOLVER_AHEAD rows on for its row, and half
- * as far on for the velocities its row will meet, so that the reads overlap (a line that
- * another core wrote last, read alone, waits for the whole crossing: some hundreds of ns on
- * the machines of the README's figures, 10-20 times a read from this core's own cache). */
-#define SOLVER_AHEAD 16
-#if defined(__GNUC__) || defined(__clang__)
-#define SOLVER_PREFETCH(p) __builtin_prefetch((p), 1, 3)
-#define SOLVER_PREFETCH_READ(p) __builtin_prefetch((p), 0, 3)
-#else
-#define SOLVER_PREFETCH(p) ((void)(p))
-#define SOLVER_PREFETCH_READ(p) ((void)(p))
-#endif
-
-/* For the sweeps, which write rows and velocities; the colouring (v NULL) only reads rows. */
-static inline void solver_ask_ahead(const solver_constraint *c, const int32_t *order, int32_t k, int32_t n,
-                                    const rg_real *v)
-{
-    if (k + SOLVER_AHEAD < n) {
-        if (v != NULL)
-            SOLVER_PREFETCH(&c[order[k + SOLVER_AHEAD]]);
-        else
-            SOLVER_PREFETCH_READ(&c[order[k + SOLVER_AHEAD]]);
-    }
-    if (v != NULL && k + SOLVER_AHEAD / 2 < n) {
-        const solver_constraint *r = &c[order[k + SOLVER_AHEAD / 2]];
-        SOLVER_PREFETCH(v + 2 * r->a);
-        SOLVER_PREFETCH(v + 2 * r->b);
-    }
-}
-
 void solver_shock(solver_constraint *c, const int32_t *order, int32_t n, rg_real *v, rg_real gx,
                   rg_real gy)
 {
     for (int32_t k = 0; k < n; k++) {
-        solver_ask_ahead(c, order, k, n, v);
         solver_constraint *q = &c[order[k]];
         rg_real ng = q->nx * gx + q->ny * gy; /* > 0: the normal a -> b points down, a is upper */
         if (rg_fabs(ng) < RG_R(0.5)) continue;
@@ -143,7 +111,6 @@ void solver_shock_position(solver_constraint *c, const int32_t *order, int32_t n
                            rg_real gx, rg_real gy)
 {
     for (int32_t k = 0; k < n; k++) {
-        solver_ask_ahead(c, order, k, n, pv);
         solver_constraint *q = &c[order[k]];
         rg_real ng = q->nx * gx + q->ny * gy;
         if (rg_fabs(ng) < RG_R(0.5)) continue;
@@ -248,7 +215,6 @@ void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, in
         for (int32_t j = blk * SOLVER_PACK_BLOCK; j < j1; j++) {
             int32_t k = order[j];
             const solver_constraint *q = &c[k];
-            solver_ask_ahead(c, order, j, n, NULL);
             int ma = q->ima > 0, mb = q->imb > 0;
             uint32_t used = (ma ? mask[q->a] : 0) | (mb ? mask[q->b] : 0);
             int col = 32;
