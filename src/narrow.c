@@ -422,8 +422,9 @@ static inline uint32_t narrow_decide_here(rg_world *w, contact *c, int32_t ia, i
 
 /* Measuring and staging in parallel: the awake contacts in fixed blocks (a block's manifolds
  * cost some 10-25 us), measured and decided, their rows (and impacts) counted, summed in
- * block order, then written at those offsets: the rows of the serial walk, in its order.  rows.color and rows.tord (scratch of the solve, unused until then)
- * hold each block's first row and first impact.  The same passes list, for the commit, the
+ * block order, then written at those offsets: the rows of the serial walk, in its order.
+ * rows.color and rows.tord (scratch of the solve, unused until then) hold each block's first
+ * row and first impact.  The same passes list, for the commit, the
  * bodies that the touching contacts ground and the contacts with an event (rows.late, in
  * contact order; rows.lanes, the packing's scratch, holds each block's first of both). */
 #define NARROW_BLOCK 256

@@ -434,6 +434,9 @@ static void resolve_band_stamp(int32_t begin, int32_t end, int32_t worker, void 
         }
 }
 
+/* resolve_band_flag reads a body's bytes as one 64-bit word */
+typedef char resolve_bands_fill_a_word[BANDS_MAX == 8 ? 1 : -1];
+
 /* Items are bands: each flags its wide rows that meet a body another band stamped.  Only
  * movable bodies are stamped, so every lane may be tested: eight bands' bytes at once, those
  * of the other bands compared with the generation (a byte of x is zero where they match). */
