@@ -353,36 +353,31 @@ void solver_pack_lanes(solver_batch *out, const solver_constraint *c, int32_t r0
 #endif
 }
 
+/* Lane l of wide row q back into its row r: the impulses, or the pseudo impulse. */
+static inline void solver_unpack_lane(const solver_wide *q, int l, solver_constraint *r, int position)
+{
+    if (position) {
+        r->pp = q->pp[l];
+    } else {
+        r->pn = q->pn[l];
+        r->pt = q->pt[l];
+    }
+}
+
 void solver_unpack(const solver_batch *s, solver_constraint *c, int32_t k0, int32_t k1, int position)
 {
     for (int32_t k = k0; k < k1; k++) {
         int32_t slot = s->map[k];
-        if (slot < 0) continue;
-        const solver_wide *q = &s->rows[slot / SOLVER_LANES];
-        int l = slot % SOLVER_LANES;
-        if (position) {
-            c[k].pp = q->pp[l];
-        } else {
-            c[k].pn = q->pn[l];
-            c[k].pt = q->pt[l];
-        }
+        if (slot >= 0) solver_unpack_lane(&s->rows[slot / SOLVER_LANES], slot % SOLVER_LANES, &c[k], position);
     }
 }
 
 void solver_unpack_wide(const solver_batch *s, solver_constraint *c, int32_t r0, int32_t r1, int position)
 {
     for (int32_t r = r0; r < r1; r++) {
-        const solver_wide *q = &s->rows[r];
         const int32_t *k = s->row_of + (size_t)r * SOLVER_LANES;
-        for (int l = 0; l < SOLVER_LANES; l++) {
-            if (k[l] < 0) continue;
-            if (position) {
-                c[k[l]].pp = q->pp[l];
-            } else {
-                c[k[l]].pn = q->pn[l];
-                c[k[l]].pt = q->pt[l];
-            }
-        }
+        for (int l = 0; l < SOLVER_LANES; l++)
+            if (k[l] >= 0) solver_unpack_lane(&s->rows[r], l, &c[k[l]], position);
     }
 }
 
