@@ -75,11 +75,15 @@ AVX2_INLINE void avx2_pairs_at(const float *const *p, __m256 *x, __m256 *y)
     *y = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1));
 }
 
+/* Solver body i's velocity pair in v (i >= 0: as unsigned, the address needs no sign
+ * extension, which cost the solver's loops two instructions a lane). */
+#define AVX2_PAIR(v, i) ((v) + 2 * (size_t)(uint32_t)(i))
+
 /* The pairs (x, y) of v at 2 idx[l], l = 0..7 (solver bodies' velocities). */
 AVX2_INLINE void avx2_gather_pairs(const float *v, const int32_t *idx, __m256 *x, __m256 *y)
 {
-    const float *p[8] = {v + 2 * idx[0], v + 2 * idx[1], v + 2 * idx[2], v + 2 * idx[3],
-                         v + 2 * idx[4], v + 2 * idx[5], v + 2 * idx[6], v + 2 * idx[7]};
+    const float *p[8] = {AVX2_PAIR(v, idx[0]), AVX2_PAIR(v, idx[1]), AVX2_PAIR(v, idx[2]), AVX2_PAIR(v, idx[3]),
+                         AVX2_PAIR(v, idx[4]), AVX2_PAIR(v, idx[5]), AVX2_PAIR(v, idx[6]), AVX2_PAIR(v, idx[7])};
     avx2_pairs_at(p, x, y);
 }
 
@@ -89,14 +93,17 @@ AVX2_INLINE void avx2_scatter_pairs(float *v, const int32_t *idx, __m256 x, __m2
     __m256 lo = _mm256_unpacklo_ps(x, y), hi = _mm256_unpackhi_ps(x, y);
     __m128 p01 = _mm256_castps256_ps128(lo), p45 = _mm256_extractf128_ps(lo, 1);
     __m128 p23 = _mm256_castps256_ps128(hi), p67 = _mm256_extractf128_ps(hi, 1);
-    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[0]), p01);
-    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[1]), p01);
-    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[2]), p23);
-    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[3]), p23);
-    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[4]), p45);
-    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[5]), p45);
-    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[6]), p67);
-    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[7]), p67);
+    /* the addresses first: the stores may alias idx as far as the compiler knows */
+    float *p[8] = {AVX2_PAIR(v, idx[0]), AVX2_PAIR(v, idx[1]), AVX2_PAIR(v, idx[2]), AVX2_PAIR(v, idx[3]),
+                   AVX2_PAIR(v, idx[4]), AVX2_PAIR(v, idx[5]), AVX2_PAIR(v, idx[6]), AVX2_PAIR(v, idx[7])};
+    _mm_storel_pi((__m64 *)(void *)p[0], p01);
+    _mm_storeh_pi((__m64 *)(void *)p[1], p01);
+    _mm_storel_pi((__m64 *)(void *)p[2], p23);
+    _mm_storeh_pi((__m64 *)(void *)p[3], p23);
+    _mm_storel_pi((__m64 *)(void *)p[4], p45);
+    _mm_storeh_pi((__m64 *)(void *)p[5], p45);
+    _mm_storel_pi((__m64 *)(void *)p[6], p67);
+    _mm_storeh_pi((__m64 *)(void *)p[7], p67);
 }
 
 /* Bits 0..7 of m as bytes 0 or 1 at out[0..8). */

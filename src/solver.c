@@ -31,6 +31,10 @@ static inline rg_real smax(rg_real a, rg_real b) { return a > b ? a : b; }
 static inline rg_real smin(rg_real a, rg_real b) { return a < b ? a : b; }
 #endif
 
+/* Solver body q's velocity pair in v (q >= 0: a solver index; as unsigned the address needs
+ * no sign extension, which the wide loops paid on every lane). */
+#define SOLVER_PAIR(v, q) ((v) + 2 * (size_t)(uint32_t)(q))
+
 void solver_warm_start(const solver_constraint *c, const int32_t *list, int32_t k, rg_real *v)
 {
     for (int32_t i = 0; i < k; i++) {
@@ -38,7 +42,7 @@ void solver_warm_start(const solver_constraint *c, const int32_t *list, int32_t 
         /* P = pn n + pt t with t = (-ny, nx) */
         rg_real px = q->pn * q->nx - q->pt * q->ny;
         rg_real py = q->pn * q->ny + q->pt * q->nx;
-        rg_real *va = v + 2 * q->a, *vb = v + 2 * q->b;
+        rg_real *va = SOLVER_PAIR(v, q->a), *vb = SOLVER_PAIR(v, q->b);
         va[0] -= px * q->ima;
         va[1] -= py * q->ima;
         vb[0] += px * q->imb;
@@ -50,7 +54,7 @@ void solver_iterate(solver_constraint *c, const int32_t *list, int32_t k, rg_rea
 {
     for (int32_t i = 0; i < k; i++) {
         solver_constraint *q = &c[list != NULL ? list[i] : i];
-        rg_real *va = v + 2 * q->a, *vb = v + 2 * q->b;
+        rg_real *va = SOLVER_PAIR(v, q->a), *vb = SOLVER_PAIR(v, q->b);
         rg_real vax = va[0], vay = va[1], vbx = vb[0], vby = vb[1];
         rg_real nx = q->nx, ny = q->ny, m = q->m, ima = q->ima, imb = q->imb;
         rg_real pn0 = q->pn, pt0 = q->pt;
@@ -84,7 +88,7 @@ void solver_shock(solver_constraint *c, const int32_t *order, int32_t n, rg_real
         rg_real im = ng > 0 ? q->ima : q->imb;
         if (!(im > 0)) continue;
         rg_real m = 1 / im;
-        rg_real *va = v + 2 * q->a, *vb = v + 2 * q->b;
+        rg_real *va = SOLVER_PAIR(v, q->a), *vb = SOLVER_PAIR(v, q->b);
         rg_real dvx = vb[0] - va[0], dvy = vb[1] - va[1];
         rg_real vn = dvx * q->nx + dvy * q->ny;
         rg_real vt = dvy * q->nx - dvx * q->ny;
@@ -116,7 +120,7 @@ void solver_shock_position(solver_constraint *c, const int32_t *order, int32_t n
         if (rg_fabs(ng) < RG_R(0.5)) continue;
         rg_real im = ng > 0 ? q->ima : q->imb;
         if (!(im > 0)) continue;
-        rg_real *va = pv + 2 * q->a, *vb = pv + 2 * q->b;
+        rg_real *va = SOLVER_PAIR(pv, q->a), *vb = SOLVER_PAIR(pv, q->b);
         rg_real vn = (vb[0] - va[0]) * q->nx + (vb[1] - va[1]) * q->ny;
         rg_real pp = smax(q->pp + (q->pmin - vn) / im, 0);
         rg_real l = (pp - q->pp) * im;
@@ -163,7 +167,7 @@ int32_t solver_prepare_position(solver_constraint *c, int32_t n, const rg_real *
 #endif
     for (; k < n; k++) {
         solver_constraint *q = &c[k];
-        const rg_real *va = v + 2 * q->a, *vb = v + 2 * q->b;
+        const rg_real *va = SOLVER_PAIR(v, q->a), *vb = SOLVER_PAIR(v, q->b);
         rg_real vn = (vb[0] - va[0]) * q->nx + (vb[1] - va[1]) * q->ny;
         rg_real s1 = q->s0 + vn * p->dt; /* separation after the velocity pass */
         rg_real push = p->bias_rate * (-s1 - p->slop) * p->inv_dt;
@@ -179,7 +183,7 @@ void solver_iterate_position(solver_constraint *c, const int32_t *list, int32_t 
 {
     for (int32_t i = 0; i < k; i++) {
         solver_constraint *q = &c[list != NULL ? list[i] : i];
-        rg_real *va = pv + 2 * q->a, *vb = pv + 2 * q->b;
+        rg_real *va = SOLVER_PAIR(pv, q->a), *vb = SOLVER_PAIR(pv, q->b);
         rg_real vn = (vb[0] - va[0]) * q->nx + (vb[1] - va[1]) * q->ny;
         rg_real pp = smax(q->pp + q->m * (q->pmin - vn), 0);
         rg_real l = pp - q->pp;
@@ -403,10 +407,10 @@ void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t k
  * kinematic body store back the value they loaded. */
 static inline void gather(const float *v, const int32_t *idx, __m128 *x, __m128 *y)
 {
-    __m128 p01 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[0]));
-    p01 = _mm_loadh_pi(p01, (const __m64 *)(const void *)(v + 2 * idx[1]));
-    __m128 p23 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)(v + 2 * idx[2]));
-    p23 = _mm_loadh_pi(p23, (const __m64 *)(const void *)(v + 2 * idx[3]));
+    __m128 p01 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)SOLVER_PAIR(v, idx[0]));
+    p01 = _mm_loadh_pi(p01, (const __m64 *)(const void *)SOLVER_PAIR(v, idx[1]));
+    __m128 p23 = _mm_loadl_pi(_mm_setzero_ps(), (const __m64 *)(const void *)SOLVER_PAIR(v, idx[2]));
+    p23 = _mm_loadh_pi(p23, (const __m64 *)(const void *)SOLVER_PAIR(v, idx[3]));
     *x = _mm_shuffle_ps(p01, p23, _MM_SHUFFLE(2, 0, 2, 0));
     *y = _mm_shuffle_ps(p01, p23, _MM_SHUFFLE(3, 1, 3, 1));
 }
@@ -414,10 +418,12 @@ static inline void gather(const float *v, const int32_t *idx, __m128 *x, __m128 
 static inline void scatter(float *v, const int32_t *idx, __m128 x, __m128 y)
 {
     __m128 p01 = _mm_unpacklo_ps(x, y), p23 = _mm_unpackhi_ps(x, y);
-    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[0]), p01);
-    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[1]), p01);
-    _mm_storel_pi((__m64 *)(void *)(v + 2 * idx[2]), p23);
-    _mm_storeh_pi((__m64 *)(void *)(v + 2 * idx[3]), p23);
+    /* the addresses first: the stores may alias idx as far as the compiler knows */
+    float *p[4] = {SOLVER_PAIR(v, idx[0]), SOLVER_PAIR(v, idx[1]), SOLVER_PAIR(v, idx[2]), SOLVER_PAIR(v, idx[3])};
+    _mm_storel_pi((__m64 *)(void *)p[0], p01);
+    _mm_storeh_pi((__m64 *)(void *)p[1], p01);
+    _mm_storel_pi((__m64 *)(void *)p[2], p23);
+    _mm_storeh_pi((__m64 *)(void *)p[3], p23);
 }
 
 /* Four lanes of a row, from lane h: the loads, the arithmetic and the stores of a row are
@@ -624,12 +630,12 @@ void solver_wide_warm_start(const solver_batch *s, int32_t r0, int32_t r1, rg_re
             py[l] = q->pn[l] * q->ny[l] + q->pt[l] * q->nx[l];
         }
         for (int l = 0; l < SOLVER_LANES; l++) {
-            rg_real *va = v + 2 * q->a[l];
+            rg_real *va = SOLVER_PAIR(v, q->a[l]);
             va[0] -= px[l] * q->ima[l];
             va[1] -= py[l] * q->ima[l];
         }
         for (int l = 0; l < SOLVER_LANES; l++) {
-            rg_real *vb = v + 2 * q->b[l];
+            rg_real *vb = SOLVER_PAIR(v, q->b[l]);
             vb[0] += px[l] * q->imb[l];
             vb[1] += py[l] * q->imb[l];
         }
