@@ -533,12 +533,13 @@ static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void 
         }
         if (x->late != NULL) x->late(w, x);
         /* the solver's bodies: 0 is the ground, 1..ns the awake bodies; stamped, those the
-         * rows meet */
+         * rows meet; in the same walk, the rows against an immovable body listed */
         resolve_next_gen(rs, cw->scap);
-        int32_t met = 0;
+        int32_t met = 0, nfixed = 0, *fixed = rows->fixed;
         int listed = t->listed = solver_rows_few(nc, x->ns);
         for (int32_t r = 0; r < nc && listed; r++) {
             int32_t qa = con[r].a, qb = con[r].b;
+            if (solver_row_fixed(&con[r])) fixed[nfixed++] = r;
             if (qa > 0 && rs->sstamp[qa - 1] != rs->gen) {
                 rs->sstamp[qa - 1] = rs->gen;
                 rs->sbody[met++] = qa;
@@ -549,13 +550,14 @@ static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void 
             }
         }
         for (int32_t r = 0; r < nc && !listed; r++) {
+            if (solver_row_fixed(&con[r])) fixed[nfixed++] = r;
             if (con[r].a > 0) rs->sstamp[con[r].a - 1] = rs->gen;
             if (con[r].b > 0) rs->sstamp[con[r].b - 1] = rs->gen;
         }
+        h->nfixed = nfixed;
         t->nbody = met;
         t->v[0] = t->v[1] = 0;
         resolve_bodies(t, RESOLVE_LOAD, listed ? 0 : 1, listed ? met : x->ns + 1);
-        h->nfixed = solver_fixed_list(con, nc, rows->fixed);
     }
 }
 

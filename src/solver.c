@@ -143,14 +143,6 @@ void solver_fixed_rows(solver_constraint *c, const int32_t *list, int32_t k, rg_
         solver_iterate(c, list, k, v);
 }
 
-int32_t solver_fixed_list(const solver_constraint *c, int32_t n, int32_t *list)
-{
-    int32_t k = 0;
-    for (int32_t r = 0; r < n; r++)
-        if (!(c[r].ima > 0 && c[r].imb > 0)) list[k++] = r;
-    return k;
-}
-
 #if SOLVER_AVX2
 static int32_t prepare_position_avx2(solver_constraint *c, int32_t n, const float *v, const solver_params *p);
 #endif
@@ -295,8 +287,8 @@ void solver_pack_rows(const solver_constraint *c, const int32_t *order, int32_t 
             out->map[k] = slot;
             out->row_of[slot] = k;
             if (place_only) continue;
-            solver_wide *q = &w[slot / SOLVER_LANES];
-            int l = slot % SOLVER_LANES;
+            solver_wide *q = &w[(uint32_t)slot / SOLVER_LANES]; /* slot >= 0: a shift, not a division */
+            int l = (int)((uint32_t)slot % SOLVER_LANES);
             const solver_constraint *r = &c[k];
             q->a[l] = r->a;
             q->b[l] = r->b;
@@ -372,7 +364,9 @@ void solver_unpack(const solver_batch *s, solver_constraint *c, int32_t k0, int3
 {
     for (int32_t k = k0; k < k1; k++) {
         int32_t slot = s->map[k];
-        if (slot >= 0) solver_unpack_lane(&s->rows[slot / SOLVER_LANES], slot % SOLVER_LANES, &c[k], position);
+        if (slot >= 0)
+            solver_unpack_lane(&s->rows[(uint32_t)slot / SOLVER_LANES], (int)((uint32_t)slot % SOLVER_LANES), &c[k],
+                               position);
     }
 }
 
@@ -395,7 +389,7 @@ void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t k
 {
     for (int32_t k = k0; k < k1; k++) {
         int32_t slot = s->map[k];
-        if (slot >= 0) s->rows[slot / SOLVER_LANES].pmin[slot % SOLVER_LANES] = c[k].pmin;
+        if (slot >= 0) s->rows[(uint32_t)slot / SOLVER_LANES].pmin[(uint32_t)slot % SOLVER_LANES] = c[k].pmin;
     }
 }
 

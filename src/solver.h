@@ -113,14 +113,13 @@ void solver_shock(solver_constraint *c, const int32_t *order, int32_t n, rg_real
  * ground is pushed out as a whole, however heavy its top. */
 void solver_shock_position(solver_constraint *c, const int32_t *order, int32_t n, rg_real *pv,
                            rg_real gx, rg_real gy);
-/* One last sweep over the rows against an immovable body (static, kinematic, sleeping), so
- * that these win over what the other rows left: a light body squeezed by a far heavier one
- * may end inside it, but not pushed through a wall.  `list` (k of them, in row order) holds
- * those rows (solver_fixed_list).  Velocity rows on v, or position rows on pseudo-velocities
- * pv. */
+/* Whether row q is against an immovable body (static, kinematic, sleeping). */
+static inline int solver_row_fixed(const solver_constraint *q) { return !(q->ima > 0 && q->imb > 0); }
+/* One last sweep over the rows against an immovable body, so that these win over what the
+ * other rows left: a light body squeezed by a far heavier one may end inside it, but not
+ * pushed through a wall.  `list` (k of them, in row order) holds those rows (the rows
+ * solver_row_fixed says are).  Velocity rows on v, or position rows on pseudo-velocities pv. */
 void solver_fixed_rows(solver_constraint *c, const int32_t *list, int32_t k, rg_real *v, int position);
-/* Lists the rows of c[0..n) against an immovable body, in row order; returns how many. */
-int32_t solver_fixed_list(const solver_constraint *c, int32_t n, int32_t *list);
 /* Position rows from the penetration the velocities v leave; returns how many rows need a
  * push (0: the position pass can be skipped). */
 int32_t solver_prepare_position(solver_constraint *c, int32_t n, const rg_real *v,
@@ -215,7 +214,7 @@ typedef struct solver_rows {
     int32_t *color;           /* [0, cap): colouring scratch */
     int32_t *lanes;           /* [0, SOLVER_PACK_BLOCKS(cap) * 32): packing scratch */
     int32_t *imp;             /* [0, cap): staged rows that are impacts (toi > 0) */
-    int32_t *fixed;           /* [0, cap): rows against an immovable body (solver_fixed_list) */
+    int32_t *fixed;           /* [0, cap): rows against an immovable body (solver_row_fixed) */
     uint8_t *edge;            /* per wide row: it meets a body that another band's rows meet
                                * (resolve.c, when the colours run in bands) */
     int32_t *late;            /* [0, 3 cap): what the parallel staging leaves for the commit
