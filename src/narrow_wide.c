@@ -221,13 +221,20 @@ AVX2_INLINE void narrow_wide_stage_rows(narrow_wide_stage *st, contact *const *c
     avx2_transpose8(r);
     avx2_transpose8(h);
     float o_px[8], o_py[8], o_toi[8];
+    int32_t o_a[8], o_b[8]; /* solver_row_bodies: a movable body's index, else 0 */
     _mm256_storeu_ps(o_px, px);
     _mm256_storeu_ps(o_py, py);
     _mm256_storeu_ps(o_toi, toi);
+    _mm256_storeu_si256((__m256i *)(void *)o_a,
+                        _mm256_and_si256(_mm256_castps_si256(NARROW_WIDE_CMP(ima, zero, _CMP_GT_OQ)),
+                                         _mm256_and_si256(awake_a, _mm256_add_epi32(ia, one))));
+    _mm256_storeu_si256((__m256i *)(void *)o_b,
+                        _mm256_and_si256(_mm256_castps_si256(NARROW_WIDE_CMP(imb, zero, _CMP_GT_OQ)),
+                                         _mm256_and_si256(awake_b, _mm256_add_epi32(ib, one))));
     /* in locals: the stores could alias the counts and the arrays' pointers */
     solver_constraint *const out = rows->stage;
     rg_real *const hgt = rows->hgt, *const hgx = rows->hgx;
-    int32_t *const imp = rows->imp;
+    int32_t *const imp = rows->imp, *const ab = rows->ab;
     int32_t k = x->nc, nimp = x->nimp;
     for (uint32_t left = stage; left != 0; left &= left - 1, k++) {
         int l = __builtin_ctz(left);
@@ -235,6 +242,8 @@ AVX2_INLINE void narrow_wide_stage_rows(narrow_wide_stage *st, contact *const *c
         _mm256_storeu_ps(&out[k].vmin, h[l]);
         hgt[k] = o_py[l];
         hgx[k] = o_px[l];
+        ab[2 * k] = o_a[l];
+        ab[2 * k + 1] = o_b[l];
         if (o_toi[l] > 0) imp[nimp++] = k;
     }
     x->nc = k;

@@ -528,7 +528,7 @@ static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void 
     for (int32_t k = begin; k < end; k++) {
         if (k == 0) {
             h->shock = resolve_order(w, nc, &h->gx, &h->gy);
-            solver_pack(con, rows->ord, nc, x->ns + 1, rs->cmask, rows->color, rows->lanes, &rows->batch);
+            solver_pack(rows->ab, rows->ord, nc, x->ns + 1, rs->cmask, rows->color, rows->lanes, &rows->batch);
             continue;
         }
         if (x->late != NULL) x->late(w, x);

@@ -45,6 +45,7 @@ static inline void resolve_row(rg_world *w, const collide_step *x, int32_t k, in
     q->pn = c->pn;
     q->pt = c->pt;
     q->cid = id;
+    solver_row_bodies(q, rows->ab + 2 * (size_t)k);
 }
 
 /* Stages the next row: contact id's, as resolve_row, and its impact when toi > 0. */

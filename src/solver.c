@@ -190,15 +190,16 @@ void solver_iterate_position(solver_constraint *c, const int32_t *list, int32_t 
 
 /* ---------------------------------------------------------------- eight lanes */
 
-void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, int32_t nbodies,
-                 uint32_t *mask, int32_t *color, int32_t *lanes, solver_batch *out)
+void solver_pack(const int32_t *ab, const int32_t *order, int32_t n, int32_t nbodies, uint32_t *mask,
+                 int32_t *color, int32_t *lanes, solver_batch *out)
 {
     const int32_t ground = 0;
     int32_t count[33];
     memset(count, 0, sizeof count);
     /* the masks of the bodies the rows meet, which alone are read (solver_rows_few) */
     if (solver_rows_few(n, nbodies)) {
-        for (int32_t j = 0; j < n; j++) mask[c[j].a] = mask[c[j].b] = 0;
+        mask[ground] = 0; /* read for an immovable body, never written */
+        for (int32_t j = 0; j < n; j++) mask[ab[2 * j]] = mask[ab[2 * j + 1]] = 0;
     } else {
         memset(mask, 0, (size_t)nbodies * sizeof *mask);
     }
@@ -209,10 +210,8 @@ void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, in
         memcpy(lanes + blk * 32, count, 32 * sizeof *count);
         int32_t j1 = (blk + 1) * SOLVER_PACK_BLOCK < n ? (blk + 1) * SOLVER_PACK_BLOCK : n;
         for (int32_t j = blk * SOLVER_PACK_BLOCK; j < j1; j++) {
-            int32_t k = order[j];
-            const solver_constraint *q = &c[k];
-            int ma = q->ima > 0, mb = q->imb > 0;
-            uint32_t used = (ma ? mask[q->a] : 0) | (mb ? mask[q->b] : 0);
+            int32_t k = order[j], qa = ab[2 * k], qb = ab[2 * k + 1];
+            uint32_t used = mask[qa] | mask[qb];
             int col = 32;
             if (used != 0xFFFFFFFFu) {
 #ifdef __GNUC__
@@ -221,8 +220,8 @@ void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, in
                 col = 0;
                 while (used & (1u << col)) col++;
 #endif
-                if (ma) mask[q->a] |= 1u << col;
-                if (mb) mask[q->b] |= 1u << col;
+                if (qa != ground) mask[qa] |= 1u << col;
+                if (qb != ground) mask[qb] |= 1u << col;
             } else {
                 out->map[k] = -1;
                 out->over[out->nover++] = k;
@@ -720,6 +719,7 @@ static void solver_rows_layout(mem_layout *l, void *ctx)
     r->stage = mem_take(l, n, sizeof(solver_constraint));
     r->hgt = mem_take(l, n, sizeof(rg_real));
     r->hgx = mem_take(l, n, sizeof(rg_real));
+    r->ab = mem_take(l, n, 2 * sizeof(int32_t));
     r->ord = mem_take(l, n, sizeof(int32_t));
     r->tord = mem_take(l, n, sizeof(int32_t));
     r->batch.map = mem_take(l, n, sizeof(int32_t));

@@ -160,9 +160,18 @@ typedef struct solver_batch {
     int32_t nover;
 } solver_batch;
 
-/* Colours rows c[order[0..n)] (in that order) over solver bodies [0, nbodies), body 0
- * being the ground (padding lanes act on it with zero mass), lays out the wide rows, pads
- * them and lists the overflow; solver_pack_rows then copies the rows into their lanes, block
+/* Row q's movable bodies, as the colouring reads them: ab[0] = a and ab[1] = b, each 0 (the
+ * ground's index, whose colours stay none) for an immovable one.  Written with the row
+ * (resolve.h), so that the colouring reads 8 bytes a row in its order, not the row. */
+static inline void solver_row_bodies(const solver_constraint *q, int32_t *ab)
+{
+    ab[0] = q->ima > 0 ? q->a : 0;
+    ab[1] = q->imb > 0 ? q->b : 0;
+}
+
+/* Colours rows order[0..n) (in that order; row k's movable bodies at ab[2k], ab[2k + 1]:
+ * solver_row_bodies) over solver bodies [0, nbodies), body 0 being the ground (padding
+ * lanes act on it with zero mass), lays out the wide rows, pads them and lists the overflow; solver_pack_rows then copies the rows into their lanes, block
  * by block of SOLVER_PACK_BLOCK rows of `order` (blocks write disjoint lanes: they may run
  * at once).  `mask` (nbodies words), `color` (n) and `lanes` (SOLVER_PACK_BLOCKS(n) * 32:
  * each block's first lane in each colour) are scratch kept from one call to the other;
@@ -175,8 +184,8 @@ typedef struct solver_batch {
  * Only the bodies the rows meet are read, so either way gives the same results. */
 static inline int solver_rows_few(int32_t rows, int32_t bodies) { return (int64_t)rows * 8 < bodies; }
 #define SOLVER_PACK_BLOCKS(n) (((n) + SOLVER_PACK_BLOCK - 1) / SOLVER_PACK_BLOCK)
-void solver_pack(const solver_constraint *c, const int32_t *order, int32_t n, int32_t nbodies,
-                 uint32_t *mask, int32_t *color, int32_t *lanes, solver_batch *out);
+void solver_pack(const int32_t *ab, const int32_t *order, int32_t n, int32_t nbodies, uint32_t *mask,
+                 int32_t *color, int32_t *lanes, solver_batch *out);
 void solver_pack_rows(const solver_constraint *c, const int32_t *order, int32_t n, const int32_t *color,
                       const int32_t *lanes, int32_t blk0, int32_t blk1, solver_batch *out);
 /* Where the CPU has AVX2 (solver_pack_wide), solver_pack_rows only places the rows (map and
@@ -207,6 +216,7 @@ typedef struct solver_rows {
     solver_batch batch;       /* the rows eight at a time (rows: SOLVER_WIDE_ROWS(cap)) */
     solver_constraint *stage; /* [0, cap): rows in contact order, before sorting */
     rg_real *hgt, *hgx;       /* [0, cap): their contact points, then heights along gravity */
+    int32_t *ab;              /* [0, 2 cap): their movable bodies (solver_row_bodies) */
     int32_t *ord, *tord;      /* [0, cap): staged rows in solving order, radix scratch */
     int32_t nord;             /* rows ord held in order after the last solve (a hint only:
                                * resolve.c checks it), 0 when none */

@@ -653,7 +653,7 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
     (void)state;
     enum { N = 700, BODIES = 40, ITERS = 8 };
     static solver_constraint rows[N], ref[N];
-    static int32_t order[N], color[N], map[N], over[N], lanes[SOLVER_PACK_BLOCKS(N) * 32];
+    static int32_t order[N], color[N], map[N], over[N], lanes[SOLVER_PACK_BLOCKS(N) * 32], ab[2 * N];
     static int32_t row_of[SOLVER_WIDE_ROWS(N) * SOLVER_LANES];
     static uint32_t mask[BODIES + 1];
     static solver_wide wide[SOLVER_WIDE_ROWS(N)];
@@ -691,7 +691,8 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
     sb.row_of = row_of;
     /* garbage in the lanes first: the packing must write every one */
     memset(wide, 0xA5, sizeof wide);
-    solver_pack(rows, order, N, BODIES + 1, mask, color, lanes, &sb);
+    for (int k = 0; k < N; k++) solver_row_bodies(&rows[k], ab + 2 * k);
+    solver_pack(ab, order, N, BODIES + 1, mask, color, lanes, &sb);
     solver_pack_rows(rows, order, N, color, lanes, 0, SOLVER_PACK_BLOCKS(N), &sb);
     if (solver_pack_wide()) solver_pack_lanes(&sb, rows, 0, sb.nrows);
     assert_true(sb.nover > 0); /* the overflow list is exercised too */
@@ -728,7 +729,7 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
     memcpy(again, ref0, sizeof again);
     assert_true(SOLVER_PACK_BLOCKS(N) >= 2);
     memset(wide, 0x5A, sizeof wide);
-    solver_pack(again, order, N, BODIES + 1, mask, color, lanes, &sb);
+    solver_pack(ab, order, N, BODIES + 1, mask, color, lanes, &sb); /* again's rows are rows' */
     for (int32_t blk = SOLVER_PACK_BLOCKS(N) - 1; blk >= 0; blk--)
         solver_pack_rows(again, order, N, color, lanes, blk, blk + 1, &sb);
     if (solver_pack_wide())
