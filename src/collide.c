@@ -111,6 +111,11 @@ void collide_step_begin(rg_world *w, collide_step *x, rg_real dt)
     x->p.stagger = w->integrator == RG_INTEGRATOR_SEMI_IMPLICIT_EULER ? RG_R(0.5)
                  : w->integrator == RG_INTEGRATOR_EXPLICIT_EULER     ? RG_R(-0.5)
                                                                      : 0;
+    /* the direction the staging measures the rows' heights along (resolve.c orders them) */
+    rg_real gx = w->gravity.x, gy = w->gravity.y, gl = rg_sqrt(gx * gx + gy * gy);
+    x->down = gl > 0 && rg_finite(gl);
+    x->ux = x->down ? gx / gl : 0;
+    x->uy = x->down ? gy / gl : 0;
 }
 
 /* ---------------------------------------------------------------- API */

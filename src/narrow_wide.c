@@ -220,10 +220,8 @@ AVX2_INLINE void narrow_wide_stage_rows(narrow_wide_stage *st, contact *const *c
                    _mm256_castsi256_ps(_mm256_loadu_si256((const __m256i *)(const void *)st->id))};
     avx2_transpose8(r);
     avx2_transpose8(h);
-    float o_px[8], o_py[8], o_toi[8];
+    float o_toi[8];
     int32_t o_a[8], o_b[8]; /* solver_row_bodies: a movable body's index, else 0 */
-    _mm256_storeu_ps(o_px, px);
-    _mm256_storeu_ps(o_py, py);
     _mm256_storeu_ps(o_toi, toi);
     _mm256_storeu_si256((__m256i *)(void *)o_a,
                         _mm256_and_si256(_mm256_castps_si256(NARROW_WIDE_CMP(ima, zero, _CMP_GT_OQ)),
@@ -231,17 +229,20 @@ AVX2_INLINE void narrow_wide_stage_rows(narrow_wide_stage *st, contact *const *c
     _mm256_storeu_si256((__m256i *)(void *)o_b,
                         _mm256_and_si256(_mm256_castps_si256(NARROW_WIDE_CMP(imb, zero, _CMP_GT_OQ)),
                                          _mm256_and_si256(awake_b, _mm256_add_epi32(ib, one))));
+    /* resolve_row's height along gravity */
+    float o_h[8];
+    _mm256_storeu_ps(o_h, narrow_wide_neg(_mm256_add_ps(_mm256_mul_ps(px, _mm256_set1_ps(x->ux)),
+                                                        _mm256_mul_ps(py, _mm256_set1_ps(x->uy)))));
     /* in locals: the stores could alias the counts and the arrays' pointers */
     solver_constraint *const out = rows->stage;
-    rg_real *const hgt = rows->hgt, *const hgx = rows->hgx;
+    rg_real *const hgt = rows->hgt;
     int32_t *const imp = rows->imp, *const ab = rows->ab;
     int32_t k = x->nc, nimp = x->nimp;
     for (uint32_t left = stage; left != 0; left &= left - 1, k++) {
         int l = __builtin_ctz(left);
         _mm256_storeu_ps((float *)(void *)&out[k], r[l]);
         _mm256_storeu_ps(&out[k].vmin, h[l]);
-        hgt[k] = o_py[l];
-        hgx[k] = o_px[l];
+        hgt[k] = o_h[l];
         ab[2 * k] = o_a[l];
         ab[2 * k + 1] = o_b[l];
         if (o_toi[l] > 0) imp[nimp++] = k;

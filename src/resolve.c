@@ -108,24 +108,63 @@ int resolve_resort(const uint16_t *key, int32_t *ord, int32_t n)
     return 1;
 }
 
-/* Under gravity, rows bottom-up by the height of the contact point: Gauss-Seidel then
- * carries support up a stack within a sweep, and the shock sweep needs the order.  Returns
- * whether there is gravity, with its unit direction in *ux, *uy. */
-static int resolve_order(rg_world *w, int32_t nc, rg_real *ux, rg_real *uy)
+/* Folds of RESOLVE_FOLDS heights side by side: the one fold of rg_min over all rows is a
+ * chain of dependent compares. */
+#define RESOLVE_FOLDS 8
+
+/* The least and the greatest of h[0..n), as rg_min and rg_max fold them one by one from
+ * RG_HUGE and -RG_HUGE.  Folds side by side give the same two where no height is NaN (but
+ * for a zero's sign, which the keys below do not see: (+-0 - hmin) and (hmax - hmin) are the
+ * same numbers or zeros that quantize to key 0); with a NaN, whose fold depends on the
+ * order, the one fold runs again. */
+static void resolve_span(const rg_real *h, int32_t n, rg_real *out_min, rg_real *out_max)
 {
-    solver_rows *rows = &w->coll.rows;
-    rg_real gx = w->gravity.x, gy = w->gravity.y, gl = rg_sqrt(gx * gx + gy * gy);
-    int shock = gl > 0 && rg_finite(gl);
-    if (shock) {
-        gx /= gl;
-        gy /= gl;
-        rg_real *h = rows->hgt;
-        rg_real hmin = RG_HUGE, hmax = -RG_HUGE;
-        for (int32_t k = 0; k < nc; k++) {
-            h[k] = -(rows->hgx[k] * gx + h[k] * gy);
+    rg_real lo[RESOLVE_FOLDS], hi[RESOLVE_FOLDS];
+    int nan = 0;
+    for (int u = 0; u < RESOLVE_FOLDS; u++) {
+        lo[u] = RG_HUGE;
+        hi[u] = -RG_HUGE;
+    }
+    int32_t k = 0;
+    for (; n - k >= RESOLVE_FOLDS; k += RESOLVE_FOLDS)
+        for (int u = 0; u < RESOLVE_FOLDS; u++) {
+            rg_real v = h[k + u];
+            nan |= v != v;
+            lo[u] = rg_min(lo[u], v);
+            hi[u] = rg_max(hi[u], v);
+        }
+    for (; k < n; k++) {
+        nan |= h[k] != h[k];
+        lo[0] = rg_min(lo[0], h[k]);
+        hi[0] = rg_max(hi[0], h[k]);
+    }
+    rg_real hmin = RG_HUGE, hmax = -RG_HUGE;
+    if (nan) {
+        for (k = 0; k < n; k++) {
             hmin = rg_min(hmin, h[k]);
             hmax = rg_max(hmax, h[k]);
         }
+    } else {
+        for (int u = 0; u < RESOLVE_FOLDS; u++) {
+            hmin = rg_min(hmin, lo[u]);
+            hmax = rg_max(hmax, hi[u]);
+        }
+    }
+    *out_min = hmin;
+    *out_max = hmax;
+}
+
+/* Under gravity (x->down), rows bottom-up by the height of the contact point along it
+ * (written with the row, resolve.h): Gauss-Seidel then carries support up a stack within a
+ * sweep, and the shock sweep needs the order. */
+static void resolve_order(rg_world *w, const collide_step *x)
+{
+    solver_rows *rows = &w->coll.rows;
+    int32_t nc = x->nc;
+    if (x->down) {
+        const rg_real *h = rows->hgt;
+        rg_real hmin, hmax;
+        resolve_span(h, nc, &hmin, &hmax);
         rg_real scale = hmax > hmin ? RG_R(65535) / (hmax - hmin) : 0;
         if (!rg_finite(scale)) scale = 0;
         for (int32_t k = 0; k < nc; k++) {
@@ -143,9 +182,6 @@ static int resolve_order(rg_world *w, int32_t nc, rg_real *ux, rg_real *uy)
         for (int32_t k = 0; k < nc; k++) rows->ord[k] = k;
         rows->nord = 0;
     }
-    *ux = gx;
-    *uy = gy;
-    return shock;
 }
 
 /* The solve's passes over rows and over solver bodies, split over the task system: each
@@ -508,8 +544,6 @@ static void resolve_band_phase(int32_t band, int32_t phase, int edge, void *cont
  * body listed. */
 typedef struct resolve_head {
     resolve_task *t;
-    rg_real gx, gy;
-    int shock;
     int32_t nfixed; /* rows against an immovable body (rows.fixed) */
 } resolve_head;
 
@@ -527,7 +561,7 @@ static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void 
     (void)worker;
     for (int32_t k = begin; k < end; k++) {
         if (k == 0) {
-            h->shock = resolve_order(w, nc, &h->gx, &h->gy);
+            resolve_order(w, x);
             solver_pack(rows->ab, rows->ord, nc, x->ns + 1, rs->cmask, rows->color, rows->lanes, &rows->batch);
             continue;
         }
@@ -589,8 +623,8 @@ void resolve_run(rg_world *w, collide_step *x)
     h.t = &t;
     task_for(w, resolve_head_range, 2, 1, &h);
     x->late = NULL;
-    rg_real gx = h.gx, gy = h.gy;
-    int shock = h.shock;
+    rg_real gx = x->ux, gy = x->uy;
+    int shock = x->down;
     const int32_t *ord = rows->ord;
     resolve_pass(&t, RESOLVE_PACK, 0, SOLVER_PACK_BLOCKS(nc));
     t.bands = resolve_bands_for(w, &t);

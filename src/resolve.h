@@ -29,8 +29,7 @@ static inline void resolve_row(rg_world *w, const collide_step *x, int32_t k, in
     solver_rows *rows = &cw->rows;
     const contact *c = &cw->contacts.c[id];
     solver_constraint *q = &rows->stage[k];
-    rows->hgt[k] = c->py; /* replaced by the height along gravity */
-    rows->hgx[k] = c->px;
+    rows->hgt[k] = -(c->px * x->ux + c->py * x->uy); /* the height along gravity (0 without) */
     q->a = resolve_index(ia, x->n);
     q->b = resolve_index(ib, x->n);
     q->ima = ima;

@@ -718,7 +718,6 @@ static void solver_rows_layout(mem_layout *l, void *ctx)
     r->batch.rows = mem_take(l, (size_t)SOLVER_WIDE_ROWS(r->cap), sizeof(solver_wide));
     r->stage = mem_take(l, n, sizeof(solver_constraint));
     r->hgt = mem_take(l, n, sizeof(rg_real));
-    r->hgx = mem_take(l, n, sizeof(rg_real));
     r->ab = mem_take(l, n, 2 * sizeof(int32_t));
     r->ord = mem_take(l, n, sizeof(int32_t));
     r->tord = mem_take(l, n, sizeof(int32_t));

@@ -215,7 +215,7 @@ void solver_wide_iterate_position(solver_batch *s, int32_t r0, int32_t r1, rg_re
 typedef struct solver_rows {
     solver_batch batch;       /* the rows eight at a time (rows: SOLVER_WIDE_ROWS(cap)) */
     solver_constraint *stage; /* [0, cap): rows in contact order, before sorting */
-    rg_real *hgt, *hgx;       /* [0, cap): their contact points, then heights along gravity */
+    rg_real *hgt;             /* [0, cap): their heights along gravity (resolve.h) */
     int32_t *ab;              /* [0, 2 cap): their movable bodies (solver_row_bodies) */
     int32_t *ord, *tord;      /* [0, cap): staged rows in solving order, radix scratch */
     int32_t nord;             /* rows ord held in order after the last solve (a hint only:

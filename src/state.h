@@ -278,6 +278,8 @@ typedef struct collide_step {
      * solve runs it beside that part (resolve_run), or NULL */
     void (*late)(struct rg_world *w, struct collide_step *x);
     solver_params p;
+    int down;           /* gravity is finite and not zero: the rows are solved bottom-up */
+    rg_real ux, uy;     /* then its unit direction; a row's height is -(contact point . u) */
 } collide_step;
 
 /* ---------------------------------------------------------------- the world */
