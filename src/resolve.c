@@ -190,9 +190,9 @@ static void resolve_order(rg_world *w, const collide_step *x)
 enum {
     RESOLVE_WARM, RESOLVE_VELOCITY, RESOLVE_POSITION, /* wide rows of a colour */
     RESOLVE_LOAD, RESOLVE_MOVE, RESOLVE_PUSH,         /* solver bodies 1..ns */
-    RESOLVE_UNPACK, RESOLVE_UNPACK_POSITION, RESOLVE_PREPARE, RESOLVE_PACK_POSITION,
-    RESOLVE_KEEP,                                     /* rows of c */
-    RESOLVE_CLEAR_POSITION, RESOLVE_PACK_LANES,       /* all wide rows */
+    RESOLVE_PREPARE, RESOLVE_KEEP,                    /* rows of c */
+    RESOLVE_PACK_LANES,                               /* all wide rows */
+    RESOLVE_UNPACK, RESOLVE_UNPACK_POSITION, RESOLVE_PACK_POSITION, /* all wide rows, light */
     RESOLVE_PACK                                      /* blocks of the solving order */
 };
 
@@ -371,10 +371,9 @@ static void resolve_range(int32_t begin, int32_t end, int32_t worker, void *cont
     case RESOLVE_WARM: solver_wide_warm_start(t->sb, b0, b1, t->v); break;
     case RESOLVE_VELOCITY: solver_wide_iterate(t->sb, b0, b1, t->v); break;
     case RESOLVE_POSITION: solver_wide_iterate_position(t->sb, b0, b1, t->pv); break;
-    case RESOLVE_CLEAR_POSITION: solver_clear_position(t->sb, b0, b1); break;
     case RESOLVE_PACK_LANES: solver_pack_lanes(t->sb, t->con, b0, b1); break;
-    case RESOLVE_UNPACK: solver_unpack(t->sb, t->con, b0, b1, 0); break;
-    case RESOLVE_UNPACK_POSITION: solver_unpack(t->sb, t->con, b0, b1, 1); break;
+    case RESOLVE_UNPACK: solver_unpack_wide(t->sb, t->con, b0, b1, 0); break;
+    case RESOLVE_UNPACK_POSITION: solver_unpack_wide(t->sb, t->con, b0, b1, 1); break;
     case RESOLVE_PACK_POSITION: solver_pack_position(t->sb, t->con, b0, b1); break;
     case RESOLVE_PACK:
         solver_pack_rows(t->con, t->w->coll.rows.ord, t->x->nc, t->w->coll.rows.color, t->w->coll.rows.lanes, b0,
@@ -394,8 +393,10 @@ static void resolve_range(int32_t begin, int32_t end, int32_t worker, void *cont
     }
 }
 
-/* Items per range: wide rows (64 lanes), rows and bodies, or packing blocks. */
+/* Items per range: wide rows (64 lanes; for the copies, 512), rows and bodies, or packing
+ * blocks. */
 #define RESOLVE_WIDE_RANGE 8
+#define RESOLVE_COPY_RANGE 64
 #define RESOLVE_RANGE 512
 #define RESOLVE_PACK_RANGE 2
 
@@ -404,8 +405,12 @@ static void resolve_pass(resolve_task *t, int what, int32_t r0, int32_t count)
 {
     t->what = what;
     t->r0 = r0;
-    int wide = what <= RESOLVE_POSITION || what == RESOLVE_CLEAR_POSITION || what == RESOLVE_PACK_LANES;
-    int32_t min_range = what == RESOLVE_PACK ? RESOLVE_PACK_RANGE : wide ? RESOLVE_WIDE_RANGE : RESOLVE_RANGE;
+    int wide = what <= RESOLVE_POSITION || what == RESOLVE_PACK_LANES;
+    int copy = what == RESOLVE_UNPACK || what == RESOLVE_UNPACK_POSITION || what == RESOLVE_PACK_POSITION;
+    int32_t min_range = what == RESOLVE_PACK ? RESOLVE_PACK_RANGE
+                      : wide                 ? RESOLVE_WIDE_RANGE
+                      : copy                 ? RESOLVE_COPY_RANGE
+                                             : RESOLVE_RANGE;
     task_for(t->w, resolve_range, count, min_range, t);
 }
 
@@ -648,7 +653,7 @@ void resolve_run(rg_world *w, collide_step *x)
             solver_iterate(con, sb->over, sb->nover, v);
         }
     }
-    if (t.bands < 2) resolve_pass(&t, RESOLVE_UNPACK, 0, nc);
+    if (t.bands < 2) resolve_pass(&t, RESOLVE_UNPACK, 0, sb->nrows);
     if (shock) solver_shock(con, ord, nc, v, gx, gy);
     solver_fixed_rows(con, rows->fixed, h.nfixed, v, 0);
     /* positions move with the solved velocities, then by the pseudo-velocities of the
@@ -671,8 +676,7 @@ void resolve_run(rg_world *w, collide_step *x)
         } else {
             memset(pv, 0, (size_t)(2 * ns + 2) * sizeof *pv);
         }
-        resolve_pass(&t, RESOLVE_CLEAR_POSITION, 0, sb->nrows);
-        resolve_pass(&t, RESOLVE_PACK_POSITION, 0, nc);
+        resolve_pass(&t, RESOLVE_PACK_POSITION, 0, sb->nrows);
         if (t.bands > 1) {
             t.what = RESOLVE_POSITION;
             t.last = t.ncol * (cw->position - 1);
@@ -683,7 +687,7 @@ void resolve_run(rg_world *w, collide_step *x)
                 solver_iterate_position(con, sb->over, sb->nover, pv);
             }
         }
-        if (t.bands < 2) resolve_pass(&t, RESOLVE_UNPACK_POSITION, 0, nc);
+        if (t.bands < 2) resolve_pass(&t, RESOLVE_UNPACK_POSITION, 0, sb->nrows);
         if (shock) solver_shock_position(con, ord, nc, pv, gx, gy);
         solver_fixed_rows(con, rows->fixed, h.nfixed, pv, 1);
         rs->pv_valid = 1;

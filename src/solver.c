@@ -223,7 +223,6 @@ void solver_pack(const int32_t *ab, const int32_t *order, int32_t n, int32_t nbo
                 if (qa != ground) mask[qa] |= 1u << col;
                 if (qb != ground) mask[qb] |= 1u << col;
             } else {
-                out->map[k] = -1;
                 out->over[out->nover++] = k;
             }
             color[k] = col;
@@ -283,7 +282,6 @@ void solver_pack_rows(const solver_constraint *c, const int32_t *order, int32_t 
             int col = color[k];
             if (col == 32) continue; /* the overflow list (solver_pack) */
             int32_t slot = next[col]++;
-            out->map[k] = slot;
             out->row_of[slot] = k;
             if (place_only) continue;
             solver_wide *q = &w[(uint32_t)slot / SOLVER_LANES]; /* slot >= 0: a shift, not a division */
@@ -359,16 +357,6 @@ static inline void solver_unpack_lane(const solver_wide *q, int l, solver_constr
     }
 }
 
-void solver_unpack(const solver_batch *s, solver_constraint *c, int32_t k0, int32_t k1, int position)
-{
-    for (int32_t k = k0; k < k1; k++) {
-        int32_t slot = s->map[k];
-        if (slot >= 0)
-            solver_unpack_lane(&s->rows[(uint32_t)slot / SOLVER_LANES], (int)((uint32_t)slot % SOLVER_LANES), &c[k],
-                               position);
-    }
-}
-
 void solver_unpack_wide(const solver_batch *s, solver_constraint *c, int32_t r0, int32_t r1, int position)
 {
     for (int32_t r = r0; r < r1; r++) {
@@ -378,17 +366,15 @@ void solver_unpack_wide(const solver_batch *s, solver_constraint *c, int32_t r0,
     }
 }
 
-void solver_clear_position(solver_batch *s, int32_t r0, int32_t r1)
+void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t r0, int32_t r1)
 {
-    for (int32_t r = r0; r < r1; r++)
-        for (int l = 0; l < SOLVER_LANES; l++) s->rows[r].pmin[l] = s->rows[r].pp[l] = 0;
-}
-
-void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t k0, int32_t k1)
-{
-    for (int32_t k = k0; k < k1; k++) {
-        int32_t slot = s->map[k];
-        if (slot >= 0) s->rows[(uint32_t)slot / SOLVER_LANES].pmin[(uint32_t)slot % SOLVER_LANES] = c[k].pmin;
+    for (int32_t r = r0; r < r1; r++) {
+        const int32_t *k = s->row_of + (size_t)r * SOLVER_LANES;
+        solver_wide *q = &s->rows[r];
+        for (int l = 0; l < SOLVER_LANES; l++) {
+            q->pmin[l] = k[l] >= 0 ? c[k[l]].pmin : 0;
+            q->pp[l] = 0;
+        }
     }
 }
 
@@ -721,7 +707,6 @@ static void solver_rows_layout(mem_layout *l, void *ctx)
     r->ab = mem_take(l, n, 2 * sizeof(int32_t));
     r->ord = mem_take(l, n, sizeof(int32_t));
     r->tord = mem_take(l, n, sizeof(int32_t));
-    r->batch.map = mem_take(l, n, sizeof(int32_t));
     r->batch.row_of = mem_take(l, (size_t)SOLVER_WIDE_ROWS(r->cap) * SOLVER_LANES, sizeof(int32_t));
     r->batch.over = mem_take(l, n, sizeof(int32_t));
     r->color = mem_take(l, n, sizeof(int32_t));

@@ -154,7 +154,6 @@ typedef struct solver_batch {
     solver_wide *rows;   /* [0, nrows) */
     int32_t nrows;
     int32_t cstart[33];  /* colour c's rows: [cstart[c], cstart[c + 1]) */
-    int32_t *map;        /* per row of c: its wide slot (row * SOLVER_LANES + lane), or -1 */
     int32_t *row_of;     /* per wide slot: its row of c, -1 for padding */
     int32_t *over;       /* rows of c in the overflow list, [0, nover) */
     int32_t nover;
@@ -171,12 +170,13 @@ static inline void solver_row_bodies(const solver_constraint *q, int32_t *ab)
 
 /* Colours rows order[0..n) (in that order; row k's movable bodies at ab[2k], ab[2k + 1]:
  * solver_row_bodies) over solver bodies [0, nbodies), body 0 being the ground (padding
- * lanes act on it with zero mass), lays out the wide rows, pads them and lists the overflow; solver_pack_rows then copies the rows into their lanes, block
- * by block of SOLVER_PACK_BLOCK rows of `order` (blocks write disjoint lanes: they may run
- * at once).  `mask` (nbodies words), `color` (n) and `lanes` (SOLVER_PACK_BLOCKS(n) * 32:
- * each block's first lane in each colour) are scratch kept from one call to the other;
- * rows, map and over must hold SOLVER_WIDE_ROWS(n), n and n.  map and over are indexed by
- * row of c. */
+ * lanes act on it with zero mass), lays out the wide rows, pads them and lists the
+ * overflow; solver_pack_rows then copies the rows into their lanes, block by block of
+ * SOLVER_PACK_BLOCK rows of `order` (blocks write disjoint lanes: they may run at once).
+ * `mask` (nbodies words), `color` (n) and `lanes` (SOLVER_PACK_BLOCKS(n) * 32: each block's
+ * first lane in each colour) are scratch kept from one call to the other; rows, row_of and
+ * over must hold SOLVER_WIDE_ROWS(n), SOLVER_WIDE_ROWS(n) * SOLVER_LANES and n.  row_of
+ * gives each lane its row of c (-1: padding); over holds rows of c. */
 #define SOLVER_PACK_BLOCK 512
 /* Whether rows are so few beside the solver bodies that what is kept per body is cleared, or
  * walked, row by row rather than whole: a world of many awake bodies of which few collide
@@ -188,8 +188,8 @@ void solver_pack(const int32_t *ab, const int32_t *order, int32_t n, int32_t nbo
                  int32_t *color, int32_t *lanes, solver_batch *out);
 void solver_pack_rows(const solver_constraint *c, const int32_t *order, int32_t n, const int32_t *color,
                       const int32_t *lanes, int32_t blk0, int32_t blk1, solver_batch *out);
-/* Where the CPU has AVX2 (solver_pack_wide), solver_pack_rows only places the rows (map and
- * row_of), and solver_pack_lanes then fills wide rows [r0, r1) from them, eight rows of c at
+/* Where the CPU has AVX2 (solver_pack_wide), solver_pack_rows only places the rows
+ * (row_of), and solver_pack_lanes then fills wide rows [r0, r1) from them, eight rows of c at
  * a time through 8x8 transposes: the same lanes. */
 int solver_pack_wide(void);
 void solver_pack_lanes(solver_batch *out, const solver_constraint *c, int32_t r0, int32_t r1);
@@ -199,15 +199,12 @@ void solver_pack_lanes(solver_batch *out, const solver_constraint *c, int32_t r0
  * +0 where it is zero: resolve.c). */
 void solver_wide_warm_start(const solver_batch *s, int32_t r0, int32_t r1, rg_real *v);
 void solver_wide_iterate(solver_batch *s, int32_t r0, int32_t r1, rg_real *v);
-/* Copies the accumulated impulses pn, pt (or the pseudo impulses pp) of rows [k0, k1) of c
- * back into c. */
-void solver_unpack(const solver_batch *s, solver_constraint *c, int32_t k0, int32_t k1, int position);
-/* The same for the rows in wide rows [r0, r1) (through row_of). */
+/* Copies the accumulated impulses pn, pt (or the pseudo impulses pp) of the rows in wide
+ * rows [r0, r1) (through row_of) back into their rows of c. */
 void solver_unpack_wide(const solver_batch *s, solver_constraint *c, int32_t r0, int32_t r1, int position);
-/* The position rows: wide rows [r0, r1) cleared (pmin, pp = 0, padding included), then c's
- * rows [k0, k1) copied into their lanes (pmin; pp = 0).  Each row writes its own lanes. */
-void solver_clear_position(solver_batch *s, int32_t r0, int32_t r1);
-void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t k0, int32_t k1);
+/* The position rows of wide rows [r0, r1): each lane's pmin from its row of c (0 for
+ * padding), pp = 0.  Each wide row writes its own lanes. */
+void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t r0, int32_t r1);
 void solver_wide_iterate_position(solver_batch *s, int32_t r0, int32_t r1, rg_real *pv);
 
 /* ---- the rows of a step and their scratch, sized by the contact capacity (one row per

@@ -605,16 +605,21 @@ static void test_position_correction_adds_no_energy(void **state)
 
 /* ---------------------------------------------------------------- the lanes */
 
-/* Every lane of the wide rows holds its row of c (map) as solver_pack_rows copies it, field
- * by field, and every other lane the padding: the ground on both sides, every value 0. */
+/* Every row of c outside the overflow list is in exactly one lane (row_of), which holds it
+ * as solver_pack_rows copies it, field by field, and every other lane the padding: the
+ * ground on both sides, every value 0. */
 static void check_lanes(const solver_batch *sb, const solver_constraint *c, int32_t n)
 {
-    static unsigned char seen[SOLVER_WIDE_ROWS(700) * SOLVER_LANES];
+    static unsigned char seen[SOLVER_WIDE_ROWS(700) * SOLVER_LANES], placed[700];
     assert_true(n <= 700);
     memset(seen, 0, sizeof seen);
-    for (int32_t k = 0; k < n; k++) {
-        int32_t slot = sb->map[k];
-        if (slot < 0) continue;
+    memset(placed, 0, sizeof placed);
+    for (int32_t i = 0; i < sb->nover; i++) placed[sb->over[i]]++;
+    for (int32_t slot = 0; slot < sb->nrows * SOLVER_LANES; slot++) {
+        int32_t k = sb->row_of[slot];
+        if (k < 0) continue;
+        assert_true(k < n);
+        placed[k]++;
         const solver_wide *q = &sb->rows[slot / SOLVER_LANES];
         int l = slot % SOLVER_LANES;
         seen[slot] = 1;
@@ -630,6 +635,7 @@ static void check_lanes(const solver_batch *sb, const solver_constraint *c, int3
         assert_memory_equal(&q->pn[l], &c[k].pn, sizeof(rg_real));
         assert_memory_equal(&q->pt[l], &c[k].pt, sizeof(rg_real));
     }
+    for (int32_t k = 0; k < n; k++) assert_int_equal(placed[k], 1);
     const rg_real zero = 0;
     for (int32_t slot = 0; slot < sb->nrows * SOLVER_LANES; slot++) {
         if (seen[slot]) continue;
@@ -653,7 +659,7 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
     (void)state;
     enum { N = 700, BODIES = 40, ITERS = 8 };
     static solver_constraint rows[N], ref[N];
-    static int32_t order[N], color[N], map[N], over[N], lanes[SOLVER_PACK_BLOCKS(N) * 32], ab[2 * N];
+    static int32_t order[N], color[N], over[N], lanes[SOLVER_PACK_BLOCKS(N) * 32], ab[2 * N];
     static int32_t row_of[SOLVER_WIDE_ROWS(N) * SOLVER_LANES];
     static uint32_t mask[BODIES + 1];
     static solver_wide wide[SOLVER_WIDE_ROWS(N)];
@@ -686,7 +692,6 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
     memcpy(ref0, rows, sizeof rows);
     solver_batch sb;
     sb.rows = wide;
-    sb.map = map;
     sb.over = over;
     sb.row_of = row_of;
     /* garbage in the lanes first: the packing must write every one */
@@ -704,7 +709,7 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
         solver_wide_iterate(&sb, 0, sb.nrows, va);
         solver_iterate(rows, sb.over, sb.nover, va);
     }
-    solver_unpack(&sb, rows, 0, N, 0);
+    solver_unpack_wide(&sb, rows, 0, sb.nrows, 0);
     /* the reference: colour by colour, one row at a time, then the overflow */
     int32_t seq[N], n = 0;
     for (int col = 0; col < 32; col++)
@@ -745,7 +750,7 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
             for (int32_t r = sb.cstart[col + 1] - 1; r >= sb.cstart[col]; r--) solver_wide_iterate(&sb, r, r + 1, vc);
         solver_iterate(again, sb.over, sb.nover, vc);
     }
-    solver_unpack(&sb, again, 0, N, 0);
+    solver_unpack_wide(&sb, again, 0, sb.nrows, 0);
     assert_memory_equal(va, vc, sizeof va);
     for (int k = 0; k < N; k++) {
         assert_memory_equal(&rows[k].pn, &again[k].pn, sizeof(rg_real));
