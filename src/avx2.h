@@ -75,15 +75,11 @@ AVX2_INLINE void avx2_pairs_at(const float *const *p, __m256 *x, __m256 *y)
     *y = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1));
 }
 
-/* Solver body i's velocity pair in v (i >= 0: as unsigned, the address needs no sign
- * extension, which cost the solver's loops two instructions a lane). */
-#define AVX2_PAIR(v, i) ((v) + 2 * (size_t)(uint32_t)(i))
-
 /* The pairs (x, y) of v at 2 idx[l], l = 0..7 (solver bodies' velocities). */
 AVX2_INLINE void avx2_gather_pairs(const float *v, const int32_t *idx, __m256 *x, __m256 *y)
 {
-    const float *p[8] = {AVX2_PAIR(v, idx[0]), AVX2_PAIR(v, idx[1]), AVX2_PAIR(v, idx[2]), AVX2_PAIR(v, idx[3]),
-                         AVX2_PAIR(v, idx[4]), AVX2_PAIR(v, idx[5]), AVX2_PAIR(v, idx[6]), AVX2_PAIR(v, idx[7])};
+    const float *p[8] = {SOLVER_PAIR(v, idx[0]), SOLVER_PAIR(v, idx[1]), SOLVER_PAIR(v, idx[2]), SOLVER_PAIR(v, idx[3]),
+                         SOLVER_PAIR(v, idx[4]), SOLVER_PAIR(v, idx[5]), SOLVER_PAIR(v, idx[6]), SOLVER_PAIR(v, idx[7])};
     avx2_pairs_at(p, x, y);
 }
 
@@ -94,8 +90,8 @@ AVX2_INLINE void avx2_scatter_pairs(float *v, const int32_t *idx, __m256 x, __m2
     __m128 p01 = _mm256_castps256_ps128(lo), p45 = _mm256_extractf128_ps(lo, 1);
     __m128 p23 = _mm256_castps256_ps128(hi), p67 = _mm256_extractf128_ps(hi, 1);
     /* the addresses first: the stores may alias idx as far as the compiler knows */
-    float *p[8] = {AVX2_PAIR(v, idx[0]), AVX2_PAIR(v, idx[1]), AVX2_PAIR(v, idx[2]), AVX2_PAIR(v, idx[3]),
-                   AVX2_PAIR(v, idx[4]), AVX2_PAIR(v, idx[5]), AVX2_PAIR(v, idx[6]), AVX2_PAIR(v, idx[7])};
+    float *p[8] = {SOLVER_PAIR(v, idx[0]), SOLVER_PAIR(v, idx[1]), SOLVER_PAIR(v, idx[2]), SOLVER_PAIR(v, idx[3]),
+                   SOLVER_PAIR(v, idx[4]), SOLVER_PAIR(v, idx[5]), SOLVER_PAIR(v, idx[6]), SOLVER_PAIR(v, idx[7])};
     _mm_storel_pi((__m64 *)(void *)p[0], p01);
     _mm_storeh_pi((__m64 *)(void *)p[1], p01);
     _mm_storel_pi((__m64 *)(void *)p[2], p23);

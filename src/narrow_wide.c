@@ -208,8 +208,11 @@ AVX2_INLINE void narrow_wide_stage_rows(narrow_wide_stage *st, contact *const *c
         NARROW_WIDE_AND(NARROW_WIDE_CMP(vn0, _mm256_set1_ps(-p->restitution_threshold), _CMP_LT_OQ),
                         NARROW_WIDE_CMP(bounce, vmin, _CMP_GT_OQ)));
     vmin = narrow_wide_pick(bounces, bounce, vmin);
-    __m256 r[8] = {_mm256_castsi256_ps(_mm256_and_si256(awake_a, _mm256_add_epi32(ia, one))),
-                   _mm256_castsi256_ps(_mm256_and_si256(awake_b, _mm256_add_epi32(ib, one))),
+    /* resolve_index: the solver body of an awake body, else the ground */
+    __m256i qa = _mm256_and_si256(awake_a, _mm256_add_epi32(ia, one));
+    __m256i qb = _mm256_and_si256(awake_b, _mm256_add_epi32(ib, one));
+    __m256 r[8] = {_mm256_castsi256_ps(qa),
+                   _mm256_castsi256_ps(qb),
                    ima,
                    imb,
                    nx,
@@ -224,11 +227,9 @@ AVX2_INLINE void narrow_wide_stage_rows(narrow_wide_stage *st, contact *const *c
     int32_t o_a[8], o_b[8]; /* solver_row_bodies: a movable body's index, else 0 */
     _mm256_storeu_ps(o_toi, toi);
     _mm256_storeu_si256((__m256i *)(void *)o_a,
-                        _mm256_and_si256(_mm256_castps_si256(NARROW_WIDE_CMP(ima, zero, _CMP_GT_OQ)),
-                                         _mm256_and_si256(awake_a, _mm256_add_epi32(ia, one))));
+                        _mm256_and_si256(_mm256_castps_si256(NARROW_WIDE_CMP(ima, zero, _CMP_GT_OQ)), qa));
     _mm256_storeu_si256((__m256i *)(void *)o_b,
-                        _mm256_and_si256(_mm256_castps_si256(NARROW_WIDE_CMP(imb, zero, _CMP_GT_OQ)),
-                                         _mm256_and_si256(awake_b, _mm256_add_epi32(ib, one))));
+                        _mm256_and_si256(_mm256_castps_si256(NARROW_WIDE_CMP(imb, zero, _CMP_GT_OQ)), qb));
     /* resolve_row's height along gravity */
     float o_h[8];
     _mm256_storeu_ps(o_h, narrow_wide_neg(_mm256_add_ps(_mm256_mul_ps(px, _mm256_set1_ps(x->ux)),

@@ -112,15 +112,14 @@ int resolve_resort(const uint16_t *key, int32_t *ord, int32_t n)
  * chain of dependent compares. */
 #define RESOLVE_FOLDS 8
 
-/* The least and the greatest of h[0..n), as rg_min and rg_max fold them one by one from
- * RG_HUGE and -RG_HUGE.  Folds side by side give the same two where no height is NaN (but
- * for a zero's sign, which the keys below do not see: (+-0 - hmin) and (hmax - hmin) are the
- * same numbers or zeros that quantize to key 0); with a NaN, whose fold depends on the
- * order, the one fold runs again. */
+/* The least and the greatest of h[0..n), folded RESOLVE_FOLDS side by side from RG_HUGE and
+ * -RG_HUGE with rg_min and rg_max: the one-by-one fold's two numbers, since the heights are
+ * finite (contact points of bodies within RG_MAX_COORD) and the folds are exact, but for a
+ * zero's sign, which the keys below do not see ((+-0 - hmin) and (hmax - hmin) are the same
+ * numbers, or zeros that quantize to key 0). */
 static void resolve_span(const rg_real *h, int32_t n, rg_real *out_min, rg_real *out_max)
 {
     rg_real lo[RESOLVE_FOLDS], hi[RESOLVE_FOLDS];
-    int nan = 0;
     for (int u = 0; u < RESOLVE_FOLDS; u++) {
         lo[u] = RG_HUGE;
         hi[u] = -RG_HUGE;
@@ -128,30 +127,19 @@ static void resolve_span(const rg_real *h, int32_t n, rg_real *out_min, rg_real 
     int32_t k = 0;
     for (; n - k >= RESOLVE_FOLDS; k += RESOLVE_FOLDS)
         for (int u = 0; u < RESOLVE_FOLDS; u++) {
-            rg_real v = h[k + u];
-            nan |= v != v;
-            lo[u] = rg_min(lo[u], v);
-            hi[u] = rg_max(hi[u], v);
+            lo[u] = rg_min(lo[u], h[k + u]);
+            hi[u] = rg_max(hi[u], h[k + u]);
         }
     for (; k < n; k++) {
-        nan |= h[k] != h[k];
         lo[0] = rg_min(lo[0], h[k]);
         hi[0] = rg_max(hi[0], h[k]);
     }
-    rg_real hmin = RG_HUGE, hmax = -RG_HUGE;
-    if (nan) {
-        for (k = 0; k < n; k++) {
-            hmin = rg_min(hmin, h[k]);
-            hmax = rg_max(hmax, h[k]);
-        }
-    } else {
-        for (int u = 0; u < RESOLVE_FOLDS; u++) {
-            hmin = rg_min(hmin, lo[u]);
-            hmax = rg_max(hmax, hi[u]);
-        }
+    for (int u = 1; u < RESOLVE_FOLDS; u++) {
+        lo[0] = rg_min(lo[0], lo[u]);
+        hi[0] = rg_max(hi[0], hi[u]);
     }
-    *out_min = hmin;
-    *out_max = hmax;
+    *out_min = lo[0];
+    *out_max = hi[0];
 }
 
 /* Under gravity (x->down), rows bottom-up by the height of the contact point along it

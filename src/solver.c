@@ -31,10 +31,6 @@ static inline rg_real smax(rg_real a, rg_real b) { return a > b ? a : b; }
 static inline rg_real smin(rg_real a, rg_real b) { return a < b ? a : b; }
 #endif
 
-/* Solver body q's velocity pair in v (q >= 0: a solver index; as unsigned the address needs
- * no sign extension, which the wide loops paid on every lane). */
-#define SOLVER_PAIR(v, q) ((v) + 2 * (size_t)(uint32_t)(q))
-
 void solver_warm_start(const solver_constraint *c, const int32_t *list, int32_t k, rg_real *v)
 {
     for (int32_t i = 0; i < k; i++) {
@@ -346,23 +342,20 @@ void solver_pack_lanes(solver_batch *out, const solver_constraint *c, int32_t r0
 #endif
 }
 
-/* Lane l of wide row q back into its row r: the impulses, or the pseudo impulse. */
-static inline void solver_unpack_lane(const solver_wide *q, int l, solver_constraint *r, int position)
-{
-    if (position) {
-        r->pp = q->pp[l];
-    } else {
-        r->pn = q->pn[l];
-        r->pt = q->pt[l];
-    }
-}
-
 void solver_unpack_wide(const solver_batch *s, solver_constraint *c, int32_t r0, int32_t r1, int position)
 {
     for (int32_t r = r0; r < r1; r++) {
+        const solver_wide *q = &s->rows[r];
         const int32_t *k = s->row_of + (size_t)r * SOLVER_LANES;
-        for (int l = 0; l < SOLVER_LANES; l++)
-            if (k[l] >= 0) solver_unpack_lane(&s->rows[r], l, &c[k[l]], position);
+        for (int l = 0; l < SOLVER_LANES; l++) {
+            if (k[l] < 0) continue;
+            if (position) {
+                c[k[l]].pp = q->pp[l];
+            } else {
+                c[k[l]].pn = q->pn[l];
+                c[k[l]].pt = q->pt[l];
+            }
+        }
     }
 }
 

@@ -21,10 +21,16 @@
 #ifndef RG_SOLVER_H
 #define RG_SOLVER_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "mem.h"
 #include "rigid.h"
+
+/* Solver body q's velocity pair (vx, vy) in v, an array of pairs with the ground at 0 (q >= 0:
+ * as unsigned, the address needs no sign extension, which the wide loops paid on every
+ * lane). */
+#define SOLVER_PAIR(v, q) ((v) + 2 * (size_t)(uint32_t)(q))
 
 typedef struct solver_constraint {
     int32_t a, b;      /* solver body indices (velocity pairs); 0 is the ground */
