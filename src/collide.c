@@ -97,7 +97,7 @@ void collide_step_begin(rg_world *w, collide_step *x, rg_real dt)
     x->nc = 0;
     x->ns = x->n;
     x->nimp = 0;
-    x->nground = x->nevent = 0;
+    x->nblock = 0;
     x->woke = 0;
     x->unite = cw->sleeping && cw->island.near_sleep;
     x->late = NULL;

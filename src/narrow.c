@@ -1,4 +1,6 @@
 /* narrow.c: the narrowphase (see narrow.h). */
+#include <string.h>
+
 #include "body.h"
 #include "collision.h"
 #include "events.h"
@@ -105,8 +107,8 @@ typedef struct narrow_task {
     rg_world *w;
     collide_step *x;
     int wide;                         /* narrow_wide_ready */
-    int32_t n;                        /* staging: the contacts decided in parallel */
-    int count;                        /* the measuring counts each block's rows for the staging */
+    int32_t n;                        /* the contacts measured and decided in parallel */
+    int stage;                        /* and staged in parallel, into the spare rows */
     int32_t in_order[RG_MAX_WORKERS]; /* the worker met a contact decided in order */
 } narrow_task;
 
@@ -309,8 +311,6 @@ static FORCE_INLINE void narrow_block_run(rg_world *w, collide_step *x, int32_t 
         nb->in.kind_a[l] = nb->in.kind_b[l] = 0;
     }
     if (st != NULL) {
-        st->x = x;
-        st->rows = &w->coll.rows;
         st->ia = nb->ia;
         st->ib = nb->ib;
         st->id = nb->id;
@@ -320,35 +320,6 @@ static FORCE_INLINE void narrow_block_run(rg_world *w, collide_step *x, int32_t 
     (void)wide;
     (void)st;
 #endif
-}
-
-/* Measures the awake contacts [begin, end) and decides those that need no order, each in
- * one visit (a contact's decision reads only its own measurement and its bodies' views);
- * in blocks of eight, the common case's wide (narrow_wide.h). */
-static void narrow_measure_decide_range(int32_t begin, int32_t end, int32_t worker, void *context)
-{
-    narrow_task *t = context;
-    rg_world *w = t->w;
-    narrow_block nb;
-    for (int32_t k0 = begin; k0 < end; k0 += NARROW_WIDE_LANES) {
-        int32_t k1 = end - k0 > NARROW_WIDE_LANES ? k0 + NARROW_WIDE_LANES : end;
-        narrow_block_run(w, t->x, k0, k1, t->wide, &nb, NULL);
-        for (int32_t l = 0; l < nb.n; l++) {
-            contact *c = nb.c[l];
-            if (nb.done & (1u << l)) {
-                c->decided = nb.bits[l];
-                continue;
-            }
-            const cbody *A = nb.in.a[l], *B = nb.in.b[l];
-            int far = narrow_far(w, c, A, B);
-            narrow_measure(w, c, A, B, far);
-            if (narrow_in_order(w, c)) {
-                t->in_order[worker] = 1;
-                continue;
-            }
-            c->decided = narrow_decide(w, c, nb.ia[l], nb.ib[l], A, B, far, 0);
-        }
-    }
 }
 
 /* Joins the islands of a touching pair of awake dynamic bodies (dense ia, ib). */
@@ -375,21 +346,26 @@ static void narrow_events_of(rg_world *w, const contact *c, uint32_t bits)
     }
 }
 
+/* Stages contact id's row into d with the views' inverse masses: an awake body's (dense
+ * below x->n), else 0. */
+static FORCE_INLINE void narrow_stage_row(const rg_world *w, const collide_step *x, const solver_dest *d,
+                                          int32_t id, int32_t ia, int32_t ib)
+{
+    const cbody *cb = w->coll.views.cb;
+    resolve_stage(w, x, d, id, ia, ib, ia < x->n ? cb[ia].im : 0, ib < x->n ? cb[ib].im : 0);
+}
+
 /* What a contact's decision does to the rest of the world, in contact order: its solver row,
  * events, grounded flags, islands, waking (on the stepping thread, or, where nothing wakes
  * and the rows are staged, beside the solve's first part: narrow_commit_late). */
 static FORCE_INLINE void narrow_commit(rg_world *w, int32_t id, int32_t ia, int32_t ib, collide_step *x,
-                                       uint32_t bits, int stage, int *woke)
+                                       uint32_t bits, const solver_dest *d, int *woke)
 {
     collide_world *cw = &w->coll;
     contact_store *cs = &cw->contacts;
     body_store *b = &w->b;
     contact *c = &cs->c[id];
-    if ((bits & ND_STAGE) && stage) {
-        /* the views' inverse masses: an awake body's (dense below x->n), else 0 */
-        const cbody *cb = cw->views.cb;
-        resolve_stage(w, x, id, ia, ib, ia < x->n ? cb[ia].im : 0, ib < x->n ? cb[ib].im : 0);
-    }
+    if ((bits & ND_STAGE) && d != NULL) narrow_stage_row(w, x, d, id, ia, ib);
     narrow_events_of(w, c, bits);
     if (c->flags & CT_SENSOR) return;
     if (bits & ND_GROUND_A) b->cflags[ia] |= CF_GROUNDED;
@@ -421,15 +397,28 @@ static inline uint32_t narrow_decide_here(rg_world *w, contact *c, int32_t ia, i
 }
 
 /* Measuring and staging in parallel: the awake contacts in fixed blocks (a block's manifolds
- * cost some 10-25 us), measured and decided, their rows (and impacts) counted, summed in
- * block order, then written at those offsets: the rows of the serial walk, in its order.
+ * cost some 10-25 us), measured, decided and staged at once, each block's rows at its first
+ * contact's index in the spare rows (rows.spare: a contact stages one row at most), with its
+ * impacts, the bodies its touching contacts ground and its contacts with an event (at its
+ * place in rows.late, their counts after them).  The blocks' counts, summed in block order,
+ * place the rows, which are copied there: the rows of the serial walk, in its order.
  * rows.color and rows.tord (scratch of the solve, unused until then) hold each block's first
- * row and first impact.  The same passes list, for the commit, the
- * bodies that the touching contacts ground and the contacts with an event (rows.late, in
- * contact order; rows.lanes, the packing's scratch, holds each block's first of both). */
-#define NARROW_BLOCK 256
-/* rows.lanes holds 32 per packing block, two per staging block are asked */
-typedef char narrow_lanes_hold_the_blocks[2 * SOLVER_PACK_BLOCK <= 32 * NARROW_BLOCK ? 1 : -1];
+ * row and first impact. */
+#define NARROW_BLOCK SOLVER_STAGE_BLOCK
+
+/* Block blk's bodies to ground, contacts with an event, and the counts of both. */
+static inline int32_t *narrow_late_ground(const solver_rows *rows, int32_t blk)
+{
+    return rows->late + 2 * (size_t)blk * NARROW_BLOCK;
+}
+static inline int32_t *narrow_late_event(const solver_rows *rows, int32_t blk)
+{
+    return rows->late + 2 * (size_t)rows->cap + (size_t)blk * NARROW_BLOCK;
+}
+static inline int32_t *narrow_late_counts(const solver_rows *rows, int32_t blk)
+{
+    return rows->late + 3 * (size_t)rows->cap + 2 * (size_t)blk;
+}
 
 /* A decision's events (begin or end) and the bodies it grounds (none for a sensor). */
 static inline int32_t narrow_events(uint32_t bits) { return (bits & (ND_BEGIN | ND_END)) != 0; }
@@ -439,113 +428,129 @@ static inline int32_t narrow_grounds(const contact *c, uint32_t bits)
     return ((bits & ND_GROUND_A) != 0) + ((bits & ND_GROUND_B) != 0);
 }
 
-static void narrow_count_range(int32_t begin, int32_t end, int32_t worker, void *context)
-{
-    const narrow_task *t = context;
-    const contact_store *cs = &t->w->coll.contacts;
-    solver_rows *rows = &t->w->coll.rows;
-    (void)worker;
-    for (int32_t blk = begin; blk < end; blk++) {
-        int32_t k1 = (blk + 1) * NARROW_BLOCK < t->n ? (blk + 1) * NARROW_BLOCK : t->n;
-        int32_t nrow = 0, nimp = 0, nground = 0, nevent = 0;
-        for (int32_t k = blk * NARROW_BLOCK; k < k1; k++) {
-            const contact *c = &cs->c[cs->awake[k]];
-            uint32_t bits = c->decided;
-            nground += narrow_grounds(c, bits);
-            nevent += narrow_events(bits);
-            if (!(bits & ND_STAGE)) continue;
-            nrow++;
-            nimp += c->toi > 0;
-        }
-        rows->color[blk] = nrow;
-        rows->tord[blk] = nimp;
-        rows->lanes[2 * blk] = nground;
-        rows->lanes[2 * blk + 1] = nevent;
-    }
-}
-
-static void narrow_stage_range(int32_t begin, int32_t end, int32_t worker, void *context)
-{
-    const narrow_task *t = context;
-    rg_world *w = t->w;
-    const contact_store *cs = &w->coll.contacts;
-    solver_rows *rows = &w->coll.rows;
-    const cbody *cb = w->coll.views.cb;
-    const collide_step *x = t->x;
-    (void)worker;
-    for (int32_t blk = begin; blk < end; blk++) {
-        int32_t k1 = (blk + 1) * NARROW_BLOCK < t->n ? (blk + 1) * NARROW_BLOCK : t->n;
-        int32_t row = rows->color[blk], imp = rows->tord[blk];
-        int32_t *ground = rows->late + rows->lanes[2 * blk];
-        int32_t *event = rows->late + 2 * (size_t)rows->cap + rows->lanes[2 * blk + 1];
-        for (int32_t k = blk * NARROW_BLOCK; k < k1; k++) {
-            int32_t id = cs->awake[k];
-            const contact *c = &cs->c[id];
-            uint32_t bits = c->decided;
-            if (!(bits & (ND_STAGE | ND_BEGIN | ND_END | ND_GROUND_A | ND_GROUND_B))) continue;
-            int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
-            if (narrow_events(bits)) *event++ = id;
-            if (narrow_grounds(c, bits)) {
-                if (bits & ND_GROUND_A) *ground++ = ia;
-                if (bits & ND_GROUND_B) *ground++ = ib;
-            }
-            if (!(bits & ND_STAGE)) continue;
-            resolve_row(w, x, row, id, ia, ib, ia < x->n ? cb[ia].im : 0, ib < x->n ? cb[ib].im : 0);
-            if (c->toi > 0) rows->imp[imp++] = row;
-            row++;
-        }
-    }
-}
-
-/* Items are blocks of NARROW_BLOCK awake contacts: each measured and decided, then (t->count)
- * counted for the staging while its contacts are at hand. */
+/* Items are blocks of NARROW_BLOCK awake contacts: each measured and decided those that need
+ * no order (a contact's decision reads only its own measurement and its bodies' views), in
+ * blocks of eight, the common case's wide (narrow_wide.h); with t->stage, staged too. */
 static void narrow_measure_decide_blocks(int32_t begin, int32_t end, int32_t worker, void *context)
 {
     narrow_task *t = context;
+    rg_world *w = t->w;
+    const collide_step *x = t->x;
+    solver_rows *rows = &w->coll.rows;
+    narrow_block nb;
+    narrow_wide_stage st;
+    int32_t nc, nimp;
+    st.x = x;
+    st.d = rows->spare;
+    st.d.nc = &nc;
+    st.d.nimp = &nimp;
     for (int32_t blk = begin; blk < end; blk++) {
-        int32_t k1 = (blk + 1) * NARROW_BLOCK < t->n ? (blk + 1) * NARROW_BLOCK : t->n;
-        narrow_measure_decide_range(blk * NARROW_BLOCK, k1, worker, context);
-        if (t->count) narrow_count_range(blk, blk + 1, worker, context);
+        int32_t first = blk * NARROW_BLOCK, last = first + NARROW_BLOCK < t->n ? first + NARROW_BLOCK : t->n;
+        int32_t *ground = narrow_late_ground(rows, blk), *event = narrow_late_event(rows, blk);
+        int32_t nground = 0, nevent = 0;
+        nc = nimp = 0;
+        if (t->stage) {
+            st.d.stage = rows->spare.stage + first;
+            st.d.hgt = rows->spare.hgt + first;
+            st.d.ab = rows->spare.ab + 2 * (size_t)first;
+            st.d.imp = rows->spare.imp + first;
+        }
+        for (int32_t k0 = first; k0 < last; k0 += NARROW_WIDE_LANES) {
+            int32_t k1 = last - k0 > NARROW_WIDE_LANES ? k0 + NARROW_WIDE_LANES : last;
+            narrow_block_run(w, t->x, k0, k1, t->wide, &nb, t->stage ? &st : NULL);
+            for (int32_t l = 0; l < nb.n; l++) {
+                contact *c = nb.c[l];
+                uint32_t bits;
+                if (nb.done & (1u << l)) {
+                    bits = nb.bits[l];
+                } else {
+                    const cbody *A = nb.in.a[l], *B = nb.in.b[l];
+                    int far = narrow_far(w, c, A, B);
+                    narrow_measure(w, c, A, B, far);
+                    if (narrow_in_order(w, c)) { /* the walk stages all then */
+                        t->in_order[worker] = 1;
+                        continue;
+                    }
+                    bits = narrow_decide(w, c, nb.ia[l], nb.ib[l], A, B, far, 0);
+                }
+                c->decided = bits;
+                if (!t->stage) continue;
+                if (narrow_events(bits)) event[nevent++] = nb.id[l];
+                if (narrow_grounds(c, bits)) {
+                    if (bits & ND_GROUND_A) ground[nground++] = nb.ia[l];
+                    if (bits & ND_GROUND_B) ground[nground++] = nb.ib[l];
+                }
+                if ((bits & ND_STAGE) && !st.staged) narrow_stage_row(w, x, &st.d, nb.id[l], nb.ia[l], nb.ib[l]);
+            }
+        }
+        if (!t->stage) continue;
+        rows->color[blk] = nc;
+        rows->tord[blk] = nimp;
+        narrow_late_counts(rows, blk)[0] = nground;
+        narrow_late_counts(rows, blk)[1] = nevent;
     }
 }
 
-/* Stages the rows of the first t->n awake contacts, all decided and counted in parallel. */
-static void narrow_stage(rg_world *w, narrow_task *t)
+/* Items are blocks: each copies its rows from the spare rows to their places (rows.color and
+ * rows.tord hold every block's first row and impact, and one past the last block's). */
+static void narrow_place_range(int32_t begin, int32_t end, int32_t worker, void *context)
+{
+    const narrow_task *t = context;
+    solver_rows *rows = &t->w->coll.rows;
+    const solver_dest *s = &rows->spare;
+    (void)worker;
+    for (int32_t blk = begin; blk < end; blk++) {
+        size_t from = (size_t)blk * NARROW_BLOCK, to = (size_t)rows->color[blk];
+        size_t n = (size_t)(rows->color[blk + 1] - rows->color[blk]);
+        memcpy(rows->stage + to, s->stage + from, n * sizeof *rows->stage);
+        memcpy(rows->hgt + to, s->hgt + from, n * sizeof *rows->hgt);
+        memcpy(rows->ab + 2 * to, s->ab + 2 * from, 2 * n * sizeof *rows->ab);
+        int32_t *imp = rows->imp + rows->tord[blk];
+        for (int32_t k = 0; k < rows->tord[blk + 1] - rows->tord[blk]; k++)
+            imp[k] = s->imp[from + (size_t)k] + (int32_t)to;
+    }
+}
+
+/* Places the rows of the first t->n awake contacts, all staged in parallel. */
+static void narrow_place(rg_world *w, narrow_task *t)
 {
     solver_rows *rows = &w->coll.rows;
     collide_step *x = t->x;
     int32_t blocks = (t->n + NARROW_BLOCK - 1) / NARROW_BLOCK;
-    int32_t row = 0, imp = 0, ground = 0, event = 0;
+    int32_t row = 0, imp = 0;
     for (int32_t blk = 0; blk < blocks; blk++) {
-        int32_t r = rows->color[blk], m = rows->tord[blk], g = rows->lanes[2 * blk], e = rows->lanes[2 * blk + 1];
+        int32_t r = rows->color[blk], m = rows->tord[blk];
         rows->color[blk] = row;
         rows->tord[blk] = imp;
-        rows->lanes[2 * blk] = ground;
-        rows->lanes[2 * blk + 1] = event;
         row += r;
         imp += m;
-        ground += g;
-        event += e;
     }
-    task_for(w, narrow_stage_range, blocks, 1, t);
+    rows->color[blocks] = row; /* (blocks < cap: a block holds 256 contacts of cap) */
+    rows->tord[blocks] = imp;
+    task_for(w, narrow_place_range, blocks, 1, t);
     x->nc = row;
     x->nimp = imp;
-    x->nground = ground;
-    x->nevent = event;
+    x->nblock = blocks;
 }
 
 /* The commits of a step in which nothing can wake, the rows staged already, as narrow_run's
- * walk would make them: the grounded flags and the events from the staging's lists (the
- * events in contact order), then the islands, joined in contact order. */
+ * walk would make them: the grounded flags and the events from the blocks' lists (the events
+ * in contact order), then the islands, joined in contact order. */
 static void narrow_commit_late(rg_world *w, collide_step *x)
 {
     contact_store *cs = &w->coll.contacts;
     const solver_rows *rows = &w->coll.rows;
     uint32_t *cflags = w->b.cflags;
-    for (int32_t k = 0; k < x->nground; k++) cflags[rows->late[k]] |= CF_GROUNDED;
-    for (int32_t k = 0; k < x->nevent; k++) { /* (rows.late is NULL while there are no contacts) */
-        const contact *c = &cs->c[rows->late[2 * (size_t)rows->cap + (size_t)k]];
-        narrow_events_of(w, c, c->decided);
+    for (int32_t blk = 0; blk < x->nblock; blk++) {
+        const int32_t *ground = narrow_late_ground(rows, blk);
+        for (int32_t k = 0; k < narrow_late_counts(rows, blk)[0]; k++) cflags[ground[k]] |= CF_GROUNDED;
+    }
+    for (int32_t blk = 0; blk < x->nblock; blk++) {
+        const int32_t *event = narrow_late_event(rows, blk);
+        for (int32_t k = 0; k < narrow_late_counts(rows, blk)[1]; k++) {
+            const contact *c = &cs->c[event[k]];
+            narrow_events_of(w, c, c->decided);
+        }
     }
     if (!x->unite) return;
     for (int32_t k = 0; k < cs->n_awake; k++) {
@@ -569,14 +574,17 @@ void narrow_run(rg_world *w, collide_step *x)
     if (workers < 2 && w->b.n_moving == w->b.n_active) measured = 0;
     for (int32_t k = 0; k < workers; k++) t.in_order[k] = 0;
     t.n = measured;
-    t.count = workers > 1;
+    /* with workers, the rows are staged in parallel too (the spare rows are laid out on the
+     * first such step; where the allocator fails, the walk below stages them) */
+    t.stage = workers > 1 && measured > 0 && solver_rows_spare(&w->coll.rows, &w->mem);
     task_for(w, narrow_measure_decide_blocks, (measured + NARROW_BLOCK - 1) / NARROW_BLOCK, 1, &t);
     for (int32_t k = 0; k < workers; k++) in_order |= t.in_order[k];
-    /* with workers and without a contact decided in order, the rows are staged in parallel
-     * (the same rows in the same order as the walk below stages them on one thread) */
-    int serial = in_order || workers < 2;
+    /* without a contact decided in order, the rows staged in parallel are those the walk
+     * below stages on one thread, in the same order: they are placed */
+    int serial = in_order || !t.stage;
+    solver_dest rows = resolve_rows_dest(&w->coll.rows, x);
     if (!serial) {
-        narrow_stage(w, &t);
+        narrow_place(w, &t);
         /* No body asleep: nothing wakes (a static body never does), so the walk below would
          * only commit, and the solve runs that beside its own first part. */
         if (w->b.n_moving == w->b.n_active) {
@@ -594,6 +602,8 @@ void narrow_run(rg_world *w, collide_step *x)
          * its commits stage nothing. */
         narrow_block nb;
         narrow_wide_stage st;
+        st.x = x;
+        st.d = rows;
         for (int32_t k0 = 0; k0 < cs->n_awake; k0 += NARROW_WIDE_LANES) {
             int32_t k1 = cs->n_awake - k0 > NARROW_WIDE_LANES ? k0 + NARROW_WIDE_LANES : cs->n_awake;
             narrow_block_run(w, x, k0, k1, t.wide, &nb, &st);
@@ -601,7 +611,7 @@ void narrow_run(rg_world *w, collide_step *x)
                 contact *c = nb.c[l];
                 int32_t ia = nb.ia[l], ib = nb.ib[l];
                 uint32_t bits = (nb.done & (1u << l)) ? nb.bits[l] : narrow_decide_here(w, c, ia, ib, x, 1);
-                narrow_commit(w, nb.id[l], ia, ib, x, bits, !st.staged, &x->woke);
+                narrow_commit(w, nb.id[l], ia, ib, x, bits, st.staged ? NULL : &rows, &x->woke);
             }
         }
         return;
@@ -614,6 +624,6 @@ void narrow_run(rg_world *w, collide_step *x)
         int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb); /* a wake moves them only after the commit */
         int here = k >= measured || narrow_in_order(w, c);
         uint32_t bits = here ? narrow_decide_here(w, c, ia, ib, x, k >= measured) : c->decided;
-        narrow_commit(w, id, ia, ib, x, bits, serial || k >= measured, &x->woke);
+        narrow_commit(w, id, ia, ib, x, bits, serial || k >= measured ? &rows : NULL, &x->woke);
     }
 }

@@ -180,15 +180,14 @@ AVX2_INLINE void narrow_wide_fields(contact *const *c, size_t offset, __m256 *f0
     avx2_pairs_at(p, f0, f1);
 }
 
-/* resolve_row and resolve_stage (resolve.h) for the lanes of stage, in lane order: each
+/* resolve_stage (resolve.h) for the lanes of stage, in lane order: each
  * value as there (resolve_index, the views' inverse masses of awake bodies, m = 1 / (ima +
  * imb), solver_vmin), a row's two halves through 8x8 transposes. */
 AVX2_INLINE void narrow_wide_stage_rows(narrow_wide_stage *st, contact *const *c,
                                         uint32_t stage, __m256 ima, __m256 imb, __m256 nx, __m256 ny, __m256 px,
                                         __m256 py, __m256 s0, __m256 vn0, __m256 toi, __m256 closing)
 {
-    collide_step *x = st->x;
-    solver_rows *rows = st->rows;
+    const collide_step *x = st->x;
     const solver_params *p = &x->p;
     const __m256 zero = _mm256_setzero_ps();
     __m256i n = _mm256_set1_epi32(x->n), one = _mm256_set1_epi32(1);
@@ -230,15 +229,15 @@ AVX2_INLINE void narrow_wide_stage_rows(narrow_wide_stage *st, contact *const *c
                         _mm256_and_si256(_mm256_castps_si256(NARROW_WIDE_CMP(ima, zero, _CMP_GT_OQ)), qa));
     _mm256_storeu_si256((__m256i *)(void *)o_b,
                         _mm256_and_si256(_mm256_castps_si256(NARROW_WIDE_CMP(imb, zero, _CMP_GT_OQ)), qb));
-    /* resolve_row's height along gravity */
+    /* resolve_stage's height along gravity */
     float o_h[8];
     _mm256_storeu_ps(o_h, narrow_wide_neg(_mm256_add_ps(_mm256_mul_ps(px, _mm256_set1_ps(x->ux)),
                                                         _mm256_mul_ps(py, _mm256_set1_ps(x->uy)))));
     /* in locals: the stores could alias the counts and the arrays' pointers */
-    solver_constraint *const out = rows->stage;
-    rg_real *const hgt = rows->hgt;
-    int32_t *const imp = rows->imp, *const ab = rows->ab;
-    int32_t k = x->nc, nimp = x->nimp;
+    solver_constraint *const out = st->d.stage;
+    rg_real *const hgt = st->d.hgt;
+    int32_t *const imp = st->d.imp, *const ab = st->d.ab;
+    int32_t k = *st->d.nc, nimp = *st->d.nimp;
     for (uint32_t left = stage; left != 0; left &= left - 1, k++) {
         int l = __builtin_ctz(left);
         _mm256_storeu_ps((float *)(void *)&out[k], r[l]);
@@ -248,8 +247,8 @@ AVX2_INLINE void narrow_wide_stage_rows(narrow_wide_stage *st, contact *const *c
         ab[2 * k + 1] = o_b[l];
         if (o_toi[l] > 0) imp[nimp++] = k;
     }
-    x->nc = k;
-    x->nimp = nimp;
+    *st->d.nc = k;
+    *st->d.nimp = nimp;
 }
 
 AVX2_FN uint32_t narrow_wide_decide(const struct rg_world *w, const narrow_lanes *in, contact *const *c,

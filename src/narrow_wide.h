@@ -43,14 +43,15 @@ typedef struct narrow_lanes {
     const cbody *a[NARROW_WIDE_LANES], *b[NARROW_WIDE_LANES];
 } narrow_lanes;
 
-/* Where the one-thread walk has narrow_wide_decide stage the rows of a block it decides
- * whole: the lanes' dense body indices and contact ids, the step (its row counts grow).
- * `staged` says it did: the rows resolve.h's resolve_stage writes, with the same values, for
- * the lanes with ND_STAGE in lane order (and pmin and pp, which resolve_row leaves and the
- * solve sets before it reads them, 0). */
+/* Where narrow_wide_decide stages the rows of a block it decides whole: the lanes' dense
+ * body indices and contact ids, the step, the destination (the step's rows on one thread, a
+ * block's place in the spare rows with workers: narrow.c).  `staged` says it did: the rows
+ * resolve.h's resolve_stage writes, with the same values, for the lanes with ND_STAGE in lane
+ * order (and pmin and pp, which resolve_stage leaves and the solve sets before it reads them,
+ * 0). */
 typedef struct narrow_wide_stage {
-    struct collide_step *x;
-    solver_rows *rows;
+    const struct collide_step *x;
+    solver_dest d;
     const int32_t *ia, *ib, *id;
     int staged;
 } narrow_wide_stage;

@@ -42,6 +42,7 @@ static void resolve_restage(rg_world *w, collide_step *x)
     x->nc = 0;
     x->n = n;
     x->ns = n;
+    solver_dest d = resolve_rows_dest(&cw->rows, x);
     for (int32_t k = 0; k < cs->n_awake; k++) {
         int32_t id = cs->awake[k];
         contact *c = &cs->c[id];
@@ -53,7 +54,7 @@ static void resolve_restage(rg_world *w, collide_step *x)
             c->pn = c->pt = 0;
             continue;
         }
-        resolve_stage(w, x, id, ia, ib, ima, imb);
+        resolve_stage(w, x, &d, id, ia, ib, ima, imb);
     }
 }
 

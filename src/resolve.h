@@ -20,16 +20,16 @@ void resolve_next_gen(resolve_state *s, int32_t n);
  * (resolve_run stamps them). */
 static inline int32_t resolve_index(int32_t i, int32_t n) { return i < n ? i + 1 : 0; }
 
-/* Writes row k of contact id (its normal, point, s0, vn0, toi and flags set for this step)
- * between dense bodies ia and ib of inverse masses ima, imb (ima + imb > 0). */
-static inline void resolve_row(rg_world *w, const collide_step *x, int32_t k, int32_t id, int32_t ia,
-                               int32_t ib, rg_real ima, rg_real imb)
+/* Stages the next row of d: contact id's (its normal, point, s0, vn0, toi and flags set for
+ * this step) between dense bodies ia and ib of inverse masses ima, imb (ima + imb > 0), and
+ * lists it as an impact when toi > 0. */
+static inline void resolve_stage(const rg_world *w, const collide_step *x, const solver_dest *d, int32_t id,
+                                 int32_t ia, int32_t ib, rg_real ima, rg_real imb)
 {
-    collide_world *cw = &w->coll;
-    solver_rows *rows = &cw->rows;
-    const contact *c = &cw->contacts.c[id];
-    solver_constraint *q = &rows->stage[k];
-    rows->hgt[k] = -(c->px * x->ux + c->py * x->uy); /* the height along gravity (0 without) */
+    const contact *c = &w->coll.contacts.c[id];
+    int32_t k = (*d->nc)++;
+    solver_constraint *q = &d->stage[k];
+    d->hgt[k] = -(c->px * x->ux + c->py * x->uy); /* the height along gravity (0 without) */
     q->a = resolve_index(ia, x->n);
     q->b = resolve_index(ib, x->n);
     q->ima = ima;
@@ -44,16 +44,15 @@ static inline void resolve_row(rg_world *w, const collide_step *x, int32_t k, in
     q->pn = c->pn;
     q->pt = c->pt;
     q->cid = id;
-    solver_row_bodies(q, rows->ab + 2 * (size_t)k);
+    solver_row_bodies(q, d->ab + 2 * (size_t)k);
+    if (c->toi > 0) d->imp[(*d->nimp)++] = k;
 }
 
-/* Stages the next row: contact id's, as resolve_row, and its impact when toi > 0. */
-static inline void resolve_stage(rg_world *w, collide_step *x, int32_t id, int32_t ia, int32_t ib,
-                                 rg_real ima, rg_real imb)
+/* The step's own rows as a destination: staged at x->nc. */
+static inline solver_dest resolve_rows_dest(solver_rows *rows, collide_step *x)
 {
-    int32_t k = x->nc++;
-    resolve_row(w, x, k, id, ia, ib, ima, imb);
-    if (w->coll.contacts.c[id].toi > 0) w->coll.rows.imp[x->nimp++] = k;
+    solver_dest d = {rows->stage, rows->hgt, rows->ab, rows->imp, &x->nc, &x->nimp};
+    return d;
 }
 
 /* The order of n rows by (key, row) -- what the stable radix sort of the solving order gives

@@ -705,7 +705,7 @@ static void solver_rows_layout(mem_layout *l, void *ctx)
     r->color = mem_take(l, n, sizeof(int32_t));
     r->imp = mem_take(l, n, sizeof(int32_t));
     r->fixed = mem_take(l, n, sizeof(int32_t));
-    r->late = mem_take(l, 3 * n, sizeof(int32_t));
+    r->late = mem_take(l, 3 * n + 2 * (size_t)SOLVER_STAGE_BLOCKS(r->cap), sizeof(int32_t));
     r->lanes = mem_take(l, (size_t)SOLVER_PACK_BLOCKS(r->cap) * 32, sizeof(int32_t));
     r->edge = mem_take(l, (size_t)SOLVER_WIDE_ROWS(r->cap), sizeof(uint8_t));
     r->key = mem_take(l, n, sizeof(uint16_t));
@@ -720,8 +720,25 @@ rg_status solver_rows_alloc(solver_rows *fresh, const rg_mem *m, int32_t cap)
     return fresh->block != NULL ? RG_OK : RG_ERR_OUT_OF_MEMORY;
 }
 
+static void solver_rows_spare_layout(mem_layout *l, void *ctx)
+{
+    solver_rows *r = ctx;
+    size_t n = (size_t)r->cap;
+    r->spare.stage = mem_take(l, n, sizeof(solver_constraint));
+    r->spare.hgt = mem_take(l, n, sizeof(rg_real));
+    r->spare.ab = mem_take(l, n, 2 * sizeof(int32_t));
+    r->spare.imp = mem_take(l, n, sizeof(int32_t));
+}
+
+int solver_rows_spare(solver_rows *r, const rg_mem *m)
+{
+    if (r->spare_block == NULL) r->spare_block = mem_block(m, solver_rows_spare_layout, r, &r->spare_size);
+    return r->spare_block != NULL;
+}
+
 void solver_rows_release(solver_rows *r, const rg_mem *m)
 {
     mem_free(m, r->block, r->block_size);
+    mem_free(m, r->spare_block, r->spare_size);
     memset(r, 0, sizeof *r);
 }

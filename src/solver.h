@@ -213,6 +213,17 @@ void solver_unpack_wide(const solver_batch *s, solver_constraint *c, int32_t r0,
 void solver_pack_position(solver_batch *s, const solver_constraint *c, int32_t r0, int32_t r1);
 void solver_wide_iterate_position(solver_batch *s, int32_t r0, int32_t r1, rg_real *pv);
 
+/* Where rows are staged (resolve.h's resolve_stage): row k in stage[k], its height hgt[k]
+ * and movable bodies ab[2k], ab[2k + 1]; the impacts' rows listed in imp; *nc rows and
+ * *nimp impacts there so far.  The rows themselves, counted by the step, or a block's place
+ * in the parallel staging's spare arrays (solver_rows.spare). */
+typedef struct solver_dest {
+    solver_constraint *stage;
+    rg_real *hgt;
+    int32_t *ab, *imp;
+    int32_t *nc, *nimp;
+} solver_dest;
+
 /* ---- the rows of a step and their scratch, sized by the contact capacity (one row per
  * contact at most), in one block. */
 typedef struct solver_rows {
@@ -230,16 +241,31 @@ typedef struct solver_rows {
     int32_t *fixed;           /* [0, cap): rows against an immovable body (solver_row_fixed) */
     uint8_t *edge;            /* per wide row: it meets a body that another band's rows meet
                                * (resolve.c, when the colours run in bands) */
-    int32_t *late;            /* [0, 3 cap): what the parallel staging leaves for the commit
-                               * (narrow.c): bodies to ground [0, 2 cap), contacts with an
-                               * event [2 cap, 3 cap) */
+    int32_t *late;            /* what the parallel staging leaves for the commit (narrow.c):
+                               * bodies to ground [0, 2 cap), contacts with an event [2 cap,
+                               * 3 cap), two counts per block of contacts after that */
     void *block;
     size_t block_size;
     int32_t cap;
+    /* The parallel staging's rows before their places are known (narrow.c): each block of
+     * contacts stages at its first contact's index, and the rows are copied to their places
+     * once every block is counted.  [0, cap) of stage, hgt, 2 cap of ab, cap of imp, in a
+     * block of their own laid out by solver_rows_spare on the first step with workers (a
+     * world on one thread never holds it); spare.nc and spare.nimp are NULL. */
+    solver_dest spare;
+    void *spare_block;
+    size_t spare_size;
 } solver_rows;
+
+/* The parallel staging's blocks of contacts (narrow.c), and how many cap contacts make. */
+#define SOLVER_STAGE_BLOCK 256
+#define SOLVER_STAGE_BLOCKS(cap) (((cap) + SOLVER_STAGE_BLOCK - 1) / SOLVER_STAGE_BLOCK)
 
 /* Rows for cap contacts into *fresh (nothing allocated on failure: RG_ERR_OUT_OF_MEMORY). */
 rg_status solver_rows_alloc(solver_rows *fresh, const rg_mem *m, int32_t cap);
+/* Lays out r's spare arrays if they are not yet; returns 0 (holding none) if the allocator
+ * fails. */
+int solver_rows_spare(solver_rows *r, const rg_mem *m);
 void solver_rows_release(solver_rows *r, const rg_mem *m);
 
 #endif

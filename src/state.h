@@ -269,8 +269,8 @@ typedef struct collide_step {
     int32_t nc;         /* staged rows */
     int32_t ns;         /* solver bodies after the ground: the awake bodies, 1..n */
     int32_t nimp;       /* staged impact rows (rows.imp) */
-    int32_t nground;    /* the parallel staging's bodies to ground and contacts with an */
-    int32_t nevent;     /* event (rows.late) */
+    int32_t nblock;     /* the parallel staging's blocks (their bodies to ground and contacts
+                         * with an event: narrow.c) */
     int woke;           /* the pair search or the narrowphase woke bodies: rows restaged */
     int unite;          /* join islands in the narrowphase (sleeping is near) */
     /* What the narrowphase left to do after the rows are staged, which neither reads nor

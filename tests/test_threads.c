@@ -358,6 +358,76 @@ static void test_the_pool_keeps_ranges_at_least_min_range(void **state)
     }
 }
 
+/* An allocator that, armed, refuses the first block of 64 kB or more asked of it. */
+typedef struct refusing {
+    int armed;
+    long refused, big; /* blocks refused, big blocks given */
+} refusing;
+
+static void *refusing_fn(void *user, void *ptr, size_t old_size, size_t new_size)
+{
+    refusing *r = user;
+    if (new_size >= ((size_t)64 << 10)) {
+        if (r->armed) {
+            r->armed = 0;
+            r->refused++;
+            return NULL;
+        }
+        r->big++;
+    }
+    if (new_size == 0) {
+        free(ptr);
+        return NULL;
+    }
+    (void)old_size;
+    return realloc(ptr, new_size);
+}
+
+/* The first step with workers lays out the parallel staging's spare rows (narrow.c: 160 kB
+ * for this pile's contacts; the pair search's own blocks for workers are 3 kB); where the
+ * allocator refuses them, that step stages its rows on the stepping thread instead, with the
+ * results of one thread, and the next step lays them out. */
+static void test_workers_whose_spare_rows_are_refused_step_as_one_thread(void **state)
+{
+    (void)state;
+    enum { N = 1200 };
+    refusing ref = { 0, 0, 0 };
+    rg_world *w[2];
+    rg_body b[2][N];
+    assert_ok(rg_world_create(&w[0]));
+    assert_ok(rg_world_create_with_allocator(refusing_fn, &ref, &w[1]));
+    for (int k = 0; k < 2; k++) {
+        assert_ok(rg_world_set_gravity(w[k], v2(0, -10)));
+        assert_ok(rg_world_set_sleeping(w[k], 0));
+        floor_of(w[k]);
+        for (int i = 0; i < N; i++) /* columns 1.1 m apart of boxes 1.05 m apart: every box rests */
+            b[k][i] = box_body(w[k], RG_BODY_DYNAMIC, 1, -16.5 + 1.1 * (i % 30), 0.5 + 1.05 * (i / 30), 0.5, 0.5);
+        step_n(w[k], 30, DT);
+    }
+    shuffler sh;
+    rg_task_system ts;
+    shuffler_init(&sh, 11, 2, 0);
+    shuffler_tasks(&sh, &ts);
+    assert_ok(rg_world_set_task_system(w[1], &ts));
+    long big = ref.big;
+    ref.armed = 1;
+    for (int k = 0; k < 2; k++) assert_ok(rg_world_step(w[k], DT));
+    assert_int_equal(ref.refused, 1);
+    assert_int_equal(ref.big, big);
+    assert_true(hash_bodies(w[0], b[0], N, 0) == hash_bodies(w[1], b[1], N, 0));
+    for (int k = 0; k < 2; k++) assert_ok(rg_world_step(w[k], DT));
+    assert_int_equal(ref.big, big + 1); /* laid out now */
+    for (int k = 0; k < 2; k++) step_n(w[k], 20, DT);
+    assert_int_equal(ref.big, big + 1);
+    assert_true(hash_bodies(w[0], b[0], N, 0) == hash_bodies(w[1], b[1], N, 0));
+    uint64_t h[2];
+    for (int k = 0; k < 2; k++) assert_ok(rg_world_hash(w[k], &h[k]));
+    assert_true(h[0] == h[1]);
+    assert_true(sh.ranges > sh.tasks);
+    assert_int_equal(sh.misuse, 0);
+    for (int k = 0; k < 2; k++) rg_world_destroy(w[k]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -367,6 +437,7 @@ int main(void)
         cmocka_unit_test(test_two_worlds_on_two_threads_share_a_pool),
         cmocka_unit_test(test_the_pool_runs_each_item_of_each_task_once),
         cmocka_unit_test(test_the_pool_keeps_ranges_at_least_min_range),
+        cmocka_unit_test(test_workers_whose_spare_rows_are_refused_step_as_one_thread),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
