@@ -199,6 +199,7 @@ typedef struct resolve_task {
     int32_t last;   /* bands: the first phase of the last sweep, whose rows unpack as they end */
     int ncol;       /* the colours that have rows, in order */
     int cols[32];
+    int32_t nedge[BANDS_MAX][32]; /* bands: the edge rows of band b's slice of colour cols[k] */
     int32_t pushing[RG_MAX_WORKERS];
 } resolve_task;
 
@@ -467,15 +468,16 @@ static void resolve_band_stamp(int32_t begin, int32_t end, int32_t worker, void 
 /* resolve_band_flag reads a body's bytes as one 64-bit word */
 typedef char resolve_bands_fill_a_word[BANDS_MAX == 8 ? 1 : -1];
 
-/* Items are bands: each flags its wide rows that meet a body another band stamped.  Only
- * movable bodies are stamped, so every lane may be tested: eight bands' bytes at once, those
- * of the other bands compared with the generation (a byte of x is zero where they match). */
+/* Items are bands: each lists the wide rows of its slices that meet a body another band
+ * stamped (its edge rows, rows.edge from each slice's start, t->nedge).  Only movable bodies
+ * are stamped, so every lane may be tested: eight bands' bytes at once, those of the other
+ * bands compared with the generation (a byte of x is zero where they match). */
 static void resolve_band_flag(int32_t begin, int32_t end, int32_t worker, void *context)
 {
-    const resolve_task *t = context;
+    resolve_task *t = context;
     const solver_batch *sb = t->sb;
     const resolve_state *rs = &t->w->coll.resolve;
-    uint8_t *edge = t->w->coll.rows.edge;
+    int32_t *edge = t->w->coll.rows.edge;
     const uint64_t ones = 0x0101010101010101u, lows = 0x7F7F7F7F7F7F7F7Fu;
     (void)worker;
     for (int32_t b = begin; b < end; b++) {
@@ -485,8 +487,9 @@ static void resolve_band_flag(int32_t begin, int32_t end, int32_t worker, void *
         uint64_t ignore, gen = ones * rs->bgen;
         memcpy(&ignore, skip, sizeof ignore);
         for (int k = 0; k < t->ncol; k++) {
-            int32_t r1 = resolve_band_at(sb, t->cols[k], b + 1, t->bands);
-            for (int32_t r = resolve_band_at(sb, t->cols[k], b, t->bands); r < r1; r++) {
+            int32_t r0 = resolve_band_at(sb, t->cols[k], b, t->bands), r1 = resolve_band_at(sb, t->cols[k], b + 1, t->bands);
+            int32_t n = 0;
+            for (int32_t r = r0; r < r1; r++) {
                 const solver_wide *q = &sb->rows[r];
                 uint64_t zero = 0;
                 for (int l = 0; l < SOLVER_LANES; l++) {
@@ -497,38 +500,53 @@ static void resolve_band_flag(int32_t begin, int32_t end, int32_t worker, void *
                     y = (y ^ gen) | ignore;
                     zero |= ~(((x & lows) + lows) | x) | ~(((y & lows) + lows) | y); /* the high bit of each zero byte */
                 }
-                edge[r] = (uint8_t)((zero & ~lows) != 0);
+                edge[r0 + n] = r;
+                n += (zero & ~lows) != 0;
             }
+            t->nedge[b][k] = n;
         }
     }
 }
 
+/* Solves wide rows [r, e) of a band's phase: a run of its edge rows or of its inner rows. */
+static void resolve_band_run(const resolve_task *t, int what, int32_t phase, int32_t r, int32_t e)
+{
+    if (what == RESOLVE_WARM)
+        solver_wide_warm_start(t->sb, r, e, t->v);
+    else if (what == RESOLVE_VELOCITY)
+        solver_wide_iterate(t->sb, r, e, t->v);
+    else
+        solver_wide_iterate_position(t->sb, r, e, t->pv);
+    if (phase >= t->last) solver_unpack_wide(t->sb, t->con, r, e, what == RESOLVE_POSITION);
+}
+
 /* The bands' phases (bands_fn): t->what's colours in order (RESOLVE_WARM: the warm start's,
- * then the velocity iterations'), each band's edge rows or its inner rows, in runs.  In the
- * last sweep each run's impulses go back to their rows of c at once (the pass RESOLVE_UNPACK
- * or RESOLVE_UNPACK_POSITION would do after the sweeps), read where they were just written. */
+ * then the velocity iterations'), each band's edge rows or its inner rows (the runs between
+ * them), in runs.  In the last sweep each run's impulses go back to their rows of c at once
+ * (the pass RESOLVE_UNPACK or RESOLVE_UNPACK_POSITION would do after the sweeps), read where
+ * they were just written. */
 static void resolve_band_phase(int32_t band, int32_t phase, int edge, void *context)
 {
     const resolve_task *t = context;
-    const uint8_t *flag = t->w->coll.rows.edge;
-    int col = t->cols[phase % t->ncol];
+    int k = phase % t->ncol;
     int what = t->what == RESOLVE_WARM && phase >= t->ncol ? RESOLVE_VELOCITY : t->what;
-    int32_t r = resolve_band_at(t->sb, col, band, t->bands), r1 = resolve_band_at(t->sb, col, band + 1, t->bands);
-    while (r < r1) {
-        if ((flag[r] != 0) != (edge != 0)) {
-            r++;
-            continue;
+    int32_t r0 = resolve_band_at(t->sb, t->cols[k], band, t->bands), r1 = resolve_band_at(t->sb, t->cols[k], band + 1, t->bands);
+    const int32_t *list = t->w->coll.rows.edge + r0;
+    int32_t n = t->nedge[band][k];
+    if (edge) {
+        for (int32_t i = 0; i < n;) {
+            int32_t j = i + 1;
+            while (j < n && list[j] == list[j - 1] + 1) j++;
+            resolve_band_run(t, what, phase, list[i], list[j - 1] + 1);
+            i = j;
         }
-        int32_t e = r + 1;
-        while (e < r1 && (flag[e] != 0) == (edge != 0)) e++;
-        if (what == RESOLVE_WARM)
-            solver_wide_warm_start(t->sb, r, e, t->v);
-        else if (what == RESOLVE_VELOCITY)
-            solver_wide_iterate(t->sb, r, e, t->v);
-        else
-            solver_wide_iterate_position(t->sb, r, e, t->pv);
-        if (phase >= t->last) solver_unpack_wide(t->sb, t->con, r, e, what == RESOLVE_POSITION);
-        r = e;
+        return;
+    }
+    int32_t r = r0;
+    for (int32_t i = 0; i <= n; i++) {
+        int32_t e = i < n ? list[i] : r1;
+        if (e > r) resolve_band_run(t, what, phase, r, e);
+        r = e + 1;
     }
 }
 

@@ -707,7 +707,7 @@ static void solver_rows_layout(mem_layout *l, void *ctx)
     r->fixed = mem_take(l, n, sizeof(int32_t));
     r->late = mem_take(l, 3 * n + 2 * (size_t)SOLVER_STAGE_BLOCKS(r->cap), sizeof(int32_t));
     r->lanes = mem_take(l, (size_t)SOLVER_PACK_BLOCKS(r->cap) * 32, sizeof(int32_t));
-    r->edge = mem_take(l, (size_t)SOLVER_WIDE_ROWS(r->cap), sizeof(uint8_t));
+    r->edge = mem_take(l, (size_t)SOLVER_WIDE_ROWS(r->cap), sizeof(int32_t));
     r->key = mem_take(l, n, sizeof(uint16_t));
     r->tkey = mem_take(l, n, sizeof(uint16_t));
 }

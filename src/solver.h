@@ -239,8 +239,9 @@ typedef struct solver_rows {
     int32_t *lanes;           /* [0, SOLVER_PACK_BLOCKS(cap) * 32): packing scratch */
     int32_t *imp;             /* [0, cap): staged rows that are impacts (toi > 0) */
     int32_t *fixed;           /* [0, cap): rows against an immovable body (solver_row_fixed) */
-    uint8_t *edge;            /* per wide row: it meets a body that another band's rows meet
-                               * (resolve.c, when the colours run in bands) */
+    int32_t *edge;            /* per wide row: when the colours run in bands (resolve.c), the
+                               * wide rows of a band's slice of a colour that meet a body
+                               * another band's rows meet, listed from the slice's start */
     int32_t *late;            /* what the parallel staging leaves for the commit (narrow.c):
                                * bodies to ground [0, 2 cap), contacts with an event [2 cap,
                                * 3 cap), two counts per block of contacts after that */
