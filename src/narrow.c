@@ -355,11 +355,12 @@ static FORCE_INLINE void narrow_stage_row(const rg_world *w, const collide_step 
     resolve_stage(w, x, d, id, ia, ib, ia < x->n ? cb[ia].im : 0, ib < x->n ? cb[ib].im : 0);
 }
 
-/* What a contact's decision does to the rest of the world, in contact order: its solver row,
- * events, grounded flags, islands, waking (on the stepping thread, or, where nothing wakes
- * and the rows are staged, beside the solve's first part: narrow_commit_late). */
+/* What a contact's decision does to the rest of the world, in contact order: its solver row
+ * (into d, unless NULL), events, grounded flags, islands (unite: x->unite), waking (on the
+ * stepping thread, or, where nothing wakes and the rows are staged, beside the solve's first
+ * part: narrow_commit_late). */
 static FORCE_INLINE void narrow_commit(rg_world *w, int32_t id, int32_t ia, int32_t ib, collide_step *x,
-                                       uint32_t bits, const solver_dest *d, int *woke)
+                                       uint32_t bits, const solver_dest *d, int unite, int *woke)
 {
     collide_world *cw = &w->coll;
     contact_store *cs = &cw->contacts;
@@ -370,9 +371,10 @@ static FORCE_INLINE void narrow_commit(rg_world *w, int32_t id, int32_t ia, int3
     if (c->flags & CT_SENSOR) return;
     if (bits & ND_GROUND_A) b->cflags[ia] |= CF_GROUNDED;
     if (bits & ND_GROUND_B) b->cflags[ib] |= CF_GROUNDED;
-    if ((bits & ND_NOW) && x->unite) narrow_unite(w, c, x, ia, ib);
-    /* a sleeping body (dense index past the awake ones) touched by a pusher wakes */
-    if ((bits & (ND_NOW | ND_WAS)) && (ia >= b->n_active || ib >= b->n_active)) {
+    if ((bits & ND_NOW) && unite) narrow_unite(w, c, x, ia, ib);
+    /* a sleeping body (dense index past the awake ones) touched by a pusher wakes (woke NULL:
+     * no body is asleep) */
+    if (woke != NULL && (bits & (ND_NOW | ND_WAS)) && (ia >= b->n_active || ib >= b->n_active)) {
         int pa_ = body_partition(w, ia), pb_ = body_partition(w, ib);
         int now = (bits & ND_NOW) != 0;
         if (pa_ == BODY_PART_ASLEEP && pb_ == BODY_PART_ACTIVE && narrow_pusher(b, ib, now)) {
@@ -604,6 +606,7 @@ void narrow_run(rg_world *w, collide_step *x)
         narrow_wide_stage st;
         st.x = x;
         st.d = rows;
+        const int unite = x->unite;
         for (int32_t k0 = 0; k0 < cs->n_awake; k0 += NARROW_WIDE_LANES) {
             int32_t k1 = cs->n_awake - k0 > NARROW_WIDE_LANES ? k0 + NARROW_WIDE_LANES : cs->n_awake;
             narrow_block_run(w, x, k0, k1, t.wide, &nb, &st);
@@ -611,7 +614,7 @@ void narrow_run(rg_world *w, collide_step *x)
                 contact *c = nb.c[l];
                 int32_t ia = nb.ia[l], ib = nb.ib[l];
                 uint32_t bits = (nb.done & (1u << l)) ? nb.bits[l] : narrow_decide_here(w, c, ia, ib, x, 1);
-                narrow_commit(w, nb.id[l], ia, ib, x, bits, st.staged ? NULL : &rows, &x->woke);
+                narrow_commit(w, nb.id[l], ia, ib, x, bits, st.staged ? NULL : &rows, unite, NULL);
             }
         }
         return;
@@ -624,6 +627,6 @@ void narrow_run(rg_world *w, collide_step *x)
         int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb); /* a wake moves them only after the commit */
         int here = k >= measured || narrow_in_order(w, c);
         uint32_t bits = here ? narrow_decide_here(w, c, ia, ib, x, k >= measured) : c->decided;
-        narrow_commit(w, id, ia, ib, x, bits, serial || k >= measured ? &rows : NULL, &x->woke);
+        narrow_commit(w, id, ia, ib, x, bits, serial || k >= measured ? &rows : NULL, x->unite, &x->woke);
     }
 }
