@@ -180,9 +180,9 @@ AVX2_INLINE void narrow_wide_fields(contact *const *c, size_t offset, __m256 *f0
     avx2_pairs_at(p, f0, f1);
 }
 
-/* resolve_stage (resolve.h) for the lanes of stage, in lane order: each
- * value as there (resolve_index, the views' inverse masses of awake bodies, m = 1 / (ima +
- * imb), solver_vmin), a row's two halves through 8x8 transposes. */
+/* resolve_stage (resolve.h) for the lanes of stage, in lane order, into st->d: each value
+ * as there (resolve_index, the views' inverse masses of awake bodies, m = 1 / (ima + imb),
+ * solver_vmin), a row's two halves through 8x8 transposes. */
 AVX2_INLINE void narrow_wide_stage_rows(narrow_wide_stage *st, contact *const *c,
                                         uint32_t stage, __m256 ima, __m256 imb, __m256 nx, __m256 ny, __m256 px,
                                         __m256 py, __m256 s0, __m256 vn0, __m256 toi, __m256 closing)
