@@ -413,8 +413,11 @@ static void resolve_wide(resolve_task *t, int what)
 
 /* ---- the colour passes in bands (bands.h) */
 
-/* Wide rows per band at least: below it the colours run as passes. */
-#define RESOLVE_BAND_ROWS 64
+/* Wide rows per band at least: below it the colours run as passes (each colour's pass a
+ * task of its own).  Bands pay from some 500 rows on two workers: a band's phases wait on
+ * one line of the other band, a pass on the task system's hand-over (make bench-ab-threads:
+ * README, Performance); at 250 rows they paid nothing. */
+#define RESOLVE_BAND_ROWS 24
 
 /* Where band b begins among colour col's wide rows: each colour is split evenly, and its rows
  * keep their order along gravity (solver_pack), so band b holds about the same slice of the
