@@ -443,7 +443,6 @@ static void narrow_measure_decide_blocks(int32_t begin, int32_t end, int32_t wor
     narrow_wide_stage st;
     int32_t nc, nimp;
     st.x = x;
-    st.d = rows->spare;
     st.d.nc = &nc;
     st.d.nimp = &nimp;
     for (int32_t blk = begin; blk < end; blk++) {
@@ -584,7 +583,7 @@ void narrow_run(rg_world *w, collide_step *x)
     /* without a contact decided in order, the rows staged in parallel are those the walk
      * below stages on one thread, in the same order: they are placed */
     int serial = in_order || !t.stage;
-    solver_dest rows = resolve_rows_dest(&w->coll.rows, x);
+    solver_dest dest = resolve_rows_dest(&w->coll.rows, x);
     if (!serial) {
         narrow_place(w, &t);
         /* No body asleep: nothing wakes (a static body never does), so the walk below would
@@ -605,7 +604,7 @@ void narrow_run(rg_world *w, collide_step *x)
         narrow_block nb;
         narrow_wide_stage st;
         st.x = x;
-        st.d = rows;
+        st.d = dest;
         const int unite = x->unite;
         for (int32_t k0 = 0; k0 < cs->n_awake; k0 += NARROW_WIDE_LANES) {
             int32_t k1 = cs->n_awake - k0 > NARROW_WIDE_LANES ? k0 + NARROW_WIDE_LANES : cs->n_awake;
@@ -614,7 +613,7 @@ void narrow_run(rg_world *w, collide_step *x)
                 contact *c = nb.c[l];
                 int32_t ia = nb.ia[l], ib = nb.ib[l];
                 uint32_t bits = (nb.done & (1u << l)) ? nb.bits[l] : narrow_decide_here(w, c, ia, ib, x, 1);
-                narrow_commit(w, nb.id[l], ia, ib, x, bits, st.staged ? NULL : &rows, unite, NULL);
+                narrow_commit(w, nb.id[l], ia, ib, x, bits, st.staged ? NULL : &dest, unite, NULL);
             }
         }
         return;
@@ -627,6 +626,6 @@ void narrow_run(rg_world *w, collide_step *x)
         int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb); /* a wake moves them only after the commit */
         int here = k >= measured || narrow_in_order(w, c);
         uint32_t bits = here ? narrow_decide_here(w, c, ia, ib, x, k >= measured) : c->decided;
-        narrow_commit(w, id, ia, ib, x, bits, serial || k >= measured ? &rows : NULL, x->unite, &x->woke);
+        narrow_commit(w, id, ia, ib, x, bits, serial || k >= measured ? &dest : NULL, x->unite, &x->woke);
     }
 }

@@ -503,7 +503,7 @@ static void resolve_band_flag(int32_t begin, int32_t end, int32_t worker, void *
                     y = (y ^ gen) | ignore;
                     zero |= ~(((x & lows) + lows) | x) | ~(((y & lows) + lows) | y); /* the high bit of each zero byte */
                 }
-                edge[r0 + n] = r;
+                edge[r0 + n] = r; /* written always, kept (n grows) for an edge row */
                 n += (zero & ~lows) != 0;
             }
             t->nedge[b][k] = n;

@@ -384,9 +384,10 @@ static void *refusing_fn(void *user, void *ptr, size_t old_size, size_t new_size
 }
 
 /* The first step with workers lays out the parallel staging's spare rows (narrow.c: 160 kB
- * for this pile's contacts; the pair search's own blocks for workers are 3 kB); where the
- * allocator refuses them, that step stages its rows on the stepping thread instead, with the
- * results of one thread, and the next step lays them out. */
+ * for this pile's contacts in the float build, more in the double; the pair search's own
+ * blocks for workers are 3 kB); where the allocator refuses them, that step stages its rows
+ * on the stepping thread instead, with the results of one thread, and the next step lays
+ * them out. */
 static void test_workers_whose_spare_rows_are_refused_step_as_one_thread(void **state)
 {
     (void)state;
