@@ -109,6 +109,8 @@ typedef struct narrow_task {
     int wide;                         /* narrow_wide_ready */
     int32_t n;                        /* the contacts measured and decided in parallel */
     int stage;                        /* and staged in parallel, into the spare rows */
+    const int32_t *handed;            /* with stage: the blocks in the order the tasks take
+                                       * them (narrow_hand) */
     int32_t in_order[RG_MAX_WORKERS]; /* the worker met a contact decided in order */
 } narrow_task;
 
@@ -445,10 +447,13 @@ static void narrow_measure_decide_blocks(int32_t begin, int32_t end, int32_t wor
     st.x = x;
     st.d.nc = &nc;
     st.d.nimp = &nimp;
-    for (int32_t blk = begin; blk < end; blk++) {
+    const int32_t active = w->b.n_active;
+    for (int32_t item = begin; item < end; item++) {
+        int32_t blk = t->stage ? t->handed[item] : item;
         int32_t first = blk * NARROW_BLOCK, last = first + NARROW_BLOCK < t->n ? first + NARROW_BLOCK : t->n;
         int32_t *ground = narrow_late_ground(rows, blk), *event = narrow_late_event(rows, blk);
-        int32_t nground = 0, nevent = 0;
+        int32_t nground = 0, nevent = 0, met = 0;
+        int64_t sum = 0;
         nc = nimp = 0;
         if (t->stage) {
             st.d.stage = rows->spare.stage + first;
@@ -459,6 +464,9 @@ static void narrow_measure_decide_blocks(int32_t begin, int32_t end, int32_t wor
         for (int32_t k0 = first; k0 < last; k0 += NARROW_WIDE_LANES) {
             int32_t k1 = last - k0 > NARROW_WIDE_LANES ? k0 + NARROW_WIDE_LANES : last;
             narrow_block_run(w, t->x, k0, k1, t->wide, &nb, t->stage ? &st : NULL);
+            /* the block's bodies, sampled: each eight's first contact's */
+            if (nb.n > 0 && nb.ia[0] < active) sum += nb.ia[0], met++;
+            if (nb.n > 0 && nb.ib[0] < active) sum += nb.ib[0], met++;
             for (int32_t l = 0; l < nb.n; l++) {
                 contact *c = nb.c[l];
                 uint32_t bits;
@@ -489,6 +497,7 @@ static void narrow_measure_decide_blocks(int32_t begin, int32_t end, int32_t wor
         rows->tord[blk] = nimp;
         narrow_late_counts(rows, blk)[0] = nground;
         narrow_late_counts(rows, blk)[1] = nevent;
+        rows->mean[blk] = met > 0 ? (int32_t)(sum / met) : -1;
     }
 }
 
@@ -500,7 +509,8 @@ static void narrow_place_range(int32_t begin, int32_t end, int32_t worker, void 
     solver_rows *rows = &t->w->coll.rows;
     const solver_dest *s = &rows->spare;
     (void)worker;
-    for (int32_t blk = begin; blk < end; blk++) {
+    for (int32_t item = begin; item < end; item++) {
+        int32_t blk = t->handed[item];
         size_t from = (size_t)blk * NARROW_BLOCK, to = (size_t)rows->color[blk];
         size_t n = (size_t)(rows->color[blk + 1] - rows->color[blk]);
         memcpy(rows->stage + to, s->stage + from, n * sizeof *rows->stage);
@@ -510,6 +520,35 @@ static void narrow_place_range(int32_t begin, int32_t end, int32_t worker, void 
         for (int32_t k = 0; k < rows->tord[blk + 1] - rows->tord[blk]; k++)
             imp[k] = s->imp[from + (size_t)k] + (int32_t)to;
     }
+}
+
+/* The order in which the staging's tasks take the blocks (rows.handed): the stages before
+ * it (the integration, the views) give each worker a part of the bodies in dense order, and a
+ * task system's workers most likely take the parts of a task in the same order (the pool's
+ * thread k starts on part k).  A block reads its contacts' bodies' views: handed out in the
+ * part where most of those bodies lie (by their mean dense index in the last step with
+ * workers), its views are most likely in the cache of the core that takes it, not the
+ * other's.  The contacts of a settled scene keep their order and their blocks nearly all
+ * their bodies from step to step; a block with no mean yet goes by its place.  Which worker
+ * runs which block changes no result. */
+static void narrow_hand(rg_world *w, narrow_task *t, int32_t blocks, int32_t workers)
+{
+    solver_rows *rows = &w->coll.rows;
+    int32_t count[RG_MAX_WORKERS + 1] = { 0 };
+    int64_t active = w->b.n_active > 0 ? w->b.n_active : 1;
+    /* a counting sort by part, stable: each part's blocks in block order */
+    for (int32_t blk = 0; blk < blocks; blk++) {
+        int32_t m = blk < rows->means ? rows->mean[blk] : -1;
+        int32_t part = m >= 0 ? (int32_t)(m * (int64_t)workers / active) : (int32_t)((int64_t)blk * workers / blocks);
+        rows->handed[blk] = part < workers ? part : workers - 1; /* the part, for now */
+        count[rows->handed[blk] + 1]++;
+    }
+    for (int32_t k = 0; k < workers; k++) count[k + 1] += count[k];
+    /* the parts go into rows.mean's place; the means are written again by the tasks */
+    for (int32_t blk = 0; blk < blocks; blk++) rows->mean[blk] = rows->handed[blk];
+    for (int32_t blk = 0; blk < blocks; blk++) rows->handed[count[rows->mean[blk]]++] = blk;
+    rows->means = blocks;
+    t->handed = rows->handed;
 }
 
 /* Places the rows of the first t->n awake contacts, all staged in parallel. */
@@ -578,6 +617,8 @@ void narrow_run(rg_world *w, collide_step *x)
     /* with workers, the rows are staged in parallel too (the spare rows are laid out on the
      * first such step; where the allocator fails, the walk below stages them) */
     t.stage = workers > 1 && measured > 0 && solver_rows_spare(&w->coll.rows, &w->mem);
+    t.handed = NULL;
+    if (t.stage) narrow_hand(w, &t, (measured + NARROW_BLOCK - 1) / NARROW_BLOCK, workers);
     task_for(w, narrow_measure_decide_blocks, (measured + NARROW_BLOCK - 1) / NARROW_BLOCK, 1, &t);
     for (int32_t k = 0; k < workers; k++) in_order |= t.in_order[k];
     /* without a contact decided in order, the rows staged in parallel are those the walk

@@ -254,6 +254,12 @@ typedef struct solver_rows {
      * block of their own laid out by solver_rows_spare on the first step with workers (a
      * world on one thread never holds it); spare.nc and spare.nimp are NULL. */
     solver_dest spare;
+    /* Which blocks of contacts the parallel staging's tasks hand out first (narrow.c): each
+     * block's movable bodies' mean dense index in the last such step ([0, SOLVER_STAGE_BLOCKS
+     * (cap)), -1 where it met none; `means` blocks have one), and the blocks in the order
+     * given to the tasks.  In the spare block too. */
+    int32_t *mean, *handed;
+    int32_t means;
     void *spare_block;
     size_t spare_size;
 } solver_rows;
