@@ -582,13 +582,24 @@ static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void 
         }
         if (x->late != NULL) x->late(w, x);
         /* the solver's bodies: 0 is the ground, 1..ns the awake bodies; stamped, those the
-         * rows meet; in the same walk, the rows against an immovable body listed */
+         * rows meet; in the same walk, the rows against an immovable body listed.  A row's
+         * movable bodies (rows.ab, beside it) are its bodies but where it is against an
+         * immovable one (solver_row_bodies: a body with inverse mass > 0 is not the ground,
+         * 0), so only those rows, the few solver_row_fixed lists, are read for their bodies:
+         * the rows themselves stay in the caches of the workers that staged them, which write
+         * their impulses back at the end of the bands (a row read here would be shared with
+         * this thread, and each such write would wait for this core to let go of it). */
         resolve_next_gen(rs, cw->scap);
         int32_t met = 0, nfixed = 0, *fixed = rows->fixed;
+        const int32_t *ab = rows->ab;
         int listed = t->listed = solver_rows_few(nc, x->ns);
         for (int32_t r = 0; r < nc && listed; r++) {
-            int32_t qa = con[r].a, qb = con[r].b;
-            if (solver_row_fixed(&con[r])) fixed[nfixed++] = r;
+            int32_t qa = ab[2 * r], qb = ab[2 * r + 1];
+            if (qa == 0 || qb == 0) {
+                fixed[nfixed++] = r;
+                qa = con[r].a;
+                qb = con[r].b;
+            }
             if (qa > 0 && rs->sstamp[qa - 1] != rs->gen) {
                 rs->sstamp[qa - 1] = rs->gen;
                 rs->sbody[met++] = qa;
@@ -599,9 +610,14 @@ static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void 
             }
         }
         for (int32_t r = 0; r < nc && !listed; r++) {
-            if (solver_row_fixed(&con[r])) fixed[nfixed++] = r;
-            if (con[r].a > 0) rs->sstamp[con[r].a - 1] = rs->gen;
-            if (con[r].b > 0) rs->sstamp[con[r].b - 1] = rs->gen;
+            int32_t qa = ab[2 * r], qb = ab[2 * r + 1];
+            if (qa == 0 || qb == 0) {
+                fixed[nfixed++] = r;
+                qa = con[r].a;
+                qb = con[r].b;
+            }
+            if (qa > 0) rs->sstamp[qa - 1] = rs->gen;
+            if (qb > 0) rs->sstamp[qb - 1] = rs->gen;
         }
         h->nfixed = nfixed;
         t->nbody = met;
