@@ -3,7 +3,10 @@
  * other's write: one round trip is a cache line gone to the other core and back.  And the
  * main thread reads, in a random order (independent loads, as a stage's reads of bodies
  * through its pairs), 8192 lines the other thread has just written, then the same lines
- * after writing them itself.  A step spread over workers moves its data between cores stage
+ * after writing them itself.  And both threads add to a counter in memory at once, each
+ * timing its own: on a VM one of two virtual cpus may for seconds run at a fraction of the
+ * other's speed (seen here: 2.6x slower), which bounds what a second worker can add whatever
+ * the data's moves cost.  A step spread over workers moves its data between cores stage
  * after stage, so what a second worker gains depends on these (README, Known limits).
  * Where the two threads cannot run at once (one cpu, or under valgrind, which runs one
  * thread at a time and would take hours over the spins) the hand-overs stop at a deadline
@@ -158,6 +161,58 @@ double bench_cores_round_trip_ns(void)
         if ((t[r] = cores_run()) < 0) return -1;
     qsort(t, CORES_RUNS, sizeof t[0], cores_cmp);
     return t[CORES_RUNS / 2] * 1e9;
+}
+
+/* ---------------------------------------------------------------- each thread's own speed */
+
+/* Additions to a counter in memory: on a core of its own some one a cycle (the load meets
+ * the store before it in the core's pipeline), 4 ms a run; a core whose execution units
+ * another thread shares (a VM's virtual cpu beside another's on one core) runs it slower, as
+ * it runs a step's loads and stores. */
+#define CORES_CHAIN 12000000
+
+static double cores_chain_s; /* the other thread's time */
+
+static double cores_chain(void)
+{
+    volatile uint64_t cell = 0;
+    double t0 = cores_now();
+    for (uint32_t i = 0; i < CORES_CHAIN; i++) cell += i;
+    double t = cores_now() - t0;
+    cores_sink = cell;
+    return t;
+}
+
+static void *cores_chainer(void *arg)
+{
+    (void)arg;
+    if (!cores_other_waits(1)) return NULL;
+    cores_chain_s = cores_chain();
+    __atomic_store_n(&cores_counter, 2, __ATOMIC_RELEASE);
+    return NULL;
+}
+
+int bench_cores_speeds_ns(double *fast, double *slow)
+{
+    if (sysconf(_SC_NPROCESSORS_ONLN) < 2) return 0;
+    double t[2][CORES_RUNS];
+    for (int r = 0; r < CORES_RUNS; r++) {
+        pthread_t other;
+        if (!cores_start(&other, cores_chainer)) return 0;
+        double t0 = cores_now();
+        __atomic_store_n(&cores_counter, 1, __ATOMIC_RELEASE);
+        double mine = cores_chain();
+        int ok = cores_main_waits(2, t0 + 0.1); /* a run's own time, and its deadline */
+        cores_join(other);
+        if (!ok) return 0;
+        t[0][r] = mine < cores_chain_s ? mine : cores_chain_s;
+        t[1][r] = mine < cores_chain_s ? cores_chain_s : mine;
+    }
+    qsort(t[0], CORES_RUNS, sizeof t[0][0], cores_cmp);
+    qsort(t[1], CORES_RUNS, sizeof t[1][0], cores_cmp);
+    *fast = t[0][CORES_RUNS / 2] / CORES_CHAIN * 1e9;
+    *slow = t[1][CORES_RUNS / 2] / CORES_CHAIN * 1e9;
+    return 1;
 }
 
 int bench_cores_lines_ns(double *other, double *own)

@@ -116,6 +116,10 @@ void bench_report_machine(FILE *f)
     if (trip > 0 && bench_cores_lines_ns(&other, &own))
         fprintf(f, "machine: reading 8192 cache lines at random: %.1f ns a line another core has just written, "
                 "%.1f ns a line of this core's own\n", other, own);
+    double fast, slow;
+    if (trip > 0 && bench_cores_speeds_ns(&fast, &slow))
+        fprintf(f, "machine: two threads at once, each adding to a counter in memory: %.2f and %.2f ns an "
+                "addition (the slower %.2fx the faster)\n", fast, slow, slow / fast);
 }
 
 /* ---------------------------------------------------------------- the tables */

@@ -93,6 +93,10 @@ double bench_cores_round_trip_ns(void);
  * just written (*other) and lines this thread wrote (*own) (bench_cores.c); 0 with one cpu
  * or when the threads cannot run at once. */
 int bench_cores_lines_ns(double *other, double *own);
+/* Two threads adding to a counter in memory at once, each timing its own: the median ns an
+ * addition of the faster (*fast) and of the slower (*slow) (bench_cores.c); 0 with one cpu
+ * or when the threads cannot run at once. */
+int bench_cores_speeds_ns(double *fast, double *slow);
 /* The tables: sleeping off (medians), sleeping on (means), quality, memory, free0; the
  * stage costs, the gameplay collision, the allocator calls. */
 void bench_report_summary(const bench_result *rs, int32_t nr, const bench_entrant *who, int nwho,

@@ -95,10 +95,11 @@ static int tasks_cmp_i32(const void *a, const void *b)
  * between the cores costs moves the figures, and on a VM it changes from run to run. */
 static void tasks_machine(const char *when)
 {
-    double trip = bench_cores_round_trip_ns(), other = 0, own = 0;
-    if (trip > 0 && bench_cores_lines_ns(&other, &own))
+    double trip = bench_cores_round_trip_ns(), other = 0, own = 0, fast = 0, slow = 0;
+    if (trip > 0 && bench_cores_lines_ns(&other, &own) && bench_cores_speeds_ns(&fast, &slow))
         printf("machine %s: a cache line to the other core and back %.0f ns; reading lines the other core "
-               "has just written %.1f ns a line, its own %.1f\n", when, trip, other, own);
+               "has just written %.1f ns a line, its own %.1f; the two threads' speeds at once %.2fx apart\n",
+               when, trip, other, own, slow / fast);
 }
 
 /* A world of the scene; with t, two workers on t's task system. */
