@@ -11,4 +11,13 @@
 #define FORCE_INLINE inline
 #endif
 
+/* PREFETCH(p): asks for the cache line at p ahead of a walk that reads lines out of order
+ * (the shock sweeps' rows in solving order, which the workers' bands have just written);
+ * nothing where the compiler has no such builtin.  It changes no result. */
+#if defined(__GNUC__) || defined(__clang__)
+#define PREFETCH(p) __builtin_prefetch(p)
+#else
+#define PREFETCH(p) ((void)0)
+#endif
+
 #endif
