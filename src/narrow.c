@@ -432,9 +432,11 @@ static inline int32_t narrow_grounds(const contact *c, uint32_t bits)
     return ((bits & ND_GROUND_A) != 0) + ((bits & ND_GROUND_B) != 0);
 }
 
-/* Items are blocks of NARROW_BLOCK awake contacts: each measured and decided those that need
- * no order (a contact's decision reads only its own measurement and its bodies' views), in
- * blocks of eight, the common case's wide (narrow_wide.h); with t->stage, staged too. */
+/* Items are blocks of NARROW_BLOCK awake contacts (with t->stage, in t->handed's order): each
+ * measured and decided those that need no order (a contact's decision reads only its own
+ * measurement and its bodies' views), in blocks of eight, the common case's wide
+ * (narrow_wide.h); with t->stage, staged too, and its bodies' mean index kept for the next
+ * step's hand-out. */
 static void narrow_measure_decide_blocks(int32_t begin, int32_t end, int32_t worker, void *context)
 {
     narrow_task *t = context;
@@ -501,7 +503,8 @@ static void narrow_measure_decide_blocks(int32_t begin, int32_t end, int32_t wor
     }
 }
 
-/* Items are blocks: each copies its rows from the spare rows to their places (rows.color and
+/* Items are blocks, in t->handed's order (a block's rows are copied by the worker that staged
+ * them, most likely): each copies its rows from the spare rows to their places (rows.color and
  * rows.tord hold every block's first row and impact, and one past the last block's). */
 static void narrow_place_range(int32_t begin, int32_t end, int32_t worker, void *context)
 {
