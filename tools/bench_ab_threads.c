@@ -12,7 +12,9 @@
  * in a random order (a world that always followed another two-worker world would find the
  * pool's thread awake).  Prints each world's median step over the second half, the median
  * and quartiles of B's step over A's round by round, at two workers and at one, and whether
- * the four worlds end in one state (rg_world_hash).
+ * the four worlds end in one state (rg_world_hash), with the machine line of bench_cores.c
+ * before and after (what moving data between the cores costs then, and the two threads'
+ * speeds).
  *   build/bench-ab-threads A.so B.so [SCENE [N [STEPS]]]   (defaults boxes 10000 300) */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime, dlopen */
 #include <dlfcn.h>
@@ -22,6 +24,7 @@
 #include <time.h>
 
 #include "bench.h"
+#include "bench_run.h"
 #include "rigid.h"
 
 /* The calls of one build, through dlsym. */
@@ -106,6 +109,7 @@ int main(int argc, char **argv)
         }
     rg_thread_pool *pool;
     rg_task_system tasks;
+    bench_cores_line(stdout, "before");
     if (build[0].pool_create(2, &pool) != RG_OK || build[0].pool_tasks(pool, &tasks) != RG_OK) return 1;
     rg_world *w[4];
     for (int k = 0; k < 4; k++) {
@@ -134,6 +138,7 @@ int main(int argc, char **argv)
             t[k * steps + q] = abt_now_ms() - a;
         }
     }
+    bench_cores_line(stdout, "after"); /* the pool's thread sleeps within a millisecond */
     /* the second half: the pile formed */
     int h = steps / 2, c = steps - h;
     double *r2 = t + 4 * (size_t)steps, *r1 = r2 + c, med[4];

@@ -15,6 +15,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include <pthread.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
 #include <unistd.h>
@@ -252,4 +253,15 @@ int bench_cores_lines_ns(double *other, double *own)
     cores_lines = NULL;
     cores_order = NULL;
     return ok;
+}
+
+void bench_cores_line(FILE *f, const char *when)
+{
+    double trip = bench_cores_round_trip_ns(), other = 0, own = 0, fast = 0, slow = 0;
+    if (trip > 0 && bench_cores_lines_ns(&other, &own) && bench_cores_speeds_ns(&fast, &slow))
+        fprintf(f, "machine %s: a cache line to the other core and back %.0f ns; reading lines the other core "
+                "has just written %.1f ns a line, its own %.1f; the two threads' speeds at once %.2fx apart\n",
+                when, trip, other, own, slow / fast);
+    else if (sysconf(_SC_NPROCESSORS_ONLN) > 1)
+        fprintf(f, "machine %s: two threads did not run at once (another load on the cpus?)\n", when);
 }

@@ -97,6 +97,9 @@ int bench_cores_lines_ns(double *other, double *own);
  * addition of the faster (*fast) and of the slower (*slow) (bench_cores.c); 0 with one cpu
  * or when the threads cannot run at once. */
 int bench_cores_speeds_ns(double *fast, double *slow);
+/* The three on one line to f, "machine WHEN: ..." (bench_cores.c); nothing with one cpu, and
+ * a line saying so when two threads cannot run at once. */
+void bench_cores_line(FILE *f, const char *when);
 /* The tables: sleeping off (medians), sleeping on (means), quality, memory, free0; the
  * stage costs, the gameplay collision, the allocator calls. */
 void bench_report_summary(const bench_result *rs, int32_t nr, const bench_entrant *who, int nwho,

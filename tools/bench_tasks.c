@@ -91,17 +91,6 @@ static int tasks_cmp_i32(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* Where the two threads sit (bench_cores.c), before and after each scene: what moving data
- * between the cores costs moves the figures, and on a VM it changes from run to run. */
-static void tasks_machine(const char *when)
-{
-    double trip = bench_cores_round_trip_ns(), other = 0, own = 0, fast = 0, slow = 0;
-    if (trip > 0 && bench_cores_lines_ns(&other, &own) && bench_cores_speeds_ns(&fast, &slow))
-        printf("machine %s: a cache line to the other core and back %.0f ns; reading lines the other core "
-               "has just written %.1f ns a line, its own %.1f; the two threads' speeds at once %.2fx apart\n",
-               when, trip, other, own, slow / fast);
-}
-
 /* A world of the scene; with t, two workers on t's task system. */
 static void *tasks_world(bench_scene *s, tasks_sys *t)
 {
@@ -194,7 +183,7 @@ static int tasks_scene(const char *arg, int steps, const rg_task_system *pool)
     int ok = log != NULL && col != NULL;
     printf("== %s %d, sleeping off: %d steps in turns, medians (quartiles) of per-step ratios over the last %d\n",
            name, n, steps, steps - steps / 2);
-    tasks_machine("before");
+    bench_cores_line(stdout, "before"); /* what moving data between the cores costs now */
     /* every task inline, then every task on the pool (and the tasks' order learnt) */
     ok = ok && tasks_race(&s, steps, pool, TASKS_ALL, -1, log, qb, qc, &most);
     if (ok) {
@@ -235,7 +224,7 @@ static int tasks_scene(const char *arg, int steps, const rg_task_system *pool)
                tasks, gain, lose);
     else
         printf("bench-tasks: %s %d failed (a world not made, or the worlds' states differed)\n", name, n);
-    tasks_machine("after");
+    bench_cores_line(stdout, "after");
     free(log);
     free(col);
     free(s.bodies);

@@ -19,11 +19,11 @@ bench-tasks: $(BENCH_TASKS)
 BENCH_AB_THREADS := $(B)/bench-ab-threads
 ALL_TARGETS += $(BENCH_AB_THREADS)
 .PHONY: bench-ab-threads
-$(B)/bench_obj/bench_ab_threads.o: tools/bench_ab_threads.c tools/bench.h
+$(B)/bench_obj/bench_ab_threads.o: tools/bench_ab_threads.c tools/bench.h tools/bench_run.h
 	@mkdir -p $(@D)
 	$(CC) $(BENCH_CFLAGS) -c $< -o $@
 
-$(BENCH_AB_THREADS): $(B)/bench_obj/bench_ab_threads.o $(BENCH_COMMON_OBJ) $(LIB_A)
+$(BENCH_AB_THREADS): $(B)/bench_obj/bench_ab_threads.o $(B)/bench_obj/bench_cores.o $(BENCH_COMMON_OBJ) $(LIB_A)
 	$(CC) $(LDFLAGS) -o $@ $^ $(BENCH_LIBS)
 
 bench-ab-threads: $(BENCH_AB_THREADS)
