@@ -466,9 +466,11 @@ static void narrow_measure_decide_blocks(int32_t begin, int32_t end, int32_t wor
         for (int32_t k0 = first; k0 < last; k0 += NARROW_WIDE_LANES) {
             int32_t k1 = last - k0 > NARROW_WIDE_LANES ? k0 + NARROW_WIDE_LANES : last;
             narrow_block_run(w, t->x, k0, k1, t->wide, &nb, t->stage ? &st : NULL);
-            /* the block's bodies, sampled: each eight's first contact's */
-            if (nb.n > 0 && nb.ia[0] < active) sum += nb.ia[0], met++;
-            if (nb.n > 0 && nb.ib[0] < active) sum += nb.ib[0], met++;
+            /* the block's bodies, sampled (each eight's first contact's), for narrow_hand */
+            if (t->stage && nb.n > 0) {
+                if (nb.ia[0] < active) sum += nb.ia[0], met++;
+                if (nb.ib[0] < active) sum += nb.ib[0], met++;
+            }
             for (int32_t l = 0; l < nb.n; l++) {
                 contact *c = nb.c[l];
                 uint32_t bits;

@@ -10,6 +10,30 @@
 #include "state.h"
 #include "task.h"
 #include "vec2.h"
+#if RG_AVX2_PATHS
+#include "avx2.h"
+#endif
+
+/* The step's timers (step.h, -DRG_STEP_PROFILE): the solve's parts on one thread, the order
+ * by height, the colouring and the shock sweeps, each in seconds. */
+#ifdef RG_STEP_PROFILE
+#include <time.h>
+double step_prof_solve[3];
+static double resolve_prof_now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
+}
+#define RESOLVE_PROF(k, call)                                 \
+    do {                                                      \
+        double t_ = resolve_prof_now();                       \
+        call;                                                 \
+        step_prof_solve[(k)] += resolve_prof_now() - t_;      \
+    } while (0)
+#else
+#define RESOLVE_PROF(k, call) call
+#endif
 
 void resolve_layout(mem_layout *l, resolve_state *s, int32_t n)
 {
@@ -147,7 +171,6 @@ static void resolve_span(const rg_real *h, int32_t n, rg_real *out_min, rg_real 
  * where that is not a number in [0, 65535]); eight at a time where the CPU has AVX2, with the
  * same float operations (a truncation of a number in range), so the same keys. */
 #if RG_AVX2_PATHS
-#include "avx2.h"
 AVX2_FN static int32_t resolve_keys8(const float *h, int32_t n, float hmin, float scale, uint16_t *key)
 {
     const __m256 lo = _mm256_set1_ps(hmin), s = _mm256_set1_ps(scale);
@@ -273,9 +296,6 @@ static FORCE_INLINE void resolve_body(const resolve_task *t, int what, int32_t q
 }
 
 #if RG_AVX2_PATHS
-#include "avx2.h"
-
-
 /* The pairs (x, y) of p[0 .. 16) as eight x and eight y, and back. */
 AVX2_FN static inline void resolve_pairs_load(const float *p, __m256 *x, __m256 *y)
 {
@@ -583,6 +603,19 @@ static void resolve_band_phase(int32_t band, int32_t phase, int edge, void *cont
     }
 }
 
+/* Row r's two solver bodies for the stamps: its movable bodies (rows.ab, beside it) but where
+ * it is against an immovable one (solver_row_bodies: a body with inverse mass > 0 is not the
+ * ground, 0), which only then is read for them; returns whether it is (solver_row_fixed). */
+static inline int resolve_row_met(const solver_rows *rows, int32_t r, int32_t *qa, int32_t *qb)
+{
+    *qa = rows->ab[2 * r];
+    *qb = rows->ab[2 * r + 1];
+    if (*qa != 0 && *qb != 0) return 0;
+    *qa = rows->stage[r].a;
+    *qb = rows->stage[r].b;
+    return 1;
+}
+
 /* The solve's first part in two halves that share nothing, so that they may run at once:
  * item 0 the solving order and the colours; item 1 what the narrowphase left (x->late), the
  * bodies the rows meet (stamped), their velocities loaded, and the rows against an immovable
@@ -601,35 +634,28 @@ static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void 
     collide_world *cw = &w->coll;
     resolve_state *rs = &cw->resolve;
     solver_rows *rows = &cw->rows;
-    const solver_constraint *con = t->con;
     int32_t nc = x->nc;
     (void)worker;
     for (int32_t k = begin; k < end; k++) {
         if (k == 0) {
-            resolve_order(w, x);
-            solver_pack(rows->ab, rows->ord, nc, x->ns + 1, rs->cmask, rows->color, rows->lanes, &rows->batch);
+            RESOLVE_PROF(0, resolve_order(w, x));
+            RESOLVE_PROF(1, solver_pack(rows->ab, rows->ord, nc, x->ns + 1, rs->cmask, rows->color, rows->lanes,
+                                        &rows->batch));
             continue;
         }
         if (x->late != NULL) x->late(w, x);
         /* the solver's bodies: 0 is the ground, 1..ns the awake bodies; stamped, those the
-         * rows meet; in the same walk, the rows against an immovable body listed.  A row's
-         * movable bodies (rows.ab, beside it) are its bodies but where it is against an
-         * immovable one (solver_row_bodies: a body with inverse mass > 0 is not the ground,
-         * 0), so only those rows, the few solver_row_fixed lists, are read for their bodies:
-         * the rows themselves stay in the caches of the workers that staged them, which write
-         * their impulses back at the end of the bands (a row read here would be shared with
-         * this thread, and each such write would wait for this core to let go of it). */
+         * rows meet; in the same walk, the rows against an immovable body listed.  The
+         * rows are read only where listed (resolve_row_met): the others stay in the caches
+         * of the workers that staged them, which write their impulses back at the end of the
+         * bands (a row read here would be shared with this thread, and each such write would
+         * wait for this core to let go of it). */
         resolve_next_gen(rs, cw->scap);
         int32_t met = 0, nfixed = 0, *fixed = rows->fixed;
-        const int32_t *ab = rows->ab;
         int listed = t->listed = solver_rows_few(nc, x->ns);
         for (int32_t r = 0; r < nc && listed; r++) {
-            int32_t qa = ab[2 * r], qb = ab[2 * r + 1];
-            if (qa == 0 || qb == 0) {
-                fixed[nfixed++] = r;
-                qa = con[r].a;
-                qb = con[r].b;
-            }
+            int32_t qa, qb;
+            if (resolve_row_met(rows, r, &qa, &qb)) fixed[nfixed++] = r;
             if (qa > 0 && rs->sstamp[qa - 1] != rs->gen) {
                 rs->sstamp[qa - 1] = rs->gen;
                 rs->sbody[met++] = qa;
@@ -640,12 +666,8 @@ static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void 
             }
         }
         for (int32_t r = 0; r < nc && !listed; r++) {
-            int32_t qa = ab[2 * r], qb = ab[2 * r + 1];
-            if (qa == 0 || qb == 0) {
-                fixed[nfixed++] = r;
-                qa = con[r].a;
-                qb = con[r].b;
-            }
+            int32_t qa, qb;
+            if (resolve_row_met(rows, r, &qa, &qb)) fixed[nfixed++] = r;
             if (qa > 0) rs->sstamp[qa - 1] = rs->gen;
             if (qb > 0) rs->sstamp[qb - 1] = rs->gen;
         }
@@ -710,7 +732,7 @@ void resolve_run(rg_world *w, collide_step *x)
         }
     }
     if (t.bands < 2) resolve_pass(&t, RESOLVE_UNPACK, 0, sb->nrows);
-    if (shock) solver_shock(con, ord, nc, v, gx, gy);
+    if (shock) RESOLVE_PROF(2, solver_shock(con, ord, nc, v, gx, gy));
     solver_fixed_rows(con, rows->fixed, h.nfixed, v, 0);
     /* positions move with the solved velocities, then by the pseudo-velocities of the
      * position pass, which leave the velocities alone */
@@ -744,7 +766,7 @@ void resolve_run(rg_world *w, collide_step *x)
             }
         }
         if (t.bands < 2) resolve_pass(&t, RESOLVE_UNPACK_POSITION, 0, sb->nrows);
-        if (shock) solver_shock_position(con, ord, nc, pv, gx, gy);
+        if (shock) RESOLVE_PROF(2, solver_shock_position(con, ord, nc, pv, gx, gy));
         solver_fixed_rows(con, rows->fixed, h.nfixed, pv, 1);
         rs->pv_valid = 1;
         resolve_pass(&t, RESOLVE_PUSH, first, bodies);

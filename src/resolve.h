@@ -62,6 +62,12 @@ static inline solver_dest resolve_rows_dest(solver_rows *rows, collide_step *x)
  * success means ord is the one order of distinct rows by (key, row): the sort's result. */
 int resolve_resort(const uint16_t *key, int32_t *ord, int32_t n);
 
+#ifdef RG_STEP_PROFILE
+/* The step's timers of the solve's parts on one thread (step.h): the order by height, the
+ * colouring, the shock sweeps, in seconds since the last report. */
+extern double step_prof_solve[3];
+#endif
+
 /* Solves the staged rows (restaged first when bodies woke) and moves the bodies. */
 void resolve_run(struct rg_world *w, collide_step *x);
 

@@ -77,8 +77,8 @@ void solver_iterate(solver_constraint *c, const int32_t *list, int32_t k, rg_rea
 
 /* How many rows ahead of the one it solves a shock sweep asks for (PREFETCH): the rows come
  * in solving order, scattered over the staged rows, and with workers half of them were last
- * written by the other core (rain 10,000 on two workers: the velocity sweep 103-105 us a step
- * without, 78-81 with, on one worker 52 us either way). */
+ * written by the other core (its figures: commit d05123f; the sweep's time a step: step.h's
+ * timers). */
 #define SOLVER_SHOCK_AHEAD 16
 
 void solver_shock(solver_constraint *c, const int32_t *order, int32_t n, rg_real *v, rg_real gx,

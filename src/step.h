@@ -1,6 +1,9 @@
 /* step.h: optional phase timers of the step for development: build with
  * -DRG_STEP_PROFILE -D_POSIX_C_SOURCE=199309L (a POSIX clock); they print to stderr every ten
- * steps.  Without it they compile to nothing. */
+ * steps, with the solve's parts on one thread (resolve.c).  Without it they compile to
+ * nothing.  E.g. make B=build/prof EXTRA_CFLAGS="-DRG_STEP_PROFILE -D_POSIX_C_SOURCE=199309L"
+ * build/prof/bench-peers, then build/prof/bench-peers --v3 none --engine rigid-2w --sleep off
+ * --scene boxes:10000 --repeats 1. */
 #ifndef RG_STEP_H
 #define RG_STEP_H
 
@@ -29,8 +32,11 @@ static double step_prof_now(void)
                     (x).nc, (w)->coll.bp.n_active);                                            \
             const char *names_[] = {"views", "pairs", "narrow", "solve", "sweep+fat", "sleep"}; \
             for (int q_ = 0; q_ < 6; q_++) fprintf(stderr, " %s %.3f", names_[q_], step_prof_acc[q_] * 1e3 / 10); \
-            fprintf(stderr, " moved/step %.0f\n", step_prof_moved / 10);                       \
+            fprintf(stderr, " moved/step %.0f | solve on one thread, ms/step: order %.3f colour %.3f shock %.3f\n", \
+                    step_prof_moved / 10, step_prof_solve[0] * 1e3 / 10, step_prof_solve[1] * 1e3 / 10,            \
+                    step_prof_solve[2] * 1e3 / 10);                                                                 \
             step_prof_moved = 0;                                                               \
+            memset(step_prof_solve, 0, sizeof step_prof_solve);                                \
             memset(step_prof_acc, 0, sizeof step_prof_acc);                                    \
         }                                                                                      \
     } while (0)

@@ -5,7 +5,7 @@
  * through its pairs), 8192 lines the other thread has just written, then the same lines
  * after writing them itself.  And both threads add to a counter in memory at once, each
  * timing its own: on a VM one of two virtual cpus may for seconds run at a fraction of the
- * other's speed (seen here: 2.6x slower), which bounds what a second worker can add whatever
+ * other's speed, which bounds what a second worker can add whatever
  * the data's moves cost.  A step spread over workers moves its data between cores stage
  * after stage, so what a second worker gains depends on these (README, Known limits).
  * Where the two threads cannot run at once (one cpu, or under valgrind, which runs one
