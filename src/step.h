@@ -1,7 +1,8 @@
 /* step.h: optional phase timers of the step for development: build with
  * -DRG_STEP_PROFILE -D_POSIX_C_SOURCE=199309L (a POSIX clock); they print to stderr every ten
- * steps, with the solve's parts on one thread (resolve.c).  Without it they compile to
- * nothing.  E.g. make B=build/prof EXTRA_CFLAGS="-DRG_STEP_PROFILE -D_POSIX_C_SOURCE=199309L"
+ * steps, with the solve's parts on one thread (resolve.c), and every hundred steps the
+ * tasks' times and each worker's inside them (task.h).  Without it they compile to nothing.
+ * E.g. make B=build/prof EXTRA_CFLAGS="-DRG_STEP_PROFILE -D_POSIX_C_SOURCE=199309L"
  * build/prof/bench-peers, then build/prof/bench-peers --v3 none --engine rigid-2w --sleep off
  * --scene boxes:10000 --repeats 1. */
 #ifndef RG_STEP_H
@@ -11,6 +12,7 @@
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
+#include "task.h"
 static double step_prof_acc[8], step_prof_last, step_prof_moved;
 static double step_prof_now(void)
 {
@@ -35,6 +37,7 @@ static double step_prof_now(void)
             fprintf(stderr, " moved/step %.0f | solve on one thread, ms/step: order %.3f colour %.3f shock %.3f\n", \
                     step_prof_moved / 10, step_prof_solve[0] * 1e3 / 10, step_prof_solve[1] * 1e3 / 10,            \
                     step_prof_solve[2] * 1e3 / 10);                                                                 \
+            if ((w)->step_count % 100 == 99) task_prof_report(stderr, 100);                    \
             step_prof_moved = 0;                                                               \
             memset(step_prof_solve, 0, sizeof step_prof_solve);                                \
             memset(step_prof_acc, 0, sizeof step_prof_acc);                                    \

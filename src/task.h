@@ -14,4 +14,16 @@ void task_for(struct rg_world *w, rg_task_fn *fn, int32_t count, int32_t min_ran
 /* Workers a stage may see (fn's worker index is below it): 1 without a task system. */
 int32_t task_workers(const struct rg_world *w);
 
+#ifdef RG_STEP_PROFILE
+#include <stdio.h>
+
+/* The step's timers (step.h) task by task: every task_for names its function, and each
+ * task's time (from the call to its return) and each worker's time inside its ranges are
+ * summed per function, printed and cleared by task_prof_report as means over `steps`. */
+void task_for_named(struct rg_world *w, rg_task_fn *fn, const char *name, int32_t count, int32_t min_range,
+                    void *context);
+#define task_for(w, fn, count, min_range, context) task_for_named((w), (fn), #fn, (count), (min_range), (context))
+void task_prof_report(FILE *out, int steps);
+#endif
+
 #endif
