@@ -7,7 +7,6 @@
 #include "dispatch.h"
 #include "inline.h"
 #include "resolve.h"
-#include "shock.h"
 #include "state.h"
 #include "task.h"
 #include "vec2.h"
@@ -45,7 +44,6 @@ void resolve_layout(mem_layout *l, resolve_state *s, int32_t n)
     s->cmask = mem_take(l, (size_t)n, sizeof(uint32_t));
     s->sbody = mem_take(l, (size_t)n, sizeof(int32_t));
     s->sband = mem_take(l, (size_t)n, BANDS_MAX);
-    s->slast = mem_take(l, (size_t)n, sizeof(int32_t));
 }
 
 void resolve_next_gen(resolve_state *s, int32_t n)
@@ -621,49 +619,11 @@ static inline int resolve_row_met(const solver_rows *rows, int32_t r, int32_t *q
 /* The solve's first part in two halves that share nothing, so that they may run at once:
  * item 0 the solving order and the colours; item 1 what the narrowphase left (x->late), the
  * bodies the rows meet (stamped), their velocities loaded, and the rows against an immovable
- * body listed.  With the shock sweeps in two chains (h->chained), item 2 plans them from the
- * solving order, which item 0 or item 2, whichever comes first, makes (shock_once). */
+ * body listed. */
 typedef struct resolve_head {
     resolve_task *t;
     int32_t nfixed; /* rows against an immovable body (rows.fixed) */
-    int chained;
-    int32_t order;  /* shock_once's state for the solving order */
-    shock_chains ch;
 } resolve_head;
-
-static void resolve_head_order(void *context)
-{
-    const resolve_head *h = context;
-    RESOLVE_PROF(0, resolve_order(h->t->w, h->t->x));
-}
-
-/* Whether the shock sweeps run in two chains (shock.h): under gravity, with workers, the
- * spare rows (which hold the chains) and rows enough. */
-static int resolve_chained(const rg_world *w, const collide_step *x)
-{
-    return x->down && x->nc >= SHOCK_MIN_ROWS && task_workers(w) > 1 && shock_available() &&
-           w->coll.rows.spare_block != NULL;
-}
-
-/* Item 2 of the head: the chains, split where the last solve's rows lay across gravity
- * (halfway between the least and the greatest), which moves no result (shock.h). */
-static void resolve_head_plan(resolve_head *h)
-{
-    rg_world *w = h->t->w;
-    const collide_step *x = h->t->x;
-    solver_rows *rows = &w->coll.rows;
-    resolve_state *rs = &w->coll.resolve;
-    int32_t cap = rows->cap;
-    shock_chains *ch = &h->ch;
-    ch->row[0] = rows->chain;
-    ch->row[1] = rows->chain + cap;
-    ch->need[0] = rows->need;
-    ch->need[1] = rows->need + cap;
-    rg_real lo, hi;
-    shock_plan(ch, rows->ord, x->nc, rows->ab, w->b.x, w->b.y, x->ux, x->uy, rs->ssplit, rs->slast, x->ns + 1, &lo,
-               &hi);
-    rs->ssplit = lo <= hi ? lo + (hi - lo) / 2 : 0;
-}
 
 static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void *context)
 {
@@ -678,17 +638,9 @@ static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void 
     (void)worker;
     for (int32_t k = begin; k < end; k++) {
         if (k == 0) {
-            if (h->chained)
-                shock_once(&h->order, resolve_head_order, h);
-            else
-                resolve_head_order(h);
+            RESOLVE_PROF(0, resolve_order(w, x));
             RESOLVE_PROF(1, solver_pack(rows->ab, rows->ord, nc, x->ns + 1, rs->cmask, rows->color, rows->lanes,
                                         &rows->batch));
-            continue;
-        }
-        if (k == 2) {
-            shock_once(&h->order, resolve_head_order, h);
-            resolve_head_plan(h);
             continue;
         }
         if (x->late != NULL) x->late(w, x);
@@ -752,10 +704,7 @@ void resolve_run(rg_world *w, collide_step *x)
     t.timed = continuous_time_impacts(w, x);
     resolve_head h;
     h.t = &t;
-    h.chained = resolve_chained(w, x);
-    h.order = 0;
-    task_for(w, resolve_head_range, h.chained ? 3 : 2, 1, &h);
-    rs->chained += h.chained;
+    task_for(w, resolve_head_range, 2, 1, &h);
     x->late = NULL;
     rg_real gx = x->ux, gy = x->uy;
     int shock = x->down;
@@ -783,10 +732,7 @@ void resolve_run(rg_world *w, collide_step *x)
         }
     }
     if (t.bands < 2) resolve_pass(&t, RESOLVE_UNPACK, 0, sb->nrows);
-    if (shock && h.chained)
-        RESOLVE_PROF(2, shock_run(w, &h.ch, con, v, gx, gy, 0));
-    else if (shock)
-        RESOLVE_PROF(2, solver_shock(con, ord, nc, v, gx, gy));
+    if (shock) RESOLVE_PROF(2, solver_shock(con, ord, nc, v, gx, gy));
     solver_fixed_rows(con, rows->fixed, h.nfixed, v, 0);
     /* positions move with the solved velocities, then by the pseudo-velocities of the
      * position pass, which leave the velocities alone */
@@ -820,10 +766,7 @@ void resolve_run(rg_world *w, collide_step *x)
             }
         }
         if (t.bands < 2) resolve_pass(&t, RESOLVE_UNPACK_POSITION, 0, sb->nrows);
-        if (shock && h.chained)
-            RESOLVE_PROF(2, shock_run(w, &h.ch, con, pv, gx, gy, 1));
-        else if (shock)
-            RESOLVE_PROF(2, solver_shock_position(con, ord, nc, pv, gx, gy));
+        if (shock) RESOLVE_PROF(2, solver_shock_position(con, ord, nc, pv, gx, gy));
         solver_fixed_rows(con, rows->fixed, h.nfixed, pv, 1);
         rs->pv_valid = 1;
         resolve_pass(&t, RESOLVE_PUSH, first, bodies);

@@ -739,8 +739,6 @@ static void solver_rows_spare_layout(mem_layout *l, void *ctx)
     r->spare.imp = mem_take(l, n, sizeof(int32_t));
     r->mean = mem_take(l, (size_t)SOLVER_STAGE_BLOCKS(r->cap), sizeof(int32_t));
     r->handed = mem_take(l, (size_t)SOLVER_STAGE_BLOCKS(r->cap), sizeof(int32_t));
-    r->chain = mem_take(l, 2 * n, sizeof(int32_t));
-    r->need = mem_take(l, 2 * n, sizeof(int32_t));
 }
 
 int solver_rows_spare(solver_rows *r, const rg_mem *m)

@@ -260,9 +260,6 @@ typedef struct solver_rows {
      * given to the tasks.  In the spare block too. */
     int32_t *mean, *handed;
     int32_t means;
-    /* The shock sweeps' two chains on two workers (shock.h, resolve.c): chain s's rows and
-     * needs from s cap of each ([0, 2 cap)).  In the spare block too. */
-    int32_t *chain, *need;
     void *spare_block;
     size_t spare_size;
 } solver_rows;

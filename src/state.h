@@ -234,9 +234,6 @@ typedef struct resolve_state {
     uint8_t *sband;           /* q * BANDS_MAX + b: == bgen when band b's rows meet q */
     uint8_t bgen;             /* their generation (one per solve in bands) */
     int64_t banded;           /* solves whose colours ran in bands (test_bands.c reads it) */
-    int32_t *slast;           /* q: the shock chains' planning scratch (shock.h) */
-    rg_real ssplit;           /* where the last solve's chains were split, across gravity */
-    int64_t chained;          /* solves whose shock sweeps ran in two chains (tests read it) */
 } resolve_state;
 
 typedef struct collide_world {
