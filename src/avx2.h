@@ -1,6 +1,6 @@
 /* avx2.h: helpers of the hand-written AVX2 paths (dispatch.h's RG_AVX2_PATHS): an 8x8
- * transpose, for records of eight floats in and out of eight lanes; the velocity pairs of
- * eight solver bodies in and out of lanes; the fat-box test of eight bodies.  Include only
+ * transpose, for records of eight floats in and out of eight lanes; pairs (x, y) at eight
+ * addresses in and out of lanes; the fat-box test of eight bodies.  Include only
  * where RG_AVX2_PATHS is 1; every function is for callers built with target("avx2"). */
 #ifndef RG_AVX2_H
 #define RG_AVX2_H
@@ -75,23 +75,13 @@ AVX2_INLINE void avx2_pairs_at(const float *const *p, __m256 *x, __m256 *y)
     *y = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1));
 }
 
-/* The pairs (x, y) of v at 2 idx[l], l = 0..7 (solver bodies' velocities). */
-AVX2_INLINE void avx2_gather_pairs(const float *v, const int32_t *idx, __m256 *x, __m256 *y)
-{
-    const float *p[8] = {SOLVER_PAIR(v, idx[0]), SOLVER_PAIR(v, idx[1]), SOLVER_PAIR(v, idx[2]), SOLVER_PAIR(v, idx[3]),
-                         SOLVER_PAIR(v, idx[4]), SOLVER_PAIR(v, idx[5]), SOLVER_PAIR(v, idx[6]), SOLVER_PAIR(v, idx[7])};
-    avx2_pairs_at(p, x, y);
-}
-
-/* And back: the pairs stored in order, lane 0 first. */
-AVX2_INLINE void avx2_scatter_pairs(float *v, const int32_t *idx, __m256 x, __m256 y)
+/* And back: eight x and eight y stored as the pairs at p[l], lane 0 first (callers compute
+ * every address before the stores, which may alias what they were computed from). */
+AVX2_INLINE void avx2_pairs_put(float *const *p, __m256 x, __m256 y)
 {
     __m256 lo = _mm256_unpacklo_ps(x, y), hi = _mm256_unpackhi_ps(x, y);
     __m128 p01 = _mm256_castps256_ps128(lo), p45 = _mm256_extractf128_ps(lo, 1);
     __m128 p23 = _mm256_castps256_ps128(hi), p67 = _mm256_extractf128_ps(hi, 1);
-    /* the addresses first: the stores may alias idx as far as the compiler knows */
-    float *p[8] = {SOLVER_PAIR(v, idx[0]), SOLVER_PAIR(v, idx[1]), SOLVER_PAIR(v, idx[2]), SOLVER_PAIR(v, idx[3]),
-                   SOLVER_PAIR(v, idx[4]), SOLVER_PAIR(v, idx[5]), SOLVER_PAIR(v, idx[6]), SOLVER_PAIR(v, idx[7])};
     _mm_storel_pi((__m64 *)(void *)p[0], p01);
     _mm_storeh_pi((__m64 *)(void *)p[1], p01);
     _mm_storel_pi((__m64 *)(void *)p[2], p23);

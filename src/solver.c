@@ -12,6 +12,22 @@
 #if RG_AVX2_PATHS
 #define SOLVER_AVX2 1
 #include "avx2.h"
+
+/* The velocity pairs of solver bodies idx[0..8) in eight lanes, and back (every address
+ * computed before the stores: they may alias idx as far as the compiler knows). */
+AVX2_INLINE void solver_gather8(const float *v, const int32_t *idx, __m256 *x, __m256 *y)
+{
+    const float *p[8] = {SOLVER_PAIR(v, idx[0]), SOLVER_PAIR(v, idx[1]), SOLVER_PAIR(v, idx[2]), SOLVER_PAIR(v, idx[3]),
+                         SOLVER_PAIR(v, idx[4]), SOLVER_PAIR(v, idx[5]), SOLVER_PAIR(v, idx[6]), SOLVER_PAIR(v, idx[7])};
+    avx2_pairs_at(p, x, y);
+}
+
+AVX2_INLINE void solver_scatter8(float *v, const int32_t *idx, __m256 x, __m256 y)
+{
+    float *p[8] = {SOLVER_PAIR(v, idx[0]), SOLVER_PAIR(v, idx[1]), SOLVER_PAIR(v, idx[2]), SOLVER_PAIR(v, idx[3]),
+                   SOLVER_PAIR(v, idx[4]), SOLVER_PAIR(v, idx[5]), SOLVER_PAIR(v, idx[6]), SOLVER_PAIR(v, idx[7])};
+    avx2_pairs_put(p, x, y);
+}
 #else
 #define SOLVER_AVX2 0
 #endif
@@ -474,8 +490,8 @@ AVX2_FN static void wide_iterate_avx2(solver_batch *s, int32_t r0, int32_t r1, f
     for (int32_t r = r0; r < r1; r++) {
         solver_wide *q = &s->rows[r];
         __m256 vax, vay, vbx, vby;
-        avx2_gather_pairs(v, q->a, &vax, &vay);
-        avx2_gather_pairs(v, q->b, &vbx, &vby);
+        solver_gather8(v, q->a, &vax, &vay);
+        solver_gather8(v, q->b, &vbx, &vby);
         __m256 nx = _mm256_loadu_ps(q->nx), ny = _mm256_loadu_ps(q->ny), m = _mm256_loadu_ps(q->m);
         __m256 pn0 = _mm256_loadu_ps(q->pn), pt0 = _mm256_loadu_ps(q->pt);
         __m256 dvx = _mm256_sub_ps(vbx, vax), dvy = _mm256_sub_ps(vby, vay);
@@ -492,9 +508,9 @@ AVX2_FN static void wide_iterate_avx2(solver_batch *s, int32_t r0, int32_t r1, f
         __m256 px = _mm256_sub_ps(_mm256_mul_ps(ln, nx), _mm256_mul_ps(lt, ny));
         __m256 py = _mm256_add_ps(_mm256_mul_ps(ln, ny), _mm256_mul_ps(lt, nx));
         __m256 ima = _mm256_loadu_ps(q->ima), imb = _mm256_loadu_ps(q->imb);
-        avx2_scatter_pairs(v, q->a, _mm256_sub_ps(vax, _mm256_mul_ps(px, ima)),
+        solver_scatter8(v, q->a, _mm256_sub_ps(vax, _mm256_mul_ps(px, ima)),
                            _mm256_sub_ps(vay, _mm256_mul_ps(py, ima)));
-        avx2_scatter_pairs(v, q->b, _mm256_add_ps(vbx, _mm256_mul_ps(px, imb)),
+        solver_scatter8(v, q->b, _mm256_add_ps(vbx, _mm256_mul_ps(px, imb)),
                            _mm256_add_ps(vby, _mm256_mul_ps(py, imb)));
     }
 }
@@ -509,16 +525,16 @@ AVX2_FN static void wide_warm_start_avx2(const solver_batch *s, int32_t r0, int3
     for (int32_t r = r0; r < r1; r++) {
         const solver_wide *q = &s->rows[r];
         __m256 vax, vay, vbx, vby;
-        avx2_gather_pairs(v, q->a, &vax, &vay);
+        solver_gather8(v, q->a, &vax, &vay);
         __m256 nx = _mm256_loadu_ps(q->nx), ny = _mm256_loadu_ps(q->ny);
         __m256 pn = _mm256_loadu_ps(q->pn), pt = _mm256_loadu_ps(q->pt);
         __m256 px = _mm256_sub_ps(_mm256_mul_ps(pn, nx), _mm256_mul_ps(pt, ny));
         __m256 py = _mm256_add_ps(_mm256_mul_ps(pn, ny), _mm256_mul_ps(pt, nx));
         __m256 ima = _mm256_loadu_ps(q->ima), imb = _mm256_loadu_ps(q->imb);
-        avx2_scatter_pairs(v, q->a, _mm256_sub_ps(vax, _mm256_mul_ps(px, ima)),
+        solver_scatter8(v, q->a, _mm256_sub_ps(vax, _mm256_mul_ps(px, ima)),
                            _mm256_sub_ps(vay, _mm256_mul_ps(py, ima)));
-        avx2_gather_pairs(v, q->b, &vbx, &vby);
-        avx2_scatter_pairs(v, q->b, _mm256_add_ps(vbx, _mm256_mul_ps(px, imb)),
+        solver_gather8(v, q->b, &vbx, &vby);
+        solver_scatter8(v, q->b, _mm256_add_ps(vbx, _mm256_mul_ps(px, imb)),
                            _mm256_add_ps(vby, _mm256_mul_ps(py, imb)));
     }
 }
@@ -548,8 +564,8 @@ AVX2_FN static int32_t prepare_position_avx2(solver_constraint *c, int32_t n, co
         _mm256_storeu_si256((__m256i *)(void *)ia, _mm256_castps_si256(r[0]));
         _mm256_storeu_si256((__m256i *)(void *)ib, _mm256_castps_si256(r[1]));
         __m256 vax, vay, vbx, vby;
-        avx2_gather_pairs(v, ia, &vax, &vay);
-        avx2_gather_pairs(v, ib, &vbx, &vby);
+        solver_gather8(v, ia, &vax, &vay);
+        solver_gather8(v, ib, &vbx, &vby);
         __m256 vn =
             _mm256_add_ps(_mm256_mul_ps(_mm256_sub_ps(vbx, vax), r[4]), _mm256_mul_ps(_mm256_sub_ps(vby, vay), r[5]));
         __m256 s1 = _mm256_add_ps(h[1], _mm256_mul_ps(vn, dt));
