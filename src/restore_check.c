@@ -251,38 +251,6 @@ int restore_check_pool(const snap_in *in, size_t gen, size_t index, int32_t slot
     return steps == nfree;
 }
 
-/* The islands: each sleeping body's list head is a sleeping body heading its own list, and
- * the lists cover each sleeping body once.  As the contacts' lists (restore_links.c): each
- * next link where it lies (a sleeping body of the same list that heads none), gathered as a
- * dense index; no two links lead to one body (a mark each, for these lists link one way),
- * as many links as bodies that head no list, and no cycle (restore_acyclic). */
-int restore_check_islands(const snap_in *in, restore_scratch *r)
-{
-    /* what the loops read of `in` and `r` in locals: a store of a link may alias an int32_t
-     * of either, and the compiler would read them again after each */
-    const int32_t na = in->s.n_active, nm = in->s.n_moving, asleep = nm - na;
-    const uint8_t *bindex = in->p + in->l.bindex;
-    snap_col heads = col_of(in, SNAP_F_isl_head), nexts = col_of(in, SNAP_F_isl_next), slots = col_of(in, SNAP_F_slot);
-    int32_t *next = r->isl_next;
-    uint8_t *led = r->isl_in;
-    int32_t links = 0, headed = 0;
-    for (int32_t k = 0; k < asleep; k++) {
-        /* in range (restore_body.c): head in [1, bslots], at in [0, bslots] */
-        int32_t head = col_i32(heads, na + k), at = col_i32(nexts, na + k);
-        int32_t j = (int32_t)snap_get32(bindex + 4 * (size_t)(head - 1)); /* restore_dense */
-        if (j < na || j >= nm || col_i32(heads, j) != head) return BAD;
-        headed += head == col_i32(slots, na + k) + 1;
-        next[k] = -1;
-        if (at == 0) continue;
-        j = (int32_t)snap_get32(bindex + 4 * (size_t)(at - 1));
-        if (j < na || j >= nm || col_i32(heads, j) != head || at == head || led[j - na]) return BAD;
-        led[j - na] = 1;
-        next[k] = j - na;
-        links++;
-    }
-    return links == asleep - headed && restore_acyclic(next, asleep);
-}
-
 int restore_check_springs(const snap_in *in)
 {
     const snap_scalars *s = &in->s;

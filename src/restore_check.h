@@ -228,7 +228,7 @@ void restore_check_scratch_layout(mem_layout *l, void *ctx);
  * overwritten); a walk that meets its own mark has run round a cycle, one that meets an
  * earlier walk's mark joins a path already seen to end.  Each link is passed once. */
 int restore_acyclic(int32_t *next, int32_t n);
-/* The sleeping bodies' islands (restore_check.c). */
+/* The sleeping bodies' islands (restore_links.c). */
 int restore_check_islands(const snap_in *in, restore_scratch *r);
 /* Both spread what they can over w's task system (nothing of w changes). */
 int restore_check_contacts(struct rg_world *w, const snap_in *in, restore_scratch *r);
