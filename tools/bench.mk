@@ -1,5 +1,5 @@
-# The benchmark: tools/bench.c and its parts (bench_scenes, bench_quality, bench_report,
-# bench_sweep, bench_floor) and engines (bench_rigid, bench_box2d, bench_chipmunk, bench_v3).
+# The benchmark: tools/bench.c and its parts (bench_run, bench_scenes, bench_quality,
+# bench_report, bench_sweep, bench_floor) and engines (bench_rigid, bench_box2d, bench_chipmunk, bench_v3).
 #   make bench                 installs the peers (tools/install-deps.sh --bench), builds Box2D v3
 #                              (tools/bench_v3.mk) and runs every scene on rigid, Box2D v3, Box2D
 #                              2.4 and Chipmunk 7 side by side (without those it cannot have, and
@@ -42,7 +42,7 @@ ALL_TARGETS += $(B)/bench
 
 # The parts every bench program shares, and those of the harness.
 BENCH_COMMON := scenes rigid gameplay v3_load
-BENCH_PARTS := $(BENCH_COMMON) quality report sweep floor cores
+BENCH_PARTS := $(BENCH_COMMON) run quality report sweep floor cores
 BENCH_PART_OBJ := $(patsubst %,$(B)/bench_obj/bench_%.o,$(BENCH_PARTS))
 BENCH_COMMON_OBJ := $(patsubst %,$(B)/bench_obj/bench_%.o,$(BENCH_COMMON))
 
