@@ -55,13 +55,6 @@ static inline solver_dest resolve_rows_dest(solver_rows *rows, collide_step *x)
     return d;
 }
 
-/* The order of n rows by (key, row) -- what the stable radix sort of the solving order gives
- * -- from the order held in ord, when that is a permutation of [0, n) close to it (the last
- * step's, in a pile that moved little): an insertion sort, given up (returning 0, ord then
- * scrambled) past some 4n moves or on finding ord is no permutation.  Whatever ord held,
- * success means ord is the one order of distinct rows by (key, row): the sort's result. */
-int resolve_resort(const uint16_t *key, int32_t *ord, int32_t n);
-
 #ifdef RG_STEP_PROFILE
 /* The step's timers of the solve's parts on one thread (step.h): the order by height, the
  * colouring, the shock sweeps, in seconds since the last report. */

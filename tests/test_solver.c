@@ -5,6 +5,7 @@
 
 #include <string.h>
 
+#include "order.h"
 #include "resolve.h"
 #include "solver.h"
 
@@ -787,7 +788,7 @@ static void test_the_solving_order_is_repaired_exactly_or_refused(void **state)
     qsort(want, N, sizeof *want, resort_cmp);
     /* already in order */
     memcpy(ord, want, sizeof ord);
-    assert_int_equal(resolve_resort(key, ord, N), 1);
+    assert_int_equal(order_resort(key, ord, N), 1);
     assert_memory_equal(ord, want, sizeof ord);
     /* a few rows moved some places, ties included */
     memcpy(ord, want, sizeof ord);
@@ -796,24 +797,24 @@ static void test_the_solving_order_is_repaired_exactly_or_refused(void **state)
         ord[i] = ord[i + d];
         ord[i + d] = t;
     }
-    assert_int_equal(resolve_resort(key, ord, N), 1);
+    assert_int_equal(order_resort(key, ord, N), 1);
     assert_memory_equal(ord, want, sizeof ord);
     /* the identity (contact order) of keys that change little: near enough, or refused */
     for (int k = 0; k < N; k++) ord[k] = k;
-    if (resolve_resort(key, ord, N)) assert_memory_equal(ord, want, sizeof ord);
+    if (order_resort(key, ord, N)) assert_memory_equal(ord, want, sizeof ord);
     /* no permutation: a row twice, a row out of range, a negative one */
     memcpy(ord, want, sizeof ord);
     ord[N / 2] = ord[N / 3];
-    assert_int_equal(resolve_resort(key, ord, N), 0);
+    assert_int_equal(order_resort(key, ord, N), 0);
     memcpy(ord, want, sizeof ord);
     ord[N - 1] = N;
-    assert_int_equal(resolve_resort(key, ord, N), 0);
+    assert_int_equal(order_resort(key, ord, N), 0);
     memcpy(ord, want, sizeof ord);
     ord[7] = -1;
-    assert_int_equal(resolve_resort(key, ord, N), 0);
+    assert_int_equal(order_resort(key, ord, N), 0);
     /* reversed: some N^2/2 moves, past the budget of about 4N */
     for (int k = 0; k < N; k++) ord[k] = want[N - 1 - k];
-    assert_int_equal(resolve_resort(key, ord, N), 0);
+    assert_int_equal(order_resort(key, ord, N), 0);
 #undef RND
 }
 
