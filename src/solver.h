@@ -24,6 +24,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "dispatch.h"
 #include "mem.h"
 #include "rigid.h"
 
@@ -31,6 +32,22 @@
  * as unsigned, the address needs no sign extension, which the wide loops paid on every
  * lane). */
 #define SOLVER_PAIR(v, q) ((v) + 2 * (size_t)(uint32_t)(q))
+
+/* max and min without branches (x86 SSE: one instruction each; elsewhere plain C).  Both
+ * return b when a is NaN, like the C expression. */
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#ifdef RG_DOUBLE
+static inline rg_real solver_smax(rg_real a, rg_real b) { return _mm_cvtsd_f64(_mm_max_sd(_mm_set_sd(a), _mm_set_sd(b))); }
+static inline rg_real solver_smin(rg_real a, rg_real b) { return _mm_cvtsd_f64(_mm_min_sd(_mm_set_sd(a), _mm_set_sd(b))); }
+#else
+static inline rg_real solver_smax(rg_real a, rg_real b) { return _mm_cvtss_f32(_mm_max_ss(_mm_set_ss(a), _mm_set_ss(b))); }
+static inline rg_real solver_smin(rg_real a, rg_real b) { return _mm_cvtss_f32(_mm_min_ss(_mm_set_ss(a), _mm_set_ss(b))); }
+#endif
+#else
+static inline rg_real solver_smax(rg_real a, rg_real b) { return a > b ? a : b; }
+static inline rg_real solver_smin(rg_real a, rg_real b) { return a < b ? a : b; }
+#endif
 
 typedef struct solver_constraint {
     int32_t a, b;      /* solver body indices (velocity pairs); 0 is the ground */
@@ -127,7 +144,7 @@ static inline int solver_row_fixed(const solver_constraint *q) { return !(q->ima
  * solver_row_fixed says are).  Velocity rows on v, or position rows on pseudo-velocities pv. */
 void solver_fixed_rows(solver_constraint *c, const int32_t *list, int32_t k, rg_real *v, int position);
 /* Position rows from the penetration the velocities v leave; returns how many rows need a
- * push (0: the position pass can be skipped). */
+ * push (0: the position pass can be skipped).  In solver_wide.c, beside its AVX2 path. */
 int32_t solver_prepare_position(solver_constraint *c, int32_t n, const rg_real *v,
                                 const solver_params *p);
 /* One Gauss-Seidel sweep over the position rows on pseudo-velocities pv. */
