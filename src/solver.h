@@ -24,7 +24,6 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "dispatch.h"
 #include "mem.h"
 #include "rigid.h"
 

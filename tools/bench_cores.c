@@ -203,7 +203,7 @@ int bench_cores_speeds_ns(double *fast, double *slow)
         double t0 = cores_now();
         __atomic_store_n(&cores_counter, 1, __ATOMIC_RELEASE);
         double mine = cores_chain();
-        /* the other thread's chain: given up 0.3 s after the start (a run takes some 4 ms) */
+        /* the other thread's chain: given up 0.1 s after the start (a run takes some 4 ms) */
         int ok = cores_main_waits(2, t0 + 0.1);
         cores_join(other);
         if (!ok) return 0;
