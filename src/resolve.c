@@ -308,7 +308,17 @@ static void resolve_pass(resolve_task *t, int what, int32_t r0, int32_t count)
                       : wide                 ? RESOLVE_WIDE_RANGE
                       : copy                 ? RESOLVE_COPY_RANGE
                                              : RESOLVE_RANGE;
+#ifdef RG_STEP_PROFILE
+    /* the step's timers name each pass (in the order of the enum) */
+    static const char *const names[] = {"resolve_range warm",   "resolve_range velocity", "resolve_range position",
+                                        "resolve_range load",   "resolve_range move",     "resolve_range push",
+                                        "resolve_range prepare", "resolve_range keep",    "resolve_range lanes",
+                                        "resolve_range unpack", "resolve_range unpack position",
+                                        "resolve_range pack position", "resolve_range pack"};
+    task_for_named(t->w, resolve_range, names[what], count, min_range, t);
+#else
     task_for(t->w, resolve_range, count, min_range, t);
+#endif
 }
 
 /* A pass over the wide rows, colour by colour. */

@@ -222,7 +222,7 @@ int solver_pack_wide(void)
 #endif
 }
 
-void solver_pack_rows(const solver_constraint *c, const int32_t *order, int32_t n, const int32_t *color,
+void solver_pack_rows(const solver_constraint *c, const int32_t *order, int32_t n, int32_t *color,
                       const int32_t *lanes, int32_t blk0, int32_t blk1, solver_batch *out)
 {
     solver_wide *w = out->rows;
@@ -237,6 +237,7 @@ void solver_pack_rows(const solver_constraint *c, const int32_t *order, int32_t 
             if (col == 32) continue; /* the overflow list (solver_pack) */
             int32_t slot = next[col]++;
             out->row_of[slot] = k;
+            color[k] = slot; /* (solver.h: the line becomes this thread's) */
             if (place_only) continue;
             solver_wide *q = &w[(uint32_t)slot / SOLVER_LANES]; /* slot >= 0: a shift, not a division */
             int l = (int)((uint32_t)slot % SOLVER_LANES);

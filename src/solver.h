@@ -198,7 +198,11 @@ static inline void solver_row_bodies(const solver_constraint *q, int32_t *ab)
  * `mask` (nbodies words), `color` (n) and `lanes` (SOLVER_PACK_BLOCKS(n) * 32: each block's
  * first lane in each colour) are scratch kept from one call to the other; rows, row_of and
  * over must hold SOLVER_WIDE_ROWS(n), SOLVER_WIDE_ROWS(n) * SOLVER_LANES and n.  row_of
- * gives each lane its row of c (-1: padding); over holds rows of c. */
+ * gives each lane its row of c (-1: padding); over holds rows of c.  solver_pack_rows
+ * replaces each packed row's colour with its lane (row_of's inverse), so that the lines of
+ * `color` it read are its thread's when solver_pack writes them next: writing a line that
+ * another core has only read waits for that core to drop its copy, which on the README's
+ * VM costs several times taking over a line the other core wrote. */
 #define SOLVER_PACK_BLOCK 512
 /* Whether rows are so few beside the solver bodies that what is kept per body is cleared, or
  * walked, row by row rather than whole: a world of many awake bodies of which few collide
@@ -208,7 +212,7 @@ static inline int solver_rows_few(int32_t rows, int32_t bodies) { return (int64_
 #define SOLVER_PACK_BLOCKS(n) (((n) + SOLVER_PACK_BLOCK - 1) / SOLVER_PACK_BLOCK)
 void solver_pack(const int32_t *ab, const int32_t *order, int32_t n, int32_t nbodies, uint32_t *mask,
                  int32_t *color, int32_t *lanes, solver_batch *out);
-void solver_pack_rows(const solver_constraint *c, const int32_t *order, int32_t n, const int32_t *color,
+void solver_pack_rows(const solver_constraint *c, const int32_t *order, int32_t n, int32_t *color,
                       const int32_t *lanes, int32_t blk0, int32_t blk1, solver_batch *out);
 /* Where the CPU has AVX2 (solver_pack_wide), solver_pack_rows only places the rows
  * (row_of), and solver_pack_lanes then fills wide rows [r0, r1) from them, eight rows of c at

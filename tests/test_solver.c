@@ -699,7 +699,15 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
     memset(wide, 0xA5, sizeof wide);
     for (int k = 0; k < N; k++) solver_row_bodies(&rows[k], ab + 2 * k);
     solver_pack(ab, order, N, BODIES + 1, mask, color, lanes, &sb);
+    static int32_t colour[N]; /* the colours: solver_pack_rows gives each packed row its slot */
+    memcpy(colour, color, sizeof colour);
     solver_pack_rows(rows, order, N, color, lanes, 0, SOLVER_PACK_BLOCKS(N), &sb);
+    for (int k = 0; k < N; k++) {
+        if (colour[k] == 32) continue; /* the overflow list's */
+        assert_in_range(color[k], sb.cstart[colour[k]] * SOLVER_LANES,
+                        sb.cstart[colour[k] + 1] * SOLVER_LANES - 1);
+        assert_int_equal(row_of[color[k]], k);
+    }
     if (solver_pack_wide()) solver_pack_lanes(&sb, rows, 0, sb.nrows);
     assert_true(sb.nover > 0); /* the overflow list is exercised too */
     check_lanes(&sb, rows, N);
@@ -715,7 +723,7 @@ static void test_packed_lanes_match_row_by_row_sweeps(void **state)
     int32_t seq[N], n = 0;
     for (int col = 0; col < 32; col++)
         for (int k = 0; k < N; k++)
-            if (color[k] == col) seq[n++] = k;
+            if (colour[k] == col) seq[n++] = k;
     memcpy(vb, v0, sizeof v0);
     solver_warm_start(ref, seq, n, vb);
     solver_warm_start(ref, sb.over, sb.nover, vb);
