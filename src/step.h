@@ -1,7 +1,8 @@
 /* step.h: optional phase timers of the step for development: build with
  * -DRG_STEP_PROFILE -D_POSIX_C_SOURCE=199309L (a POSIX clock); they print to stderr every ten
  * steps, with the solve's parts on one thread (resolve.c), and every hundred steps the
- * tasks' times and each worker's inside them (task.h).  Without it they compile to nothing.
+ * tasks' times and each worker's inside them (task.h; the solve's passes over rows and
+ * bodies each under its own name).  Without it they compile to nothing.
  * E.g. make B=build/prof EXTRA_CFLAGS="-DRG_STEP_PROFILE -D_POSIX_C_SOURCE=199309L"
  * build/prof/bench-peers, then build/prof/bench-peers --v3 none --engine rigid-2w --sleep off
  * --scene boxes:10000 --repeats 1. */
