@@ -297,6 +297,16 @@ static void resolve_range(int32_t begin, int32_t end, int32_t worker, void *cont
 #define RESOLVE_RANGE 512
 #define RESOLVE_PACK_RANGE 2
 
+#ifdef RG_STEP_PROFILE
+/* The step's timers name each pass, in the order of the enum. */
+static const char *const resolve_pass_names[] = {
+    "resolve_range warm",    "resolve_range velocity", "resolve_range position",         "resolve_range load",
+    "resolve_range move",    "resolve_range push",     "resolve_range prepare",          "resolve_range keep",
+    "resolve_range lanes",   "resolve_range unpack",   "resolve_range unpack position", "resolve_range pack position",
+    "resolve_range pack"};
+typedef char resolve_pass_names_fit[sizeof resolve_pass_names / sizeof resolve_pass_names[0] == RESOLVE_PACK + 1 ? 1 : -1];
+#endif
+
 /* One pass: `count` items from r0 (wide rows, rows of c, or solver bodies). */
 static void resolve_pass(resolve_task *t, int what, int32_t r0, int32_t count)
 {
@@ -309,13 +319,7 @@ static void resolve_pass(resolve_task *t, int what, int32_t r0, int32_t count)
                       : copy                 ? RESOLVE_COPY_RANGE
                                              : RESOLVE_RANGE;
 #ifdef RG_STEP_PROFILE
-    /* the step's timers name each pass (in the order of the enum) */
-    static const char *const names[] = {"resolve_range warm",   "resolve_range velocity", "resolve_range position",
-                                        "resolve_range load",   "resolve_range move",     "resolve_range push",
-                                        "resolve_range prepare", "resolve_range keep",    "resolve_range lanes",
-                                        "resolve_range unpack", "resolve_range unpack position",
-                                        "resolve_range pack position", "resolve_range pack"};
-    task_for_named(t->w, resolve_range, names[what], count, min_range, t);
+    task_for_named(t->w, resolve_range, resolve_pass_names[what], count, min_range, t);
 #else
     task_for(t->w, resolve_range, count, min_range, t);
 #endif

@@ -3,7 +3,9 @@
  * other's write: one round trip is a cache line gone to the other core and back.  And the
  * main thread reads, in a random order (independent loads, as a stage's reads of bodies
  * through its pairs), 8192 lines the other thread has just written, then the same lines
- * after writing them itself.  And both threads add to a counter in memory at once, each
+ * after writing them itself; and writes them, in order and in that random order, after the
+ * other thread has only read them (its copies must go before each write: a stage that
+ * rewrites what the other worker's stage only read pays that).  And both threads add to a counter in memory at once, each
  * timing its own: on a VM one of two virtual cpus may for seconds run at a fraction of the
  * other's speed, which bounds what a second worker can add whatever
  * the data's moves cost.  A step spread over workers moves its data between cores stage
@@ -101,6 +103,9 @@ typedef struct cores_line {
     uint64_t v[8];
 } cores_line;
 
+/* What a run of the lines times (cores_lines_run). */
+#define CORES_KINDS 4
+
 static cores_line *cores_lines;
 static uint32_t *cores_order; /* a random order of the lines */
 static volatile uint64_t cores_sink;
@@ -121,6 +126,17 @@ static double cores_read(void)
     return t;
 }
 
+/* The time a line of writing the lines in order, or in cores_order (shuffled), s. */
+static double cores_write_timed(uint64_t base, int shuffled)
+{
+    double t0 = cores_now();
+    if (shuffled)
+        for (uint32_t i = 0; i < CORES_LINES; i++) cores_lines[cores_order[i]].v[0] = base + i;
+    else
+        cores_write(base);
+    return (cores_now() - t0) / CORES_LINES;
+}
+
 static void *cores_writer(void *arg)
 {
     (void)arg;
@@ -130,21 +146,43 @@ static void *cores_writer(void *arg)
     return NULL;
 }
 
-/* One run: the time a line of reading lines the other thread wrote (t[0]) and lines this
- * thread wrote (t[1]), s; 0 past the deadline. */
-static int cores_lines_run(double t[2])
+static void *cores_reader(void *arg)
+{
+    (void)arg;
+    if (!cores_other_waits(1)) return NULL;
+    uint64_t sum = 0;
+    for (uint32_t i = 0; i < CORES_LINES; i++) sum += cores_lines[i].v[0];
+    cores_sink = sum;
+    __atomic_store_n(&cores_counter, 2, __ATOMIC_RELEASE);
+    return NULL;
+}
+
+/* Starts the other thread on fn and waits for it; 0 past the deadline. */
+static int cores_other_runs(void *(*fn)(void *))
 {
     pthread_t other;
-    cores_write(0); /* both threads' caches start from the same state: lines this thread wrote */
-    if (!cores_start(&other, cores_writer)) return 0;
+    if (!cores_start(&other, fn)) return 0;
     double t0 = cores_now();
     __atomic_store_n(&cores_counter, 1, __ATOMIC_RELEASE);
     int ok = cores_main_waits(2, t0);
     cores_join(other);
-    if (!ok) return 0;
+    return ok;
+}
+
+/* One run: the time a line of reading lines the other thread wrote (t[0]) and lines this
+ * thread wrote (t[1]), and of writing, in order (t[2]) and shuffled (t[3]), lines this thread
+ * wrote and the other then read, s; 0 past the deadline. */
+static int cores_lines_run(double t[CORES_KINDS])
+{
+    cores_write(0); /* both threads' caches start from the same state: lines this thread wrote */
+    if (!cores_other_runs(cores_writer)) return 0;
     t[0] = cores_read();
     cores_write(2000);
     t[1] = cores_read();
+    for (int shuffled = 0; shuffled < 2; shuffled++) {
+        if (!cores_other_runs(cores_reader)) return 0;
+        t[2 + shuffled] = cores_write_timed(3000, shuffled);
+    }
     return 1;
 }
 
@@ -217,13 +255,13 @@ int bench_cores_speeds_ns(double *fast, double *slow)
     return 1;
 }
 
-int bench_cores_lines_ns(double *other, double *own)
+int bench_cores_lines_ns(double *other, double *own, double *shared, double *shared_shuffled)
 {
     if (sysconf(_SC_NPROCESSORS_ONLN) < 2) return 0;
     cores_lines = malloc(CORES_LINES * sizeof *cores_lines);
     cores_order = malloc(CORES_LINES * sizeof *cores_order);
     int ok = cores_lines != NULL && cores_order != NULL;
-    double t[2][CORES_RUNS];
+    double t[CORES_KINDS][CORES_RUNS];
     if (ok) {
         uint32_t x = 2463534242u; /* xorshift: a fixed shuffle */
         for (uint32_t i = 0; i < CORES_LINES; i++) cores_order[i] = i;
@@ -236,17 +274,17 @@ int bench_cores_lines_ns(double *other, double *own)
             cores_order[j] = k;
         }
         for (int r = 0; r < CORES_RUNS && ok; r++) {
-            double tr[2];
+            double tr[CORES_KINDS];
             ok = cores_lines_run(tr);
-            t[0][r] = tr[0];
-            t[1][r] = tr[1];
+            for (int u = 0; u < CORES_KINDS; u++) t[u][r] = tr[u];
         }
     }
     if (ok) {
-        qsort(t[0], CORES_RUNS, sizeof t[0][0], cores_cmp);
-        qsort(t[1], CORES_RUNS, sizeof t[1][0], cores_cmp);
+        for (int u = 0; u < CORES_KINDS; u++) qsort(t[u], CORES_RUNS, sizeof t[u][0], cores_cmp);
         *other = t[0][CORES_RUNS / 2] * 1e9;
         *own = t[1][CORES_RUNS / 2] * 1e9;
+        *shared = t[2][CORES_RUNS / 2] * 1e9;
+        *shared_shuffled = t[3][CORES_RUNS / 2] * 1e9;
     }
     free(cores_lines);
     free(cores_order);
@@ -257,11 +295,12 @@ int bench_cores_lines_ns(double *other, double *own)
 
 void bench_cores_line(FILE *f, const char *when)
 {
-    double trip = bench_cores_round_trip_ns(), other = 0, own = 0, fast = 0, slow = 0;
-    if (trip > 0 && bench_cores_lines_ns(&other, &own) && bench_cores_speeds_ns(&fast, &slow))
+    double trip = bench_cores_round_trip_ns(), other = 0, own = 0, shared = 0, mixed = 0, fast = 0, slow = 0;
+    if (trip > 0 && bench_cores_lines_ns(&other, &own, &shared, &mixed) && bench_cores_speeds_ns(&fast, &slow))
         fprintf(f, "machine %s: a cache line to the other core and back %.0f ns; reading lines the other core "
-                "has just written %.1f ns a line, its own %.1f; the two threads' speeds at once %.2fx apart\n",
-                when, trip, other, own, slow / fast);
+                "has just written %.1f ns a line, its own %.1f; writing lines the other core has just read "
+                "%.1f in order, %.1f at random; the two threads' speeds at once %.2fx apart\n",
+                when, trip, other, own, shared, mixed, slow / fast);
     else if (sysconf(_SC_NPROCESSORS_ONLN) > 1)
         fprintf(f, "machine %s: two threads did not run at once (another load on the cpus?)\n", when);
 }

@@ -90,9 +90,10 @@ void bench_report_machine(FILE *f);
  * with one cpu. */
 double bench_cores_round_trip_ns(void);
 /* The median time a line of reading, in a random order, 8192 cache lines another thread has
- * just written (*other) and lines this thread wrote (*own) (bench_cores.c); 0 with one cpu
- * or when the threads cannot run at once. */
-int bench_cores_lines_ns(double *other, double *own);
+ * just written (*other) and lines this thread wrote (*own), and of writing them after the
+ * other thread has read them, in order (*shared) and in the random order (*shared_shuffled)
+ * (bench_cores.c); 0 with one cpu or when the threads cannot run at once. */
+int bench_cores_lines_ns(double *other, double *own, double *shared, double *shared_shuffled);
 /* Two threads adding to a counter in memory at once, each timing its own: the median ns an
  * addition of the faster (*fast) and of the slower (*slow) (bench_cores.c); 0 with one cpu
  * or when the threads cannot run at once. */
