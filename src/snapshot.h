@@ -1,5 +1,5 @@
 /* snapshot.h: the snapshot format, shared by its writer (snapshot.c: rg_world_save,
- * rg_world_hash) and its reader (restore.c: rg_world_restore).
+ * rg_world_hash), its reader (restore.c: rg_world_restore) and its hash (snap_hash.c).
  *
  * One byte order (little-endian) and fixed field sizes (int32, uint32, uint64, rg_real as
  * IEEE 754 binary32 or binary64, the accumulator as binary64), whatever the machine:
@@ -227,7 +227,7 @@ static inline rg_real snap_get_real(const uint8_t *p)
     return v;
 }
 
-/* ---- the hash: 64-bit words in 32 lanes (word k of each 256-byte block into lane k), each a
+/* ---- the hash (snap_hash.c): 64-bit words in 32 lanes (word k of each 256-byte block into lane k), each a
  * multiply-xorshift chain (a bijection of the lane for every word, so any change of any byte
  * changes the result); tail bytes zero-padded and the length mixed in at the end.  Streamed:
  * bytes may come in any chunks.  Thirty-two lanes, not eight, so that the multiplies of a
