@@ -29,6 +29,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "snap_hash.h"
 #include "state.h"
 
 #define SNAP_MAGIC "RIGIDSNP"
@@ -226,23 +227,5 @@ static inline rg_real snap_get_real(const uint8_t *p)
     memcpy(&v, &u, sizeof v);
     return v;
 }
-
-/* ---- the hash (snap_hash.c): 64-bit words in 32 lanes (word k of each 256-byte block into lane k), each a
- * multiply-xorshift chain (a bijection of the lane for every word, so any change of any byte
- * changes the result); tail bytes zero-padded and the length mixed in at the end.  Streamed:
- * bytes may come in any chunks.  Thirty-two lanes, not eight, so that the multiplies of a
- * block need not wait on the block before (format version 2). */
-#define SNAP_LANES 32
-typedef struct snap_hasher {
-    uint64_t lane[SNAP_LANES];
-    uint8_t pending[8 * SNAP_LANES];
-    size_t npending;
-    uint64_t length;
-} snap_hasher;
-
-void snap_hash_init(snap_hasher *h);
-void snap_hash_bytes(snap_hasher *h, const void *p, size_t n);
-uint64_t snap_hash_final(snap_hasher *h);
-uint64_t snap_hash(const void *p, size_t n);
 
 #endif
