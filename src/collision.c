@@ -74,13 +74,17 @@ int coll_manifold_of(int32_t ka, rg_vec2 pa, rg_vec2 ha, int32_t kb, rg_vec2 pb,
 }
 
 /* Circle-box grazing: the circle beside a corner with its edge within tol of a face plane,
- * moving toward the box along that plane: the face's contact.  q is the circle centre in
- * the box frame, rc the circle's motion relative to the box; n_out from circle to box. */
+ * moving toward the box along that plane, and near enough to meet the corner within the
+ * step: the face's contact.  (Farther off, the face's plane would hold the circle where the
+ * box is not: a ball at rest beside a crate's top corner, some centimetres from it.)  q is
+ * the circle centre in the box frame, rc the circle's motion relative to the box; n_out from
+ * circle to box. */
 static int graze_circle(rg_vec2 q, rg_real rad, rg_vec2 hb, rg_vec2 rc, rg_real tol, rg_vec2 *n_out,
                         rg_real *depth)
 {
     if (!(rg_fabs(q.x) > hb.x && rg_fabs(q.y) > hb.y)) return 0; /* not at a corner */
     rg_real dx = rg_fabs(q.x) - hb.x, dy = rg_fabs(q.y) - hb.y;
+    if (rg_v2_len(rg_v2(dx, dy)) - rad > tol + rg_v2_len(rc)) return 0; /* the corner is out of reach */
     if (rg_fabs(dy - rad) <= tol && q.x * rc.x < 0) {
         *n_out = rg_v2(0, -coll_sign(q.y));
         *depth = rad - dy;

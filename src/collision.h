@@ -68,15 +68,17 @@ static inline void coll_boxes(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 hb, co
 }
 
 /* Box-box grazing (coll_contact): separation along one axis within tol of zero while the
- * other axis overlaps or closes: the contact is along the touching axis.  0 when the boxes
- * do not graze (*m untouched). */
+ * other axis overlaps, or closes by enough to overlap within the step (its gap at most tol
+ * plus the motion r along it): the contact is along the touching axis.  (A gap the step
+ * cannot close would leave the face's plane holding a box beside the other, apart from it.)
+ * 0 when the boxes do not graze (*m untouched). */
 static inline int coll_graze_boxes(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 hb, rg_vec2 r, rg_real tol,
                                    coll_manifold *m)
 {
     rg_vec2 d = rg_v2_sub(pb, pa);
     rg_real ox = (ha.x + hb.x) - rg_fabs(d.x), oy = (ha.y + hb.y) - rg_fabs(d.y);
-    int y_face = rg_fabs(oy) <= tol && (ox > 0 || d.x * r.x < 0);
-    int x_face = !y_face && rg_fabs(ox) <= tol && (oy > 0 || d.y * r.y < 0);
+    int y_face = rg_fabs(oy) <= tol && (ox > 0 || (d.x * r.x < 0 && -ox <= tol + rg_fabs(r.x)));
+    int x_face = !y_face && rg_fabs(ox) <= tol && (oy > 0 || (d.y * r.y < 0 && -oy <= tol + rg_fabs(r.y)));
     if (!y_face && !x_face) return 0;
     if (y_face) {
         rg_real sy = coll_sign(d.y);

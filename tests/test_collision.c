@@ -189,6 +189,20 @@ static void test_a_box_sliding_onto_a_flush_tile_grazes_its_corner(void **state)
     /* too far below the top to graze: it hits the side */
     coll_contact(RG_SHAPE_AABB, v2(0, -0.5), tile, RG_SHAPE_AABB, v2(-0.95, 0.35), body, r, 0.005f, &m);
     assert_vec(m.normal, -1, 0, 0);
+    /* level with the top but 5 cm off, moving 4.5 cm toward it: the step cannot close the
+     * gap (its 4.5 cm and the 5 mm of slop fall short), so the tile's top plane does not hold
+     * it where the tile is not: the plain contact, 5 cm apart along x */
+    coll_contact(RG_SHAPE_AABB, v2(0, -0.5), tile, RG_SHAPE_AABB, pb, body, v2(0.045, 0), 0.005f, &m);
+    assert_vec(m.normal, -1, 0, 0);
+    assert_near(m.depth, -0.05, TOL);
+    /* the same with 5.5 cm of motion, which closes it within the slop: grazing */
+    coll_contact(RG_SHAPE_AABB, v2(0, -0.5), tile, RG_SHAPE_AABB, pb, body, v2(0.055, 0), 0.005f, &m);
+    assert_vec(m.normal, 0, 1, 0);
+    /* flush with the tile's side, 30 cm above its top, falling 2 cm: the side's plane does
+     * not reach up to it; the plain contact, 30 cm apart along y */
+    coll_contact(RG_SHAPE_AABB, v2(0, 0), tile, RG_SHAPE_AABB, v2(0.9, 1.2), body, v2(0, -0.02), 0.005f, &m);
+    assert_vec(m.normal, 0, 1, 0);
+    assert_near(m.depth, -0.3, TOL);
 }
 
 static void test_a_circle_sliding_onto_a_flush_tile_grazes_its_corner(void **state)
@@ -210,6 +224,15 @@ static void test_a_circle_sliding_onto_a_flush_tile_grazes_its_corner(void **sta
     /* moving away: the corner */
     coll_contact(RG_SHAPE_CIRCLE, pc, ball, RG_SHAPE_AABB, v2(0, -0.5), tile, v2(0.133, 0), 0.005f, &m);
     assert_true(m.normal.x > (rg_real)0.4);
+    /* moving toward it by less than the gap to the corner (sqrt(0.2^2 + 0.4^2) - 0.4 = 4.7 cm)
+     * less the slop: the corner, at that gap; the top's plane would hold the ball 4.7 cm off */
+    coll_contact(RG_SHAPE_CIRCLE, pc, ball, RG_SHAPE_AABB, v2(0, -0.5), tile, v2(-0.04, 0), 0.005f, &m);
+    assert_true(m.normal.x > (rg_real)0.4);
+    assert_near(m.depth, 0.4 - sqrt(0.2), TOL);
+    /* beside the tile's side, 20 cm above its top, settling by a millimetre: the corner */
+    coll_contact(RG_SHAPE_CIRCLE, v2(-0.9, 0.2), ball, RG_SHAPE_AABB, v2(0, -0.5), tile, v2(0, 0.001), 0.005f, &m);
+    assert_true(m.normal.y < (rg_real)-0.4);
+    assert_near(m.depth, 0.4 - sqrt(0.2), TOL);
     /* circle pairs are never changed */
     coll_contact(RG_SHAPE_CIRCLE, v2(0, 0), ball, RG_SHAPE_CIRCLE, v2(0.6, 0.3), ball, v2(1, 0), 0.005f, &m);
     assert_near(m.depth, 0.8 - sqrt(0.45), TOL);
