@@ -199,13 +199,20 @@ static inline int narrow_in_order(const rg_world *w, const contact *c)
     return (c->flags & (CT_ONEWAY | CT_PASS)) || w->pre_solve != NULL;
 }
 
+/* Whether dense body ia or ib is movable and was asleep when the step began (its index at
+ * or past the step's awake count n, before a wake in the step and after it). */
+static inline int narrow_asleep_movable(const rg_real *inv_mass, int32_t ia, int32_t ib, int32_t n)
+{
+    return (ia >= n && inv_mass[ia] > 0) || (ib >= n && inv_mass[ib] > 0);
+}
+
 /* Decides contact c between dense bodies ia, ib (views A, B) from its measurement: touching,
  * solved, its flags, vn0 and toi, and the begin's depth and speed; writes only the contact's
  * own fields, so the contacts that need no order (narrow_in_order) decide in parallel.
  * far: narrow_far, as the measurement had it.  in_order: the skip (narrow_skip) may be
- * asked.  Returns ND_* bits. */
-static FORCE_INLINE uint32_t narrow_decide(rg_world *w, contact *c, int32_t ia, int32_t ib, const cbody *A,
-                                            const cbody *B, int far, int in_order)
+ * asked.  n: the step's awake count (x->n).  Returns ND_* bits. */
+static FORCE_INLINE uint32_t narrow_decide(rg_world *w, contact *c, int32_t ia, int32_t ib, int32_t n,
+                                            const cbody *A, const cbody *B, int far, int in_order)
 {
     const collide_world *cw = &w->coll;
     rg_vec2 r = rg_v2(B->dx - A->dx, B->dy - A->dy); /* b's motion relative to a over the step */
@@ -242,7 +249,13 @@ static FORCE_INLINE uint32_t narrow_decide(rg_world *w, contact *c, int32_t ia, 
             solve = 0;
             c->flags &= ~CT_CLOSING;
         }
-        if (solve && A->im + B->im > 0) {
+        /* Solved where a body moves: in this step's rows, which see a body asleep at the
+         * step's start as the ground (its view's im is 0), or, where such a body is movable,
+         * in the rows staged again if it wakes in this step (resolve.c's restage, which
+         * reads CT_SOLVE): a stack woken by a body landing on it holds in the step that
+         * wakes it.  The pair keeps its impulse for that row's warm start. */
+        int moves = A->im + B->im > 0;
+        if (solve && (moves || narrow_asleep_movable(w->b.inv_mass, ia, ib, n))) {
             c->flags |= CT_SOLVE;
             /* An impact: the free motion closes the gap of a pair that was apart, at the
              * fraction toi of the step (the solve decides whether to time it).  A pair in
@@ -252,7 +265,7 @@ static FORCE_INLINE uint32_t narrow_decide(rg_world *w, contact *c, int32_t ia, 
             rg_real toi = was || s0 <= 0 ? 0 : -1;
             if (d < 0) toi = s0 > 0 && !was ? s0 / (s0 - d) : 0;
             c->toi = toi;
-            bits |= ND_STAGE;
+            if (moves) bits |= ND_STAGE;
         }
     }
     if (!(c->flags & CT_SOLVE)) c->pn = c->pt = 0;
@@ -292,12 +305,15 @@ static FORCE_INLINE void narrow_block_run(rg_world *w, collide_step *x, int32_t 
     const int32_t *const awake = w->coll.contacts.awake;
     const cbody *const cb = w->coll.views.cb;
     const int32_t nv = x->n;
+    const rg_real *const inv_mass = w->b.inv_mass;
     int32_t n = nb->n = k1 - k0;
     nb->done = 0;
+    nb->in.asleep = 0;
     if (st != NULL) st->staged = 0;
     for (int32_t l = 0; l < n; l++) {
         contact *c = nb->c[l] = &cc[nb->id[l] = awake[k0 + l]];
         int32_t ia = nb->ia[l] = body_dense(w, c->sa), ib = nb->ib[l] = body_dense(w, c->sb);
+        if (narrow_asleep_movable(inv_mass, ia, ib, nv)) nb->in.asleep |= 1u << l;
         const cbody *a = nb->in.a[l] = ia < nv ? &cb[ia] : views_of(w, ia, nv, &nb->rest[2 * l]);
         const cbody *b = nb->in.b[l] = ib < nv ? &cb[ib] : views_of(w, ib, nv, &nb->rest[2 * l + 1]);
         nb->in.flags[l] = c->flags;
@@ -397,7 +413,7 @@ static inline uint32_t narrow_decide_here(rg_world *w, contact *c, int32_t ia, i
     const cbody *A = views_of(w, ia, x->n, &rest_a), *B = views_of(w, ib, x->n, &rest_b);
     int far = narrow_far(w, c, A, B); /* what a measurement in parallel found too: its flags are as then */
     if (measure) narrow_measure(w, c, A, B, far);
-    return narrow_decide(w, c, ia, ib, A, B, far, 1);
+    return narrow_decide(w, c, ia, ib, x->n, A, B, far, 1);
 }
 
 /* Measuring and staging in parallel: the awake contacts in fixed blocks (a block's manifolds
@@ -484,7 +500,7 @@ static void narrow_measure_decide_blocks(int32_t begin, int32_t end, int32_t wor
                         t->in_order[worker] = 1;
                         continue;
                     }
-                    bits = narrow_decide(w, c, nb.ia[l], nb.ib[l], A, B, far, 0);
+                    bits = narrow_decide(w, c, nb.ia[l], nb.ib[l], x->n, A, B, far, 0);
                 }
                 c->decided = bits;
                 if (!t->stage) continue;

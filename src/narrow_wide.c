@@ -268,7 +268,7 @@ AVX2_FN uint32_t narrow_wide_decide(const struct rg_world *w, const narrow_lanes
                          _mm256_or_si256(circle_i, _mm256_cmpeq_epi32(KA, _mm256_set1_epi32(RG_SHAPE_AABB))));
     __m256i plain = _mm256_cmpeq_epi32(
         _mm256_and_si256(F, _mm256_set1_epi32(CT_ONEWAY | CT_PASS | CT_SENSOR | CT_ACTIVE)), zero_i);
-    uint32_t fits = (uint32_t)_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_and_si256(kinds, plain)));
+    uint32_t fits = (uint32_t)_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_and_si256(kinds, plain))) & ~in->asleep;
     if (fits == 0) return 0;
     __m256i was_i =
         _mm256_cmpeq_epi32(_mm256_and_si256(F, _mm256_set1_epi32(CT_TOUCHING)), _mm256_set1_epi32(CT_TOUCHING));

@@ -41,6 +41,8 @@ typedef struct narrow_lanes {
     uint32_t flags[NARROW_WIDE_LANES];
     int32_t kind_a[NARROW_WIDE_LANES], kind_b[NARROW_WIDE_LANES];
     const cbody *a[NARROW_WIDE_LANES], *b[NARROW_WIDE_LANES];
+    uint32_t asleep; /* lanes with a movable body that the step began with asleep: decided
+                      * one by one (narrow.c's narrow_decide) */
 } narrow_lanes;
 
 /* Where narrow_wide_decide stages the rows of a block it decides whole: the lanes' dense
