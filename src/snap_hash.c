@@ -1,14 +1,6 @@
 /* snap_hash.c: the snapshot format's hash function (see snap_hash.h). */
-#include <string.h>
-
 #include "snap_hash.h"
-
-/* Whether the machine's byte order is the file's (snapshot.h's SNAP_NATIVE). */
-#if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-#define SNAP_HASH_NATIVE 1
-#else
-#define SNAP_HASH_NATIVE 0
-#endif
+#include "snap_le.h"
 
 #define SNAP_HASH_K1 0x9E3779B97F4A7C15ull
 #define SNAP_HASH_K2 0xC2B2AE3D27D4EB4Full
@@ -26,19 +18,6 @@ static inline uint64_t snap_hash_lane(uint64_t lane, uint64_t w)
     return lane ^ (lane >> 29);
 }
 
-/* A little-endian word at p (a plain load where the machine is little-endian). */
-static inline uint64_t snap_hash_word(const uint8_t *p)
-{
-#if SNAP_HASH_NATIVE
-    uint64_t w;
-    memcpy(&w, p, 8);
-    return w;
-#else
-    uint64_t w = 0;
-    for (int k = 7; k >= 0; k--) w = w << 8 | p[k];
-    return w;
-#endif
-}
 
 #define SNAP_HASH_BLOCK (8 * SNAP_LANES)
 typedef char snap_hash_lanes_in_eights[SNAP_LANES % 8 == 0 ? 1 : -1]; /* snap_hash_blocks takes eight at a time */
@@ -89,14 +68,14 @@ static void snap_hash_lanes8(uint64_t *lane, const uint8_t *p, size_t blocks)
     uint64_t l0 = lane[0], l1 = lane[1], l2 = lane[2], l3 = lane[3];
     uint64_t l4 = lane[4], l5 = lane[5], l6 = lane[6], l7 = lane[7];
     for (; blocks > 0; blocks--, p += SNAP_HASH_BLOCK) {
-        l0 = snap_hash_lane(l0, snap_hash_word(p));
-        l1 = snap_hash_lane(l1, snap_hash_word(p + 8));
-        l2 = snap_hash_lane(l2, snap_hash_word(p + 16));
-        l3 = snap_hash_lane(l3, snap_hash_word(p + 24));
-        l4 = snap_hash_lane(l4, snap_hash_word(p + 32));
-        l5 = snap_hash_lane(l5, snap_hash_word(p + 40));
-        l6 = snap_hash_lane(l6, snap_hash_word(p + 48));
-        l7 = snap_hash_lane(l7, snap_hash_word(p + 56));
+        l0 = snap_hash_lane(l0, snap_get64(p));
+        l1 = snap_hash_lane(l1, snap_get64(p + 8));
+        l2 = snap_hash_lane(l2, snap_get64(p + 16));
+        l3 = snap_hash_lane(l3, snap_get64(p + 24));
+        l4 = snap_hash_lane(l4, snap_get64(p + 32));
+        l5 = snap_hash_lane(l5, snap_get64(p + 40));
+        l6 = snap_hash_lane(l6, snap_get64(p + 48));
+        l7 = snap_hash_lane(l7, snap_get64(p + 56));
     }
     lane[0] = l0, lane[1] = l1, lane[2] = l2, lane[3] = l3;
     lane[4] = l4, lane[5] = l5, lane[6] = l6, lane[7] = l7;
