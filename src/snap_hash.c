@@ -1,4 +1,6 @@
 /* snap_hash.c: the snapshot format's hash function (see snap_hash.h). */
+#include <string.h>
+
 #include "snap_hash.h"
 #include "snap_le.h"
 
@@ -17,7 +19,6 @@ static inline uint64_t snap_hash_lane(uint64_t lane, uint64_t w)
     lane = (lane ^ w) * SNAP_HASH_K1;
     return lane ^ (lane >> 29);
 }
-
 
 #define SNAP_HASH_BLOCK (8 * SNAP_LANES)
 typedef char snap_hash_lanes_in_eights[SNAP_LANES % 8 == 0 ? 1 : -1]; /* snap_hash_blocks takes eight at a time */
