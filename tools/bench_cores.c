@@ -5,11 +5,11 @@
  * through its pairs), 8192 lines the other thread has just written, then the same lines
  * after writing them itself; and writes them, in order and in that random order, after the
  * other thread has only read them (its copies must go before each write: a stage that
- * rewrites what the other worker's stage only read pays that).  And both threads add to a counter in memory at once, each
- * timing its own: on a VM one of two virtual cpus may for seconds run at a fraction of the
- * other's speed, which bounds what a second worker can add whatever
- * the data's moves cost.  A step spread over workers moves its data between cores stage
- * after stage, so what a second worker gains depends on these (README, Known limits).
+ * rewrites what the other worker's stage only read pays that).  And both threads add to a
+ * counter in memory at once, each timing its own: on a VM one of two virtual cpus may for
+ * seconds run at a fraction of the other's speed, which bounds what a second worker can add
+ * whatever the data's moves cost.  A step spread over workers moves its data between cores
+ * stage after stage, so what a second worker gains depends on these (README, Known limits).
  * Where the two threads cannot run at once (one cpu, or under valgrind, which runs one
  * thread at a time and would take hours over the spins) the hand-overs stop at a deadline
  * and nothing is reported. */
@@ -295,12 +295,12 @@ int bench_cores_lines_ns(double *other, double *own, double *shared, double *sha
 
 void bench_cores_line(FILE *f, const char *when)
 {
-    double trip = bench_cores_round_trip_ns(), other = 0, own = 0, shared = 0, mixed = 0, fast = 0, slow = 0;
-    if (trip > 0 && bench_cores_lines_ns(&other, &own, &shared, &mixed) && bench_cores_speeds_ns(&fast, &slow))
+    double trip = bench_cores_round_trip_ns(), other = 0, own = 0, shared = 0, shuffled = 0, fast = 0, slow = 0;
+    if (trip > 0 && bench_cores_lines_ns(&other, &own, &shared, &shuffled) && bench_cores_speeds_ns(&fast, &slow))
         fprintf(f, "machine %s: a cache line to the other core and back %.0f ns; reading lines the other core "
                 "has just written %.1f ns a line, its own %.1f; writing lines the other core has just read "
                 "%.1f in order, %.1f at random; the two threads' speeds at once %.2fx apart\n",
-                when, trip, other, own, shared, mixed, slow / fast);
+                when, trip, other, own, shared, shuffled, slow / fast);
     else if (sysconf(_SC_NPROCESSORS_ONLN) > 1)
         fprintf(f, "machine %s: two threads did not run at once (another load on the cpus?)\n", when);
 }

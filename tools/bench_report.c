@@ -112,11 +112,11 @@ void bench_report_machine(FILE *f)
     if (trip > 0)
         fprintf(f, "machine: a cache line to another core and back (two threads handing a counter over): %.0f ns\n",
                 trip);
-    double other, own, shared, mixed; /* only where the threads run at once, as the round trip shows */
-    if (trip > 0 && bench_cores_lines_ns(&other, &own, &shared, &mixed))
+    double other, own, shared, shuffled; /* only where the threads run at once, as the round trip shows */
+    if (trip > 0 && bench_cores_lines_ns(&other, &own, &shared, &shuffled))
         fprintf(f, "machine: 8192 cache lines: reading at random %.1f ns a line another core has just written, "
                 "%.1f ns a line of this core's own; writing lines another core has just read %.1f ns a line in "
-                "order, %.1f at random\n", other, own, shared, mixed);
+                "order, %.1f at random\n", other, own, shared, shuffled);
     double fast, slow;
     if (trip > 0 && bench_cores_speeds_ns(&fast, &slow))
         fprintf(f, "machine: two threads at once, each adding to a counter in memory: %.2f and %.2f ns an "
