@@ -388,10 +388,12 @@ RG_API rg_status rg_body_get_filter(const rg_world *world, rg_body body, uint32_
  * the value it fell asleep with. */
 RG_API rg_status rg_body_is_grounded(const rg_world *world, rg_body body, int32_t *out_grounded);
 
-/* ---- sleeping: an island of touching dynamic bodies whose speeds all stayed below
+/* ---- sleeping: an island of dynamic bodies that touch, or lie within the solver's reach
+ * of each other (4 * slop plus the step's motion), whose speeds all stayed below
  * sleep_speed for sleep_time seconds stops moving and costs nothing per step.  It wakes
- * when a moving body touches it, when a force, impulse, velocity or position is given to
- * one of its bodies, or when something it rests on is moved or destroyed.  Changing world
+ * when a moving body touches it or comes within that reach, when a force, impulse,
+ * velocity or position is given to one of its bodies, or when something it rests on is
+ * moved or destroyed.  Changing world
  * gravity does not wake sleeping bodies (call rg_body_wake or toggle sleeping).  Only
  * dynamic bodies with a shape sleep. */
 

@@ -134,7 +134,8 @@ void island_sleep(rg_world *w, rg_real dt, int united)
         for (int32_t k = 0; k < na; k++) uf[k] = k;
         for (int32_t k = 0; k < cs->n_awake; k++) {
             const contact *c = &cs->c[cs->awake[k]];
-            if ((c->flags & (CT_TOUCHING | CT_SENSOR)) != CT_TOUCHING) continue;
+            /* touching or solved (narrow.c's narrow_commit) */
+            if ((c->flags & CT_SENSOR) || !(c->flags & (CT_TOUCHING | CT_SOLVE))) continue;
             int32_t pa = bp->e[c->sa].apos, pb = bp->e[c->sb].apos;
             if (pa < 0 || pb < 0) continue;
             if (b->type[body_dense(w, c->sa)] == RG_BODY_DYNAMIC && b->type[body_dense(w, c->sb)] == RG_BODY_DYNAMIC)

@@ -340,7 +340,7 @@ static FORCE_INLINE void narrow_block_run(rg_world *w, collide_step *x, int32_t 
 #endif
 }
 
-/* Joins the islands of a touching pair of awake dynamic bodies (dense ia, ib). */
+/* Joins the islands of a touching or solved pair of awake dynamic bodies (dense ia, ib). */
 static void narrow_unite(rg_world *w, const contact *c, const collide_step *x, int32_t ia, int32_t ib)
 {
     collide_world *cw = &w->coll;
@@ -389,12 +389,17 @@ static FORCE_INLINE void narrow_commit(rg_world *w, int32_t id, int32_t ia, int3
     if (c->flags & CT_SENSOR) return;
     if (bits & ND_GROUND_A) b->cflags[ia] |= CF_GROUNDED;
     if (bits & ND_GROUND_B) b->cflags[ib] |= CF_GROUNDED;
-    if ((bits & ND_NOW) && unite) narrow_unite(w, c, x, ia, ib);
-    /* a sleeping body (dense index past the awake ones) touched by a pusher wakes (woke NULL:
-     * no body is asleep) */
-    if (woke != NULL && (bits & (ND_NOW | ND_WAS)) && (ia >= b->n_active || ib >= b->n_active)) {
+    /* A solved pair links its bodies as a touching one does: the solve may push one with
+     * the other, so they sleep and wake together (as Box2D v3's speculative contacts do) */
+    int solved = (c->flags & CT_SOLVE) != 0;
+    if (((bits & ND_NOW) || solved) && unite) narrow_unite(w, c, x, ia, ib);
+    /* a sleeping body (dense index past the awake ones) touched by a pusher, or in a solved
+     * pair with it, wakes (woke NULL: no body is asleep): asleep, the solve would take it for
+     * the ground, and a row of bodies a few millimetres apart, hit at one end, would throw
+     * the hit back as a wall does */
+    if (woke != NULL && ((bits & (ND_NOW | ND_WAS)) || solved) && (ia >= b->n_active || ib >= b->n_active)) {
         int pa_ = body_partition(w, ia), pb_ = body_partition(w, ib);
-        int now = (bits & ND_NOW) != 0;
+        int now = (bits & ND_NOW) != 0 || solved;
         if (pa_ == BODY_PART_ASLEEP && pb_ == BODY_PART_ACTIVE && narrow_pusher(b, ib, now)) {
             island_wake(w, c->sa);
             *woke = 1;
