@@ -48,4 +48,26 @@ typedef struct acc_pile_result {
 rg_status acc_pile(int integrator, double dt, double ratio, int n, double seconds,
                    int velocity_iterations, acc_pile_result *out);
 
+/* ---------------------------------------------------------------- soups */
+
+/* `scenes` random soups of 20-79 boxes and circles (0.1-5.1 kg, 0.1-0.4 m, apart at the
+ * start) without gravity, sleeping off, half of them thrown at up to max_speed (m/s);
+ * restitution 0, or (restitution 1) 1 for a third of the bodies and uniform in [0, 1) for the
+ * others; friction 0, or (friction 1) 0 for half of them and uniform in [0, 1) for the
+ * others; velocity_iterations per step and 3 position iterations; `steps` steps at 1/60 s.
+ * Exact: every contact impulse is equal and opposite, so momentum stays; with restitution 0
+ * every impact takes energy, and with restitution 1 a single one keeps it. */
+typedef struct acc_soup {
+    int scenes, steps, restitution, friction, velocity_iterations;
+    double max_speed;
+} acc_soup;
+
+typedef struct acc_soup_result {
+    double worst_momentum; /* largest |p - p0| over the sum of |m v0|, any scene and step */
+    double worst_gain;     /* largest rise of the kinetic energy over its lowest before, / KE0 */
+    int gaining;           /* scenes whose kinetic energy rose by more than 0.1% of KE0 */
+} acc_soup_result;
+
+rg_status acc_soup_run(const acc_soup *s, acc_soup_result *r);
+
 #endif

@@ -1,0 +1,98 @@
+/* accuracy_soup.c: random soups of boxes and circles without gravity, for the accuracy lab:
+ * how far contacts keep momentum and kinetic energy (accuracy --soup). */
+#include <math.h>
+
+#include "accuracy_collision.h"
+
+/* A uniform number in [0, 1) from a 32-bit linear congruential state. */
+static double soup_uniform(uint32_t *s)
+{
+    *s = *s * 1103515245u + 12345u;
+    return (double)((*s >> 8) & 0xFFFFFF) / 16777216.0;
+}
+
+static rg_vec2 soup_v2(double x, double y)
+{
+    rg_vec2 v;
+    v.x = (rg_real)x;
+    v.y = (rg_real)y;
+    return v;
+}
+
+/* The kinetic energy and momentum of the n bodies. */
+static rg_status soup_measure(rg_world *w, const rg_body *b, const double *m, int n, double *ke, double *px,
+                              double *py)
+{
+    *ke = *px = *py = 0;
+    for (int i = 0; i < n; i++) {
+        rg_vec2 v;
+        rg_status st = rg_body_get_velocity(w, b[i], &v);
+        if (st != RG_OK) return st;
+        double vx = (double)v.x, vy = (double)v.y;
+        *ke += 0.5 * m[i] * (vx * vx + vy * vy);
+        *px += m[i] * vx;
+        *py += m[i] * vy;
+    }
+    return RG_OK;
+}
+
+/* One scene: bodies on a 1 m grid (9 a row, jittered by up to 0.1 m, half extents or radii
+ * 0.1-0.4 m, so that none overlaps at the start), masses 0.1-5.1 kg, half of them thrown. */
+static rg_status soup_scene(const acc_soup *s, uint32_t seed, acc_soup_result *r)
+{
+    enum { SOUP_MAX = 80 };
+    uint32_t u = seed * 7919u;
+    rg_world *w = NULL;
+    rg_body b[SOUP_MAX];
+    double m[SOUP_MAX];
+    int n = 20 + (int)(soup_uniform(&u) * (SOUP_MAX - 20));
+    rg_status st = rg_world_create(&w);
+    if (st == RG_OK) st = rg_world_set_sleeping(w, 0);
+    if (st == RG_OK) st = rg_world_set_solver_iterations(w, s->velocity_iterations, 3);
+    for (int i = 0; i < n && st == RG_OK; i++) {
+        m[i] = 0.1 + soup_uniform(&u) * 5;
+        double x = (i % 9) + soup_uniform(&u) * 0.1, y = (i / 9) + soup_uniform(&u) * 0.1;
+        st = rg_body_create(w, RG_BODY_DYNAMIC, (rg_real)m[i], soup_v2(x, y), &b[i]);
+        double h0 = 0.1 + soup_uniform(&u) * 0.3, h1 = 0.1 + soup_uniform(&u) * 0.3;
+        if (st == RG_OK)
+            st = soup_uniform(&u) < 0.5 ? rg_body_set_circle(w, b[i], (rg_real)h0) : rg_body_set_aabb(w, b[i], (rg_real)h0, (rg_real)h1);
+        double e = soup_uniform(&u) < 0.3 ? 1 : soup_uniform(&u), mu = soup_uniform(&u) < 0.5 ? 0 : soup_uniform(&u);
+        if (st == RG_OK) st = rg_body_set_restitution(w, b[i], (rg_real)(s->restitution ? e : 0));
+        if (st == RG_OK) st = rg_body_set_friction(w, b[i], (rg_real)(s->friction ? mu : 0));
+        double speed = soup_uniform(&u) < 0.5 ? 0 : soup_uniform(&u) * s->max_speed, a = soup_uniform(&u) * 6.283185307179586;
+        if (st == RG_OK) st = rg_body_set_velocity(w, b[i], soup_v2(speed * cos(a), speed * sin(a)));
+    }
+    double ke0 = 0, px0 = 0, py0 = 0, scale = 0;
+    if (st == RG_OK) st = soup_measure(w, b, m, n, &ke0, &px0, &py0);
+    for (int i = 0; i < n && st == RG_OK; i++) {
+        rg_vec2 v;
+        st = rg_body_get_velocity(w, b[i], &v);
+        scale += m[i] * hypot((double)v.x, (double)v.y);
+    }
+    double low = ke0, gain = 0;
+    for (int k = 0; k < s->steps && st == RG_OK && ke0 > 0; k++) {
+        double ke, px, py;
+        st = rg_world_step(w, (rg_real)(1.0 / 60));
+        if (st == RG_OK) st = soup_measure(w, b, m, n, &ke, &px, &py);
+        if (st != RG_OK) break;
+        double dp = hypot(px - px0, py - py0) / scale;
+        if (dp > r->worst_momentum) r->worst_momentum = dp;
+        if ((ke - low) / ke0 > gain) gain = (ke - low) / ke0;
+        if (ke < low) low = ke;
+    }
+    if (gain > r->worst_gain) r->worst_gain = gain;
+    if (gain > 1e-3) r->gaining++;
+    rg_world_destroy(w);
+    return st;
+}
+
+rg_status acc_soup_run(const acc_soup *s, acc_soup_result *r)
+{
+    r->worst_momentum = r->worst_gain = 0;
+    r->gaining = 0;
+    for (int k = 1; k <= s->scenes; k++) {
+        rg_status st = soup_scene(s, (uint32_t)k, r);
+        if (st != RG_OK) return st;
+    }
+    return RG_OK;
+}
