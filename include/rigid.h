@@ -436,10 +436,11 @@ RG_API rg_status rg_world_get_contact_tuning(const rg_world *world, rg_real *out
 /* Continuous collision (1, the default): the broadphase sees each body's swept path over
  * the step, and a pair whose relative motion in the step exceeds half the smaller shape
  * is solved at its time of impact, so fast bodies never pass through thin walls; after the
- * solve, a body that moved more than half its size is swept once more against the static,
- * kinematic and sleeping shapes it touches and stopped at the first impact.  0 checks only
- * the shapes where the step leaves them (a discrete check: fast bodies tunnel), for
- * comparison. */
+ * solve, a body that moved more than half its size, or that the solve moved more than the
+ * slop off its free motion (a body an impact sends off), is swept once more against the
+ * static, kinematic and sleeping shapes on its path and stopped at the first impact (a
+ * sleeping one wakes and takes its momentum).  0 checks only the shapes where the step
+ * leaves them (a discrete check: fast bodies tunnel), for comparison. */
 RG_API rg_status rg_world_set_continuous(rg_world *world, int32_t enabled);
 RG_API rg_status rg_world_get_continuous(const rg_world *world, int32_t *out_enabled);
 /* Pairs touching after the last step (sensor overlaps included); 0 for NULL. */

@@ -2,10 +2,13 @@
 #include <string.h>
 
 #include "body.h"
+#include "broadphase.h"
 #include "collision.h"
 #include "contact.h"
 #include "continuous.h"
 #include "dispatch.h"
+#include "island.h"
+#include "pairs.h"
 #include "solver.h"
 #include "state.h"
 #include "task.h"
@@ -96,40 +99,131 @@ static inline int continuous_one_way_blocks(const body_store *b, int32_t i, rg_r
 
 typedef struct sweep_task {
     rg_world *w;
+    int asleep; /* the pass meets sleeping bodies (serial), else immovable ones */
 } sweep_task;
+
+/* Whether dense body i, its box at p1 (half extents hf), left its fat box (or the box is due
+ * for a refresh: !pairs_inside): the solve moved it where the step's pair search did not
+ * look, so a shape it meets there may have no contact with it. */
+static inline int continuous_left(const rg_world *w, int32_t i, rg_vec2 p1, rg_vec2 hf)
+{
+    rg_real box[4] = {p1.x - hf.x, p1.y - hf.y, p1.x + hf.x, p1.y + hf.y};
+    return !pairs_inside(&w->coll.bp.e[w->b.slot[i]], box);
+}
 
 #if RG_AVX2_PATHS
 #include "avx2.h"
 
 /* The places k .. k + 7 (consecutive bodies from dense i) whose body continuous_sweep_range
- * sweeps: dynamic, and moved more than half its smaller half extent (the same test). */
+ * sweeps: dynamic, and moved more than half its smaller half extent, or by the solve more
+ * than the slop off its free motion (the same tests). */
 AVX2_FN static uint32_t continuous_fast8(const rg_world *w, int32_t k, int32_t i)
 {
     const views_state *ns = &w->coll.views;
     const body_store *b = &w->b;
-    __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(b->x + i), _mm256_loadu_ps(ns->sx0 + k));
-    __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(b->y + i), _mm256_loadu_ps(ns->sy0 + k));
-    __m256 h = _mm256_min_ps(_mm256_loadu_ps(b->hx + i), _mm256_loadu_ps(b->hy + i));
+    __m256 x1 = _mm256_loadu_ps(b->x + i), y1 = _mm256_loadu_ps(b->y + i);
+    __m256 hx = _mm256_loadu_ps(b->hx + i), hy = _mm256_loadu_ps(b->hy + i);
+    __m256 dx = _mm256_sub_ps(x1, _mm256_loadu_ps(ns->sx0 + k));
+    __m256 dy = _mm256_sub_ps(y1, _mm256_loadu_ps(ns->sy0 + k));
+    __m256 h = _mm256_min_ps(hx, hy);
     __m256 fast = _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
                                 _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(0.25f), h), h), _CMP_GT_OQ);
+    __m256 px = _mm256_sub_ps(dx, _mm256_loadu_ps(b->dx + i)), py = _mm256_sub_ps(dy, _mm256_loadu_ps(b->dy + i));
+    __m256 slop = _mm256_set1_ps(w->coll.slop);
+    fast = _mm256_or_ps(fast, _mm256_cmp_ps(_mm256_add_ps(_mm256_mul_ps(px, px), _mm256_mul_ps(py, py)),
+                                            _mm256_mul_ps(slop, slop), _CMP_GT_OQ));
     __m256i type = _mm256_loadu_si256((const __m256i *)(const void *)(b->type + i));
     __m256 dyn = _mm256_castsi256_ps(_mm256_cmpeq_epi32(type, _mm256_set1_epi32(RG_BODY_DYNAMIC)));
     return (uint32_t)_mm256_movemask_ps(_mm256_and_ps(fast, dyn));
 }
 #endif
 
-/* Awake bodies [begin, end): each fast dynamic body against the immovable and sleeping
- * bodies it has contacts with, which no body of the sweep moves, so each body is its own.
- * Eight places of consecutive bodies at a time pass over those with no fast body
- * (continuous_fast8) where the CPU has AVX2. */
-static void continuous_sweep_range(int32_t k0, int32_t k1, int32_t worker, void *context)
+/* One body's sweep: from p0 along D to p1 (half extents hf), the first impact so far (tmin,
+ * the hit surface's normal from the other body toward it, that body's velocity and slot). */
+typedef struct sweep_body {
+    const rg_world *w;
+    int32_t i, s; /* dense index and slot */
+    rg_vec2 p0, p1, D, hf;
+    int asleep;   /* meets sleeping bodies (the serial pass), else immovable ones */
+    rg_real tmin;
+    rg_vec2 nbest, vbest;
+    int32_t sbest;
+} sweep_body;
+
+/* Whether dense body j is one the pass meets: immovable, or asleep. */
+static inline int continuous_met(const body_store *b, const sweep_body *sb, int32_t j)
 {
-    rg_world *w = ((const sweep_task *)context)->w;
+    if (b->type[j] != RG_BODY_DYNAMIC) return !sb->asleep;
+    return sb->asleep && j >= b->n_active;
+}
+
+/* Dense body j (immovable, or asleep) against the sweep: a hit before the first so far, that
+ * a one-way shape blocks and that does not leave the body resting on j, becomes the first. */
+static void continuous_meet(sweep_body *sb, int32_t j)
+{
+    const rg_world *w = sb->w;
+    const body_store *b = &w->b;
+    int32_t i = sb->i;
+    int active = j < b->n_active;
+    rg_vec2 ho = rg_v2(b->hx[j], b->hy[j]);
+    rg_vec2 o1 = rg_v2(b->x[j], b->y[j]);
+    rg_vec2 dob = active ? rg_v2(b->dx[j], b->dy[j]) : rg_v2(0, 0);
+    rg_vec2 o0 = rg_v2_sub(o1, dob);
+    rg_real t;
+    coll_manifold hit, end;
+    if (!coll_sweep(b->shape[j], o0, ho, b->shape[i], sb->p0, sb->hf, rg_v2_sub(sb->D, dob), &t, &hit)) return;
+    if (!(t > 0 && t < sb->tmin)) return;
+    /* a one-way shape blocks only against its normal (hit.normal: from j toward i); a two-way
+     * one always */
+    if (!continuous_one_way_blocks(b, j, hit.normal.x, hit.normal.y) ||
+        !continuous_one_way_blocks(b, i, -hit.normal.x, -hit.normal.y))
+        return;
+    coll_manifold_of(b->shape[j], o1, ho, b->shape[i], sb->p1, sb->hf, &end);
+    /* resting at the end, on the side it hit (a body through to the far side, just touching
+     * it there, is not resting) */
+    if (end.depth >= 0 && end.depth <= w->coll.slop && rg_v2_dot(end.normal, hit.normal) > 0) return;
+    sb->tmin = t;
+    sb->nbest = hit.normal;
+    sb->vbest = active ? rg_v2(b->vx[j], b->vy[j]) : rg_v2(0, 0);
+    sb->sbest = b->slot[j];
+}
+
+/* A member of the broadphase on the path of a body that left its fat box: a shape the sweep
+ * meets (continuous_met) and the filter admits, sensors aside, that the body has no contact
+ * with (its contacts are swept already, and a contact passing through is not met). */
+static void continuous_visit(void *ctx, int32_t t)
+{
+    sweep_body *sb = ctx;
+    const rg_world *w = sb->w;
+    const body_store *b = &w->b;
+    const contact_store *cs = &w->coll.contacts;
+    if (t == sb->s) return;
+    int32_t j = body_dense(w, t);
+    if (!continuous_met(b, sb, j)) return;
+    if (((b->cflags[sb->i] | b->cflags[j]) & CF_SENSOR) || !pairs_admitted(w, sb->i, j)) return;
+    for (int32_t id = b->chead[sb->i] - 1; id >= 0; id = contact_next(&cs->c[id], sb->s))
+        if (contact_other(&cs->c[id], sb->s) == t) return;
+    continuous_meet(sb, j);
+}
+
+/* Awake bodies [begin, end): each dynamic body that moved more than half its size, or that
+ * the solve moved more than the slop off its free motion, against the bodies the pass meets
+ * (continuous_met) it has contacts with, and, out of its fat box, against those on its path
+ * it has none with.  A push of less than SPECULATIVE * slop meets no pair the step did not
+ * solve, and one of less than the slop leaves the fat box (which holds the box moved by the
+ * free motion: views_build) by less than the slop.  The parallel pass meets immovable bodies,
+ * which no body of the sweep moves, so each body is its own; the serial pass meets sleeping
+ * ones, and a body it stops at one hands it its momentum along the normal, as an inelastic
+ * impact of the two, and wakes it (returns whether it woke one).  Eight places of
+ * consecutive bodies at a time pass over those with no such body (continuous_fast8) where the
+ * CPU has AVX2. */
+static int continuous_sweep_bodies(rg_world *w, int asleep, int32_t k0, int32_t k1)
+{
     collide_world *cw = &w->coll;
     const contact_store *cs = &cw->contacts;
     const views_state *ns = &cw->views;
     body_store *b = &w->b;
-    (void)worker;
+    int woke = 0;
 #if RG_AVX2_PATHS
     int wide = __builtin_cpu_supports("avx2");
 #endif
@@ -147,56 +241,78 @@ static void continuous_sweep_range(int32_t k0, int32_t k1, int32_t worker, void 
         }
 #endif
         if (b->type[i] != RG_BODY_DYNAMIC) continue;
-        rg_vec2 p0 = rg_v2(ns->sx0[k], ns->sy0[k]), p1 = rg_v2(b->x[i], b->y[i]);
-        rg_vec2 D = rg_v2_sub(p1, p0), hf = rg_v2(b->hx[i], b->hy[i]);
-        rg_real h = rg_min(hf.x, hf.y);
-        if (!(D.x * D.x + D.y * D.y > RG_R(0.25) * h * h)) continue;
-        int32_t s = b->slot[i];
-        rg_real tmin = 1;
-        rg_vec2 nbest = rg_v2(0, 0), vbest = rg_v2(0, 0);
-        for (int32_t id = b->chead[i] - 1; id >= 0; id = contact_next(&cs->c[id], s)) {
+        sweep_body sb;
+        sb.w = w;
+        sb.i = i;
+        sb.s = b->slot[i];
+        sb.p0 = rg_v2(ns->sx0[k], ns->sy0[k]);
+        sb.p1 = rg_v2(b->x[i], b->y[i]);
+        sb.D = rg_v2_sub(sb.p1, sb.p0);
+        sb.hf = rg_v2(b->hx[i], b->hy[i]);
+        sb.asleep = asleep;
+        rg_real h = rg_min(sb.hf.x, sb.hf.y);
+        rg_vec2 pushed = rg_v2(sb.D.x - b->dx[i], sb.D.y - b->dy[i]);
+        if (!(sb.D.x * sb.D.x + sb.D.y * sb.D.y > RG_R(0.25) * h * h) &&
+            !(pushed.x * pushed.x + pushed.y * pushed.y > cw->slop * cw->slop))
+            continue;
+        int left = continuous_left(w, i, sb.p1, sb.hf);
+        sb.tmin = 1;
+        sb.nbest = sb.vbest = rg_v2(0, 0);
+        sb.sbest = -1;
+        for (int32_t id = b->chead[i] - 1; id >= 0; id = contact_next(&cs->c[id], sb.s)) {
             const contact *c = &cs->c[id];
             if (c->flags & (CT_SENSOR | CT_PASS)) continue;
-            int32_t j = body_dense(w, contact_other(c, s));
-            int active = j < b->n_active;
-            if (b->type[j] == RG_BODY_DYNAMIC && active) continue;
-            rg_vec2 ho = rg_v2(b->hx[j], b->hy[j]);
-            rg_vec2 o1 = rg_v2(b->x[j], b->y[j]);
-            rg_vec2 dob = active ? rg_v2(b->dx[j], b->dy[j]) : rg_v2(0, 0);
-            rg_vec2 o0 = rg_v2_sub(o1, dob);
-            rg_real t;
-            coll_manifold hit, end;
-            if (!coll_sweep(b->shape[j], o0, ho, b->shape[i], p0, hf, rg_v2_sub(D, dob), &t, &hit)) continue;
-            if (!(t > 0 && t < tmin)) continue;
-            /* a one-way shape blocks only against its normal (hit.normal: from j toward i) */
-            if ((c->flags & CT_ONEWAY) && (!continuous_one_way_blocks(b, j, hit.normal.x, hit.normal.y) ||
-                                           !continuous_one_way_blocks(b, i, -hit.normal.x, -hit.normal.y)))
-                continue;
-            coll_manifold_of(b->shape[j], o1, ho, b->shape[i], p1, hf, &end);
-            if (end.depth >= 0 && end.depth <= cw->slop) continue; /* resting at the end */
-            tmin = t;
-            nbest = hit.normal;
-            vbest = active ? rg_v2(b->vx[j], b->vy[j]) : rg_v2(0, 0);
+            int32_t j = body_dense(w, contact_other(c, sb.s));
+            if (continuous_met(b, &sb, j)) continuous_meet(&sb, j);
         }
-        if (tmin >= 1) continue;
-        rg_real len = rg_v2_len(D);
-        rg_real tb = len > 0 ? rg_max(tmin - RG_R(0.5) * cw->slop / len, 0) : 0;
-        b->x[i] = p0.x + D.x * tb;
-        b->y[i] = p0.y + D.y * tb;
-        rg_real vn = (b->vx[i] - vbest.x) * nbest.x + (b->vy[i] - vbest.y) * nbest.y;
-        if (vn < 0) {
-            b->vx[i] -= vn * nbest.x;
-            b->vy[i] -= vn * nbest.y;
+        if (left)
+            broadphase_query(&cw->bp, rg_min(sb.p0.x, sb.p1.x) - sb.hf.x, rg_min(sb.p0.y, sb.p1.y) - sb.hf.y,
+                             rg_max(sb.p0.x, sb.p1.x) + sb.hf.x, rg_max(sb.p0.y, sb.p1.y) + sb.hf.y,
+                             continuous_visit, &sb);
+        if (sb.tmin >= 1) continue;
+        rg_real len = rg_v2_len(sb.D);
+        rg_real tb = len > 0 ? rg_max(sb.tmin - RG_R(0.5) * cw->slop / len, 0) : 0;
+        b->x[i] = sb.p0.x + sb.D.x * tb;
+        b->y[i] = sb.p0.y + sb.D.y * tb;
+        rg_real vn = (b->vx[i] - sb.vbest.x) * sb.nbest.x + (b->vy[i] - sb.vbest.y) * sb.nbest.y;
+        if (!(vn < 0)) continue;
+        if (!asleep) {
+            b->vx[i] -= vn * sb.nbest.x;
+            b->vy[i] -= vn * sb.nbest.y;
+            continue;
         }
+        /* a sleeping body at rest: the impulse that ends the approach of the two, P n on i
+         * and -P n on it, once it is awake (its dense index moves with the wake) */
+        island_wake(w, sb.sbest);
+        woke = 1;
+        int32_t j = body_dense(w, sb.sbest);
+        rg_real ima = b->inv_mass[i], imb = b->inv_mass[j];
+        rg_real p = -vn / (ima + imb);
+        b->vx[i] += p * ima * sb.nbest.x;
+        b->vy[i] += p * ima * sb.nbest.y;
+        b->vx[j] -= p * imb * sb.nbest.x;
+        b->vy[j] -= p * imb * sb.nbest.y;
     }
+    return woke;
+}
+
+static void continuous_sweep_range(int32_t k0, int32_t k1, int32_t worker, void *context)
+{
+    (void)worker;
+    continuous_sweep_bodies(((const sweep_task *)context)->w, 0, k0, k1);
 }
 
 /* Bodies per sweep range (most are slow and skip at once). */
 #define SWEEP_RANGE 256
 
-void continuous_sweep(rg_world *w, const collide_step *x)
+int continuous_sweep(rg_world *w, const collide_step *x)
 {
-    if (!w->coll.continuous) return;
-    sweep_task t = { w };
-    task_for(w, continuous_sweep_range, x->na, SWEEP_RANGE, &t);
+    if (!w->coll.continuous) return 0;
+    sweep_task t = { w, 0 };
+    /* the bodies awake at the start, and those woken since (views_woken) */
+    int32_t n = x->woke ? w->coll.bp.n_active : x->na;
+    task_for(w, continuous_sweep_range, n, SWEEP_RANGE, &t);
+    /* against sleeping bodies, on this thread: it wakes what it meets */
+    if (w->b.n_moving == w->b.n_active) return 0;
+    return continuous_sweep_bodies(w, 1, 0, n);
 }

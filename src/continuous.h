@@ -14,11 +14,18 @@
  * shares no row with a timed one but with immovable bodies, so it solves as without timing.
  *
  * The sweep: a body whose whole motion this step (integration, contacts and position
- * correction) exceeds half its size is swept from its start to where the step left it
- * against the static, kinematic and sleeping shapes it has contacts with; if the path
- * crosses one, the body stops just short of the first impact and loses its velocity into
- * it.  The solver's time-of-impact rows normally make this a no-op; it catches what an
- * unconverged solve (a light body crushed by a far heavier one) would push through. */
+ * correction) exceeds half its size, or that the solve moved more than the slop off its free
+ * motion (an impact it took: the pairs the step did not solve were judged by that free
+ * motion, and the fat box holds it), is swept from its start to where the step left it
+ * against the static and kinematic shapes it has contacts with, and, where it ended out of
+ * its fat box, those on its path it has none with (the pair search never looked there);
+ * then, on the stepping thread, against sleeping shapes.  If the path crosses one, the body
+ * stops just short of the first impact and loses its velocity into it; a sleeping body it
+ * stops at wakes and takes that momentum (an inelastic impact of the two).  The solver's
+ * time-of-impact rows normally make this a no-op; it catches what an unconverged solve (a
+ * light body crushed by a far heavier one) would push through, and a body an impact drives
+ * into a shape it had no row with (a ball hit toward a thin wall, or down onto a one-way
+ * platform it hovered over). */
 #ifndef RG_CONTINUOUS_H
 #define RG_CONTINUOUS_H
 
@@ -31,8 +38,9 @@ struct rg_world;
  * which solver body q's velocity changes (0: at the start, as the speculative rows assume).
  * Costs nothing in a step without impacts.  Returns whether any body is timed. */
 int continuous_time_impacts(struct rg_world *w, collide_step *x);
-/* The post-solve sweep over the x->na bodies awake at the start of the stage (nothing when
- * continuous collision is off). */
-void continuous_sweep(struct rg_world *w, const collide_step *x);
+/* The post-solve sweep over the x->na bodies awake at the start of the stage and those the
+ * step woke (views_woken; nothing when continuous collision is off).  Returns whether it
+ * woke a sleeping body. */
+int continuous_sweep(struct rg_world *w, const collide_step *x);
 
 #endif

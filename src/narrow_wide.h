@@ -13,7 +13,6 @@
 #include "dispatch.h"
 #include "state.h"
 
-#define SPECULATIVE RG_R(4)          /* solve pairs predicted within SPECULATIVE * slop */
 #define COS45       RG_R(0.70710678)
 
 /* What a contact's decision found, for the commit (contact.decided). */

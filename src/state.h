@@ -132,6 +132,10 @@ typedef struct spring_store {
 #define CT_ONEWAY  16u  /* a body of the pair is one-way (narrow.c decides when it blocks) */
 #define CT_PASS    32u  /* passing: neither solved nor touching until a step ends apart */
 #define CT_ACTIVE  64u  /* scratch within the narrowphase: the pair meets within the step (narrow.c) */
+/* A pair is solved when its free motion over the step leaves it less than SPECULATIVE * slop
+ * apart (narrow.c); a body the solve moves further than that off its free motion may meet a
+ * pair that was not (continuous.c's sweep). */
+#define SPECULATIVE RG_R(4)
 
 /* The accumulated impulses a contact keeps for the next step's warm start stay within
  * [0, CONTACT_MAX_IMPULSE] (normal) and +-CONTACT_MAX_IMPULSE (friction), N*s: the solve

@@ -32,10 +32,11 @@ static void step_collide(rg_world *w, rg_real dt)
     x.woke = pairs_find(w);
     STEP_PROF(1);
     narrow_run(w, &x);
+    if (x.woke) views_woken(w, &x);
     STEP_PROF(2);
     resolve_run(w, &x);
     STEP_PROF(3);
-    continuous_sweep(w, &x);
+    x.woke |= continuous_sweep(w, &x);
     pairs_refit(w, &x, dt);
     STEP_PROF(4);
     island_sleep(w, dt, x.unite && !x.woke);

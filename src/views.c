@@ -218,3 +218,16 @@ void views_build(rg_world *w, collide_step *x, rg_real dt)
     }
 }
 
+void views_woken(rg_world *w, const collide_step *x)
+{
+    views_state *ns = &w->coll.views;
+    const broadphase *bp = &w->coll.bp;
+    const body_store *b = &w->b;
+    for (int32_t k = x->na; k < bp->n_active; k++) {
+        int32_t i = body_dense(w, bp->active[k]);
+        ns->adense[k] = i;
+        ns->sx0[k] = b->x[i];
+        ns->sy0[k] = b->y[i];
+        ns->svx0[k] = ns->svy0[k] = 0;
+    }
+}

@@ -15,6 +15,9 @@ void views_record_start(struct rg_world *w);
 /* After integration: the displacements, the step's view of each awake shaped body, and its
  * fat box refreshed when its swept box left it. */
 void views_build(struct rg_world *w, collide_step *x, rg_real dt);
+/* After the narrowphase of a step that woke bodies (places x->na .. the broadphase's active
+ * count): where they start, at rest, before the solve moves them (continuous.c's sweep). */
+void views_woken(struct rg_world *w, const collide_step *x);
 
 /* The step's view of body i: start position, displacement, velocity, half extents.  Awake
  * bodies come from the per-step cache, the others rest: no displacement, no velocity. */
