@@ -170,18 +170,19 @@ static FORCE_INLINE void narrow_measure(const rg_world *w, contact *c, const cbo
             s0 = -m.depth;
         }
         /* apart at the start and fast (moving more than half the smaller shape): the time
-         * of impact instead.  Where the free motion misses, the pair stays a speculative row
-         * at the start's gap if that motion keeps the gap open along the start's normal (as
-         * a slow pair would: the row holds against motion the solve gives, an impact from
-         * the other side, which would else push the body into a thin shape it has no row
-         * with); where that motion would close it, the pair passes beside: no row. */
+         * of impact instead.  Where the free motion misses a static, kinematic or sleeping
+         * body (im 0), the pair stays a speculative row at the start's gap if that motion
+         * keeps the gap open along the start's normal (as a slow pair would: the row holds
+         * against motion the solve gives, an impact from the other side, which would else
+         * push the body into a thin shape it has no row with); where that motion would close
+         * it, the pair passes beside: no row.  Two movable bodies that miss get none. */
         rg_real size = rg_min(rg_min(ha.x, ha.y), rg_min(hb.x, hb.y));
         if (s0 > cw->slop && !(r.x * r.x + r.y * r.y <= RG_R(0.25) * size * size)) {
             rg_real t;
             coll_manifold start = m;
             if (coll_sweep(ka, rg_v2(A->sx, A->sy), ha, kb, rg_v2(B->sx, B->sy), hb, r, &t, &m))
                 s0 = t > 0 ? -t * rg_v2_dot(r, m.normal) : -m.depth;
-            else if (s0 + rg_v2_dot(r, start.normal) > 0)
+            else if ((A->im == 0 || B->im == 0) && s0 + rg_v2_dot(r, start.normal) > 0)
                 m = start;
             else
                 active = 0;

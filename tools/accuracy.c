@@ -578,6 +578,21 @@ static void print_soups(int quick)
                    100 * r.worst_gain, r.worst_momentum);
         }
     }
+    static const double ratios[] = {1, 4, 8, 30};
+    static const int push_iterations[] = {8, 16, 32, 64};
+    printf("\na box of m kg run at 5 m/s into a 1 kg box against a wall (floor without friction, gravity,\n"
+           "restitution 0): the fastest it moves back, m/s (exact: 0)\n%-10s", "iterations");
+    for (size_t r = 0; r < sizeof ratios / sizeof ratios[0]; r++) printf(" %8s%-3.0f", "m = ", ratios[r]);
+    printf("\n");
+    for (size_t i = 0; i < sizeof push_iterations / sizeof push_iterations[0]; i++) {
+        printf("%-10d", push_iterations[i]);
+        for (size_t r = 0; r < sizeof ratios / sizeof ratios[0]; r++) {
+            double back = 0;
+            if (acc_push_rebound(ratios[r], 5, push_iterations[i], &back) != RG_OK) back = -1;
+            printf(" %11.2f", back);
+        }
+        printf("\n");
+    }
 }
 #endif
 

@@ -70,4 +70,9 @@ typedef struct acc_soup_result {
 
 rg_status acc_soup_run(const acc_soup *s, acc_soup_result *r);
 
+/* A box of `ratio` kg (0.6 m) run at speed (m/s) along a frictionless floor, under gravity,
+ * into a 1 kg box (0.5 m) resting against a wall, restitution 0 everywhere, with
+ * velocity_iterations per step: the fastest it moves back over 2 s.  Exact: 0 (it stops). */
+rg_status acc_push_rebound(double ratio, double speed, int velocity_iterations, double *out_back);
+
 #endif

@@ -1,5 +1,6 @@
 /* accuracy_soup.c: random soups of boxes and circles without gravity, for the accuracy lab:
- * how far contacts keep momentum and kinetic energy (accuracy --soup). */
+ * how far contacts keep momentum and kinetic energy (accuracy --soup); and a heavy box run
+ * into a light one against a wall, which should stop dead. */
 #include <math.h>
 
 #include "accuracy_collision.h"
@@ -95,4 +96,33 @@ rg_status acc_soup_run(const acc_soup *s, acc_soup_result *r)
         if (st != RG_OK) return st;
     }
     return RG_OK;
+}
+
+rg_status acc_push_rebound(double ratio, double speed, int velocity_iterations, double *out_back)
+{
+    rg_world *w = NULL;
+    rg_body floor, wall, crate, pusher;
+    rg_status st = rg_world_create(&w);
+    if (st == RG_OK) st = rg_world_set_gravity(w, soup_v2(0, -10));
+    if (st == RG_OK) st = rg_world_set_solver_iterations(w, velocity_iterations, 3);
+    if (st == RG_OK) st = rg_body_create(w, RG_BODY_STATIC, 0, soup_v2(0, -0.5), &floor);
+    if (st == RG_OK) st = rg_body_set_aabb(w, floor, 10, 0.5);
+    if (st == RG_OK) st = rg_body_set_friction(w, floor, 0);
+    if (st == RG_OK) st = rg_body_create(w, RG_BODY_STATIC, 0, soup_v2(1, 2), &wall);
+    if (st == RG_OK) st = rg_body_set_aabb(w, wall, 0.5, 2);
+    if (st == RG_OK) st = rg_body_create(w, RG_BODY_DYNAMIC, 1, soup_v2(0.25, 0.25), &crate);
+    if (st == RG_OK) st = rg_body_set_aabb(w, crate, 0.25, 0.25);
+    if (st == RG_OK) st = rg_body_create(w, RG_BODY_DYNAMIC, (rg_real)ratio, soup_v2(-1, 0.3), &pusher);
+    if (st == RG_OK) st = rg_body_set_aabb(w, pusher, 0.3, 0.3);
+    if (st == RG_OK) st = rg_body_set_velocity(w, pusher, soup_v2(speed, 0));
+    double back = 0;
+    for (int k = 0; k < 120 && st == RG_OK; k++) {
+        rg_vec2 v;
+        st = rg_world_step(w, (rg_real)(1.0 / 60));
+        if (st == RG_OK) st = rg_body_get_velocity(w, pusher, &v);
+        if (st == RG_OK && -(double)v.x > back) back = -(double)v.x;
+    }
+    rg_world_destroy(w);
+    *out_back = back;
+    return st;
 }
