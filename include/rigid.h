@@ -393,9 +393,8 @@ RG_API rg_status rg_body_is_grounded(const rg_world *world, rg_body body, int32_
  * sleep_speed for sleep_time seconds stops moving and costs nothing per step.  It wakes
  * when a moving body touches it or comes within that reach, when a force, impulse,
  * velocity or position is given to one of its bodies, or when something it rests on is
- * moved or destroyed.  Changing world
- * gravity does not wake sleeping bodies (call rg_body_wake or toggle sleeping).  Only
- * dynamic bodies with a shape sleep. */
+ * moved or destroyed.  Changing world gravity does not wake sleeping bodies (call
+ * rg_body_wake or toggle sleeping).  Only dynamic bodies with a shape sleep. */
 
 /* enabled 1 (the default) or 0; disabling wakes every sleeping body. */
 RG_API rg_status rg_world_set_sleeping(rg_world *world, int32_t enabled);

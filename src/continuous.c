@@ -99,7 +99,6 @@ static inline int continuous_one_way_blocks(const body_store *b, int32_t i, rg_r
 
 typedef struct sweep_task {
     rg_world *w;
-    int asleep; /* the pass meets sleeping bodies (serial), else immovable ones */
 } sweep_task;
 
 /* Whether dense body i, its box at p1 (half extents hf), left its fat box (or the box is due
@@ -308,7 +307,7 @@ static void continuous_sweep_range(int32_t k0, int32_t k1, int32_t worker, void 
 int continuous_sweep(rg_world *w, const collide_step *x)
 {
     if (!w->coll.continuous) return 0;
-    sweep_task t = { w, 0 };
+    sweep_task t = { w };
     /* the bodies awake at the start, and those woken since (views_woken) */
     int32_t n = x->woke ? w->coll.bp.n_active : x->na;
     task_for(w, continuous_sweep_range, n, SWEEP_RANGE, &t);

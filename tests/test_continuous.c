@@ -88,13 +88,6 @@ static void test_a_fast_ball_rammed_into_a_thin_wall_stays_on_its_side(void **st
     }
 }
 
-/* A uniform number in [0, 1) from a 32-bit linear congruential state. */
-static double next_uniform(uint32_t *s)
-{
-    *s = *s * 1103515245u + 12345u;
-    return (double)((*s >> 8) & 0xFFFFFF) / 16777216.0;
-}
-
 /* Bodies at rest (or falling, with gravity) near a thin wall, 2-50 mm thick and static or
  * kinematic, are hit toward it by a box of 1-51 kg at 5-305 m/s: none crosses the wall below
  * its top.  The hit gives them a velocity the step's pairs never saw (a body at rest has no
@@ -125,7 +118,7 @@ static void test_bodies_an_impact_drives_toward_a_thin_wall_stay_on_their_side(v
         step_n(w, 30, DT);
         double m = 1 + next_uniform(&s) * 50, x = -1.5 - next_uniform(&s), y = -1 + next_uniform(&s) * 2.4;
         rg_body hammer = box_body(w, RG_BODY_DYNAMIC, m, x, y, 0.3, 0.3 + next_uniform(&s) * 0.5);
-        double speed = 5 + next_uniform(&s) * (next_uniform(&s) < 0.5 ? 300 : 40), a = (next_uniform(&s) - 0.5);
+        double u = next_uniform(&s), speed = 5 + u * (next_uniform(&s) < 0.5 ? 300 : 40), a = (next_uniform(&s) - 0.5);
         assert_ok(rg_body_set_velocity(w, hammer, v2(speed * cos(a), speed * sin(a))));
         int through[5] = {0};
         for (int step = 0; step < 90; step++) {

@@ -270,13 +270,6 @@ static void test_a_sleeping_row_hit_at_one_end_passes_the_hit_on(void **state)
     }
 }
 
-/* A uniform number in [0, 1) from a 32-bit linear congruential state. */
-static double next_uniform(uint32_t *s)
-{
-    *s = *s * 1103515245u + 12345u;
-    return (double)((*s >> 8) & 0xFFFFFF) / 16777216.0;
-}
-
 /* Contacts conserve momentum, sleeping on or off: 400 random scenes without gravity or
  * static bodies (20-79 boxes and circles of 0.1-5.1 kg, most at rest, some thrown at up to
  * 5 m/s or 200 m/s, three kicked at step 150; random restitution and friction), 300 steps
@@ -286,8 +279,8 @@ static double next_uniform(uint32_t *s)
  * given to rounding: some 3e5 velocity updates a scene (rows x iterations x steps), each
  * rounded within 2^-24 of the momentum, add up like a random walk to some
  * sqrt(3e5) * 2^-24 = 3.3e-5 of the sum of |m v|; 1e-4 allows three times that.  Before a
- * sleeping body in a solved pair woke, two of these scenes lost 0.05% and 0.34% of it to
- * sleeping bodies that the solve took for the ground. */
+ * sleeping body in a solved pair woke (8df20da's library), seed 43 lost 0.12% of it at step
+ * 164 to sleeping bodies that the solve took for the ground. */
 static void test_contacts_conserve_momentum_in_random_scenes_asleep_or_awake(void **state)
 {
     (void)state;
@@ -304,13 +297,13 @@ static void test_contacts_conserve_momentum_in_random_scenes_asleep_or_awake(voi
         for (int i = 0; i < n; i++) {
             m[i] = 0.1 + next_uniform(&s) * 5;
             double x = next_uniform(&s) * 8, y = next_uniform(&s) * 8;
-            if (next_uniform(&s) < 0.5)
-                b[i] = circle_body(w, RG_BODY_DYNAMIC, m[i], x, y, 0.1 + next_uniform(&s) * 0.4);
-            else
-                b[i] = box_body(w, RG_BODY_DYNAMIC, m[i], x, y, 0.1 + next_uniform(&s) * 0.4, 0.1 + next_uniform(&s) * 0.4);
+            int round = next_uniform(&s) < 0.5;
+            double hw = 0.1 + next_uniform(&s) * 0.4, hh = round ? hw : 0.1 + next_uniform(&s) * 0.4;
+            b[i] = round ? circle_body(w, RG_BODY_DYNAMIC, m[i], x, y, hw) : box_body(w, RG_BODY_DYNAMIC, m[i], x, y, hw, hh);
             assert_ok(rg_body_set_restitution(w, b[i], (rg_real)(next_uniform(&s) < 0.5 ? 0 : next_uniform(&s))));
             assert_ok(rg_body_set_friction(w, b[i], (rg_real)next_uniform(&s)));
-            double speed = next_uniform(&s) < 0.7 ? 0 : next_uniform(&s) * (next_uniform(&s) < 0.2 ? 200 : 5);
+            double moving = next_uniform(&s), u = moving < 0.7 ? 0 : next_uniform(&s);
+            double speed = moving < 0.7 ? 0 : u * (next_uniform(&s) < 0.2 ? 200 : 5);
             double a = next_uniform(&s) * 6.283;
             assert_ok(rg_body_set_velocity(w, b[i], v2(speed * cos(a), speed * sin(a))));
         }

@@ -297,13 +297,6 @@ static void test_a_ball_driven_onto_a_thin_platform_by_a_hit_from_above_stays_on
     }
 }
 
-/* A uniform number in [0, 1) from a 32-bit linear congruential state. */
-static double next_uniform(uint32_t *s)
-{
-    *s = *s * 1103515245u + 12345u;
-    return (double)((*s >> 8) & 0xFFFFFF) / 16777216.0;
-}
-
 /* 1,000 scenes of ten boxes and circles (0.05-0.4 m) thrown down at up to 200 m/s or up at up
  * to 110 m/s around a one-way platform 2-32 cm thick (static, or kinematic drifting at up to
  * 1 m/s), under gravity for 4 s, where they land on and hit each other: none that started
@@ -335,8 +328,8 @@ static void test_bodies_thrown_onto_a_one_way_platform_never_fall_through(void *
                 b[i] = circle_body(w, RG_BODY_DYNAMIC, m, -4 + i * 0.9, y, r);
             else
                 b[i] = box_body(w, RG_BODY_DYNAMIC, m, -4 + i * 0.9, y, r, 0.05 + next_uniform(&s) * 0.35);
-            double vy = above[i] ? -next_uniform(&s) * (next_uniform(&s) < 0.3 ? 200 : 15)
-                                 : 8 + next_uniform(&s) * (next_uniform(&s) < 0.3 ? 100 : 10);
+            double u = next_uniform(&s), fast = next_uniform(&s) < 0.3;
+            double vy = above[i] ? -u * (fast ? 200 : 15) : 8 + u * (fast ? 100 : 10);
             double vx = next_uniform(&s) * 4 - 2;
             assert_ok(rg_body_set_velocity(w, b[i], v2(vx, vy)));
             assert_ok(rg_body_set_restitution(w, b[i], (rg_real)(next_uniform(&s) < 0.5 ? 0 : next_uniform(&s))));

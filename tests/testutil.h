@@ -110,6 +110,13 @@ static inline void step_n(rg_world *w, int n, double dt)
     for (int i = 0; i < n; i++) assert_ok(rg_world_step(w, (rg_real)dt));
 }
 
+/* A uniform number in [0, 1) from a 32-bit linear congruential state (the random scenes). */
+static inline double next_uniform(uint32_t *s)
+{
+    *s = *s * 1103515245u + 12345u;
+    return (double)((*s >> 8) & 0xFFFFFF) / 16777216.0;
+}
+
 /* A boolean getter's value (rg_body_is_grounded, rg_body_is_awake, ...). */
 static inline int32_t flag(rg_status (*get)(const rg_world *, rg_body, int32_t *), rg_world *w, rg_body b)
 {
