@@ -113,9 +113,9 @@ static inline int continuous_left(const rg_world *w, int32_t i, rg_vec2 p1, rg_v
 #if RG_AVX2_PATHS
 #include "avx2.h"
 
-/* The places k .. k + 7 (consecutive bodies from dense i) whose body continuous_sweep_range
- * sweeps: dynamic, and moved more than half its smaller half extent, or by the solve more
- * than the slop off its free motion (the same tests). */
+/* The places k .. k + 7 (consecutive bodies from dense i) whose body
+ * continuous_sweep_bodies sweeps: dynamic, and moved more than half its smaller half
+ * extent, or by the solve more than the slop off its free motion (the same tests). */
 AVX2_FN static uint32_t continuous_fast8(const rg_world *w, int32_t k, int32_t i)
 {
     const views_state *ns = &w->coll.views;
