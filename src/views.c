@@ -228,6 +228,5 @@ void views_woken(rg_world *w, const collide_step *x)
         ns->adense[k] = i;
         ns->sx0[k] = b->x[i];
         ns->sy0[k] = b->y[i];
-        ns->svx0[k] = ns->svy0[k] = 0;
     }
 }

@@ -16,7 +16,8 @@ void views_record_start(struct rg_world *w);
  * fat box refreshed when its swept box left it. */
 void views_build(struct rg_world *w, collide_step *x, rg_real dt);
 /* After the narrowphase of a step that woke bodies (places x->na .. the broadphase's active
- * count): where they start, at rest, before the solve moves them (continuous.c's sweep). */
+ * count): their dense index and where they start, before the solve moves them (continuous.c's
+ * sweep; their start velocity is 0, which nothing past x->na reads). */
 void views_woken(struct rg_world *w, const collide_step *x);
 
 /* The step's view of body i: start position, displacement, velocity, half extents.  Awake

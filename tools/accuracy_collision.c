@@ -4,14 +4,6 @@
 
 #include "accuracy_collision.h"
 
-static rg_vec2 cv2(double x, double y)
-{
-    rg_vec2 v;
-    v.x = (rg_real)x;
-    v.y = (rg_real)y;
-    return v;
-}
-
 static double wall_start(const acc_wall *s)
 {
     return -(0.5 + s->radius + s->wall / 2) - s->phase * s->speed * s->dt;
@@ -42,11 +34,11 @@ int acc_tunnel_library(int integrator, int continuous, const acc_wall *s)
     if (rg_world_create(&w) != RG_OK) return -1;
     rg_status st = rg_world_set_integrator(w, integrator);
     if (st == RG_OK) st = rg_world_set_continuous(w, continuous);
-    if (st == RG_OK) st = rg_body_create(w, RG_BODY_STATIC, 0, cv2(0, 0), &wall);
+    if (st == RG_OK) st = rg_body_create(w, RG_BODY_STATIC, 0, acc_cv2(0, 0), &wall);
     if (st == RG_OK) st = rg_body_set_aabb(w, wall, (rg_real)(s->wall / 2), 1);
-    if (st == RG_OK) st = rg_body_create(w, RG_BODY_DYNAMIC, 1, cv2(wall_start(s), 0), &ball);
+    if (st == RG_OK) st = rg_body_create(w, RG_BODY_DYNAMIC, 1, acc_cv2(wall_start(s), 0), &ball);
     if (st == RG_OK) st = rg_body_set_circle(w, ball, (rg_real)s->radius);
-    if (st == RG_OK) st = rg_body_set_velocity(w, ball, cv2(s->speed, 0));
+    if (st == RG_OK) st = rg_body_set_velocity(w, ball, acc_cv2(s->speed, 0));
     long n = wall_steps(s);
     for (long i = 0; i < n && st == RG_OK; i++) st = rg_world_step(w, (rg_real)s->dt);
     rg_vec2 p = {0, 0};
@@ -66,15 +58,15 @@ rg_status acc_pile(int integrator, double dt, double ratio, int n, double second
     if (n < 1 || n > PILE_MAX) return RG_ERR_INVALID_ARGUMENT;
     rg_status st = rg_world_create(&w);
     if (st != RG_OK) return st;
-    st = rg_world_set_gravity(w, cv2(0, -9.81));
+    st = rg_world_set_gravity(w, acc_cv2(0, -9.81));
     if (st == RG_OK) st = rg_world_set_integrator(w, integrator);
     if (st == RG_OK && velocity_iterations > 0)
         st = rg_world_set_solver_iterations(w, velocity_iterations, 2);
-    if (st == RG_OK) st = rg_body_create(w, RG_BODY_STATIC, 0, cv2(0, -0.5), &ground);
+    if (st == RG_OK) st = rg_body_create(w, RG_BODY_STATIC, 0, acc_cv2(0, -0.5), &ground);
     if (st == RG_OK) st = rg_body_set_aabb(w, ground, 5, 0.5);
     for (int i = 0; i < n && st == RG_OK; i++) {
         double m = n > 1 ? pow(ratio, (double)i / (n - 1)) : 1;
-        st = rg_body_create(w, RG_BODY_DYNAMIC, (rg_real)m, cv2(0, 0.5 + i), &box[i]);
+        st = rg_body_create(w, RG_BODY_DYNAMIC, (rg_real)m, acc_cv2(0, 0.5 + i), &box[i]);
         if (st == RG_OK) st = rg_body_set_aabb(w, box[i], 0.5, 0.5);
     }
     acc_pile_result r;

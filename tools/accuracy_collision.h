@@ -6,6 +6,15 @@
 
 #include "rigid.h"
 
+/* The vector (x, y) in rg_real, for the scenes below. */
+static inline rg_vec2 acc_cv2(double x, double y)
+{
+    rg_vec2 v;
+    v.x = (rg_real)x;
+    v.y = (rg_real)y;
+    return v;
+}
+
 /* ---------------------------------------------------------------- tunnelling */
 
 /* The scene: a 1 kg ball of radius r (m) on y = 0 moving at +speed (m/s), no gravity, toward

@@ -12,14 +12,6 @@ static double soup_uniform(uint32_t *s)
     return (double)((*s >> 8) & 0xFFFFFF) / 16777216.0;
 }
 
-static rg_vec2 soup_v2(double x, double y)
-{
-    rg_vec2 v;
-    v.x = (rg_real)x;
-    v.y = (rg_real)y;
-    return v;
-}
-
 /* The kinetic energy and momentum of the n bodies. */
 static rg_status soup_measure(rg_world *w, const rg_body *b, const double *m, int n, double *ke, double *px,
                               double *py)
@@ -53,7 +45,7 @@ static rg_status soup_scene(const acc_soup *s, uint32_t seed, acc_soup_result *r
     for (int i = 0; i < n && st == RG_OK; i++) {
         m[i] = 0.1 + soup_uniform(&u) * 5;
         double x = (i % 9) + soup_uniform(&u) * 0.1, y = (i / 9) + soup_uniform(&u) * 0.1;
-        st = rg_body_create(w, RG_BODY_DYNAMIC, (rg_real)m[i], soup_v2(x, y), &b[i]);
+        st = rg_body_create(w, RG_BODY_DYNAMIC, (rg_real)m[i], acc_cv2(x, y), &b[i]);
         double h0 = 0.1 + soup_uniform(&u) * 0.3, h1 = 0.1 + soup_uniform(&u) * 0.3;
         if (st == RG_OK)
             st = soup_uniform(&u) < 0.5 ? rg_body_set_circle(w, b[i], (rg_real)h0) : rg_body_set_aabb(w, b[i], (rg_real)h0, (rg_real)h1);
@@ -61,7 +53,7 @@ static rg_status soup_scene(const acc_soup *s, uint32_t seed, acc_soup_result *r
         if (st == RG_OK) st = rg_body_set_restitution(w, b[i], (rg_real)(s->restitution ? e : 0));
         if (st == RG_OK) st = rg_body_set_friction(w, b[i], (rg_real)(s->friction ? mu : 0));
         double speed = soup_uniform(&u) < 0.5 ? 0 : soup_uniform(&u) * s->max_speed, a = soup_uniform(&u) * 6.283185307179586;
-        if (st == RG_OK) st = rg_body_set_velocity(w, b[i], soup_v2(speed * cos(a), speed * sin(a)));
+        if (st == RG_OK) st = rg_body_set_velocity(w, b[i], acc_cv2(speed * cos(a), speed * sin(a)));
     }
     double ke0 = 0, px0 = 0, py0 = 0, scale = 0;
     if (st == RG_OK) st = soup_measure(w, b, m, n, &ke0, &px0, &py0);
@@ -103,18 +95,18 @@ rg_status acc_push_rebound(double ratio, double speed, int velocity_iterations, 
     rg_world *w = NULL;
     rg_body floor, wall, crate, pusher;
     rg_status st = rg_world_create(&w);
-    if (st == RG_OK) st = rg_world_set_gravity(w, soup_v2(0, -10));
+    if (st == RG_OK) st = rg_world_set_gravity(w, acc_cv2(0, -10));
     if (st == RG_OK) st = rg_world_set_solver_iterations(w, velocity_iterations, 3);
-    if (st == RG_OK) st = rg_body_create(w, RG_BODY_STATIC, 0, soup_v2(0, -0.5), &floor);
+    if (st == RG_OK) st = rg_body_create(w, RG_BODY_STATIC, 0, acc_cv2(0, -0.5), &floor);
     if (st == RG_OK) st = rg_body_set_aabb(w, floor, 10, 0.5);
     if (st == RG_OK) st = rg_body_set_friction(w, floor, 0);
-    if (st == RG_OK) st = rg_body_create(w, RG_BODY_STATIC, 0, soup_v2(1, 2), &wall);
+    if (st == RG_OK) st = rg_body_create(w, RG_BODY_STATIC, 0, acc_cv2(1, 2), &wall);
     if (st == RG_OK) st = rg_body_set_aabb(w, wall, 0.5, 2);
-    if (st == RG_OK) st = rg_body_create(w, RG_BODY_DYNAMIC, 1, soup_v2(0.25, 0.25), &crate);
+    if (st == RG_OK) st = rg_body_create(w, RG_BODY_DYNAMIC, 1, acc_cv2(0.25, 0.25), &crate);
     if (st == RG_OK) st = rg_body_set_aabb(w, crate, 0.25, 0.25);
-    if (st == RG_OK) st = rg_body_create(w, RG_BODY_DYNAMIC, (rg_real)ratio, soup_v2(-1, 0.3), &pusher);
+    if (st == RG_OK) st = rg_body_create(w, RG_BODY_DYNAMIC, (rg_real)ratio, acc_cv2(-1, 0.3), &pusher);
     if (st == RG_OK) st = rg_body_set_aabb(w, pusher, 0.3, 0.3);
-    if (st == RG_OK) st = rg_body_set_velocity(w, pusher, soup_v2(speed, 0));
+    if (st == RG_OK) st = rg_body_set_velocity(w, pusher, acc_cv2(speed, 0));
     double back = 0;
     for (int k = 0; k < 120 && st == RG_OK; k++) {
         rg_vec2 v;
