@@ -370,7 +370,7 @@ RG_API rg_status rg_body_set_friction(rg_world *world, rg_body body, rg_real mu)
 RG_API rg_status rg_body_get_friction(const rg_world *world, rg_body body, rg_real *out);
 
 /* A sensor (is_sensor 1; 0 makes it solid again) reports begin/end contacts (with sensor = 1)
- * but never pushes nor is pushed.  Sensors see every shape their filter admits, other
+ * for the shapes it overlaps where each step leaves them, but never pushes nor is pushed.  Sensors see every shape their filter admits, other
  * sensors included.  Changing it ends the body's current contacts. */
 RG_API rg_status rg_body_set_sensor(rg_world *world, rg_body body, int32_t is_sensor);
 RG_API rg_status rg_body_is_sensor(const rg_world *world, rg_body body, int32_t *out_is_sensor);
@@ -468,7 +468,14 @@ typedef struct rg_contact_event {
  * reported with the next step's events, under the handles they had (a destroyed body's is
  * stale by then).  An end event carries the pair's last normal and point and the depth and
  * speed of its begin.  Touching means the step ends with the pair in contact: a body that
- * jumps off a surface ends its contact in that step. */
+ * jumps off a surface ends its contact in that step.  A solid pair touches when the step's
+ * free motion closes it (with a slop of hysteresis: a touching pair stays so while less than
+ * the slop apart); a sensor pair is tested on the shapes where the step leaves them, so a body that a wall
+ * stops short of a sensor behind it never touches it, and one knocked into a sensor touches
+ * it in that step.  A pair exists once the bodies' fat boxes meet (each its box grown by 2%
+ * of its size, at least the slop, and by the path of its next four steps): a body that an
+ * impact sends out of its fat box into a shape it was not near touches it from the next
+ * step. */
 RG_API int32_t rg_world_get_contact_events(const rg_world *world, rg_contact_event *out,
                                            int32_t capacity);
 

@@ -30,6 +30,15 @@ static inline int narrow_is_ground(rg_real gx, rg_real gy, rg_real gs, rg_real n
     return g2 > 0 && up > 0 && up * up >= COS45 * COS45 * g2;
 }
 
+/* The ND_GROUND_* bits of touching solid contact c between views A and B. */
+static inline uint32_t narrow_grounded(const rg_world *w, const contact *c, const cbody *A, const cbody *B)
+{
+    uint32_t bits = 0;
+    if (A->gs != 0 && narrow_is_ground(w->gravity.x, w->gravity.y, A->gs, -c->nx, -c->ny)) bits |= ND_GROUND_A;
+    if (B->gs != 0 && narrow_is_ground(w->gravity.x, w->gravity.y, B->gs, c->nx, c->ny)) bits |= ND_GROUND_B;
+    return bits;
+}
+
 /* Whether a pair that is not touching is too far apart for the narrowphase below to solve
  * it or find it touching, so it can be skipped with the same result.  The gap G between the
  * two boxes at the start bounds every separation that test takes from below: the manifold's
@@ -112,6 +121,7 @@ typedef struct narrow_task {
     const int32_t *handed;            /* with stage: the blocks in the order the tasks take
                                        * them (narrow_hand) */
     int32_t in_order[RG_MAX_WORKERS]; /* the worker met a contact decided in order */
+    int32_t sensed[RG_MAX_WORKERS];   /* the worker met a sensor pair */
 } narrow_task;
 
 /* Whether contact c (views A, B) is skipped as far apart (narrow_far_apart): only a pair that
@@ -138,7 +148,7 @@ static FORCE_INLINE void narrow_measure(const rg_world *w, contact *c, const cbo
     int32_t ka = A->kind, kb = B->kind;
     rg_vec2 ha = rg_v2(A->hx, A->hy), hb = rg_v2(B->hx, B->hy);
     rg_vec2 r = rg_v2(B->dx - A->dx, B->dy - A->dy); /* b's motion relative to a over the step */
-    if (far) return;
+    if (far || (c->flags & CT_SENSOR)) return; /* a sensor is measured where the step ends (sense.h) */
     coll_manifold m;
     rg_real s0 = RG_HUGE;
     int active = 1;
@@ -224,6 +234,12 @@ static FORCE_INLINE uint32_t narrow_decide(rg_world *w, contact *c, int32_t ia, 
 {
     const collide_world *cw = &w->coll;
     rg_vec2 r = rg_v2(B->dx - A->dx, B->dy - A->dy); /* b's motion relative to a over the step */
+    if (c->flags & CT_SENSOR) {
+        /* never solved; touching where the step ends, once every body is placed (sense.h) */
+        c->flags &= ~(CT_ACTIVE | CT_SOLVE | CT_CLOSING);
+        c->pn = c->pt = 0;
+        return ND_SENSOR | ((c->flags & CT_TOUCHING) ? ND_NOW | ND_WAS : 0);
+    }
     if (far) {
         /* what the full test would conclude: not solved, not touching, apart */
         c->flags &= ~(CT_SOLVE | CT_CLOSING | CT_PASS);
@@ -285,10 +301,7 @@ static FORCE_INLINE uint32_t narrow_decide(rg_world *w, contact *c, int32_t ia, 
         }
         bits |= now ? ND_BEGIN : ND_END;
     }
-    if (now && !(c->flags & CT_SENSOR)) {
-        if (A->gs != 0 && narrow_is_ground(w->gravity.x, w->gravity.y, A->gs, -c->nx, -c->ny)) bits |= ND_GROUND_A;
-        if (B->gs != 0 && narrow_is_ground(w->gravity.x, w->gravity.y, B->gs, c->nx, c->ny)) bits |= ND_GROUND_B;
-    }
+    if (now) bits |= narrow_grounded(w, c, A, B);
     return bits | (now ? ND_NOW : 0) | (was ? ND_WAS : 0);
 }
 
@@ -393,6 +406,7 @@ static FORCE_INLINE void narrow_commit(rg_world *w, int32_t id, int32_t ia, int3
     body_store *b = &w->b;
     contact *c = &cs->c[id];
     if ((bits & ND_STAGE) && d != NULL) narrow_stage_row(w, x, d, id, ia, ib);
+    if (bits & ND_SENSOR) x->sensed = 1;
     narrow_events_of(w, c, bits);
     if (c->flags & CT_SENSOR) return;
     if (bits & ND_GROUND_A) b->cflags[ia] |= CF_GROUNDED;
@@ -516,6 +530,7 @@ static void narrow_measure_decide_blocks(int32_t begin, int32_t end, int32_t wor
                     bits = narrow_decide(w, c, nb.ia[l], nb.ib[l], x->n, A, B, far, 0);
                 }
                 c->decided = bits;
+                if (bits & ND_SENSOR) t->sensed[worker] = 1;
                 if (!t->stage) continue;
                 if (narrow_events(bits)) event[nevent++] = nb.id[l];
                 if (narrow_grounds(c, bits)) {
@@ -646,7 +661,7 @@ void narrow_run(rg_world *w, collide_step *x)
      * decision reads): the contacts are measured, decided and committed in the one walk
      * below, block by block, the same work as a pass of its own before it. */
     if (workers < 2 && w->b.n_moving == w->b.n_active) measured = 0;
-    for (int32_t k = 0; k < workers; k++) t.in_order[k] = 0;
+    for (int32_t k = 0; k < workers; k++) t.in_order[k] = t.sensed[k] = 0;
     t.n = measured;
     /* with workers, the rows are staged in parallel too (the spare rows are laid out on the
      * first such step; where the allocator fails, the walk below stages them) */
@@ -654,7 +669,10 @@ void narrow_run(rg_world *w, collide_step *x)
     t.handed = NULL;
     if (t.stage) narrow_hand(w, &t, (measured + NARROW_BLOCK - 1) / NARROW_BLOCK, workers);
     task_for(w, narrow_measure_decide_blocks, (measured + NARROW_BLOCK - 1) / NARROW_BLOCK, 1, &t);
-    for (int32_t k = 0; k < workers; k++) in_order |= t.in_order[k];
+    for (int32_t k = 0; k < workers; k++) {
+        in_order |= t.in_order[k];
+        x->sensed |= t.sensed[k];
+    }
     /* without a contact decided in order, the rows staged in parallel are those the walk
      * below stages on one thread, in the same order: they are placed */
     int serial = in_order || !t.stage;

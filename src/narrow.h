@@ -9,7 +9,8 @@
  * the time of impact instead (continuous collision).  A pair is solved when it could close
  * within the step, counting each body's own motion toward the other (the solver may stop
  * either).  Touching (events, grounded, islands) means the step's free motion ends in
- * contact, with a slop of hysteresis. */
+ * contact, with a slop of hysteresis.  Sensor pairs are neither measured nor decided here: sense.h
+ * tests them where the step ends. */
 #ifndef RG_NARROW_H
 #define RG_NARROW_H
 

@@ -23,6 +23,7 @@
 #define ND_WAS     16u  /* touching before it */
 #define ND_GROUND_A 32u /* its surface grounds a (touching, a's gravity against the normal) */
 #define ND_GROUND_B 64u
+#define ND_SENSOR  128u /* a sensor pair: sense.c decides its touching where the step ends */
 
 /* The wide path is built where dispatch.h's RG_AVX2_PATHS is 1 and picked per step from the
  * CPU (narrow_wide_ready); RG_NO_DISPATCH and the double build have the scalar code alone. */

@@ -276,6 +276,7 @@ typedef struct collide_step {
     int32_t nblock;     /* the parallel staging's blocks (their bodies to ground and contacts
                          * with an event: narrow.c) */
     int woke;           /* the pair search or the narrowphase woke bodies: rows restaged */
+    int sensed;         /* the narrowphase met a sensor pair (sense.h decides them) */
     int unite;          /* join islands in the narrowphase (sleeping is near) */
     /* What the narrowphase left to do after the rows are staged, which neither reads nor
      * writes what the solve's first serial part does (events, grounded flags, islands): the

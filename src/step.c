@@ -13,6 +13,7 @@
 #include "narrow.h"
 #include "pairs.h"
 #include "resolve.h"
+#include "sense.h"
 #include "speed_limits.h"
 #include "state.h"
 #include "step.h"
@@ -20,7 +21,7 @@
 #include "views.h"
 
 /* The collide stage, in order: views and fat boxes, pairs, narrowphase, solve, the
- * continuous sweep, fat boxes refit, sleep.  Only with shapes. */
+ * continuous sweep, sensors, fat boxes refit, sleep.  Only with shapes. */
 static void step_collide(rg_world *w, rg_real dt)
 {
     collide_step x;
@@ -37,6 +38,7 @@ static void step_collide(rg_world *w, rg_real dt)
     resolve_run(w, &x);
     STEP_PROF(3);
     x.woke |= continuous_sweep(w, &x);
+    sense_run(w, &x);
     pairs_refit(w, &x, dt);
     STEP_PROF(4);
     island_sleep(w, dt, x.unite && !x.woke);

@@ -1,0 +1,306 @@
+/* test_touching.c: what touching means after a step.  A sensor touches where the step leaves
+ * the shapes (a wall that stops a body short of a sensor behind it gives no event; a body
+ * knocked into a sensor touches it in that step); and in random scenes with every kind of
+ * change between steps, the events' ledger, the contact lists and the touching count agree. */
+#include "testutil.h"
+
+#define SLOP 0.005 /* the default contact slop (rg_world_get_contact_tuning) */
+
+/* Distance between the surfaces of two bodies' shapes (negative: the depth), in double, from
+ * their positions and half extents. */
+static double surface_gap(rg_world *w, rg_body a, rg_body b)
+{
+    int32_t ka, kb;
+    rg_vec2 ha, hb;
+    assert_ok(rg_body_get_shape(w, a, &ka, &ha));
+    assert_ok(rg_body_get_shape(w, b, &kb, &hb));
+    if (ka == RG_SHAPE_AABB && kb == RG_SHAPE_CIRCLE) return surface_gap(w, b, a);
+    rg_vec2 pa = pos_of(w, a), pb = pos_of(w, b);
+    double dx = fabs((double)pb.x - (double)pa.x), dy = fabs((double)pb.y - (double)pa.y);
+    double hax = (double)ha.x, hay = (double)ha.y, hbx = (double)hb.x, hby = (double)hb.y;
+    if (ka == RG_SHAPE_CIRCLE && kb == RG_SHAPE_CIRCLE) return sqrt(dx * dx + dy * dy) - hax - hbx;
+    if (ka == RG_SHAPE_AABB) { /* two boxes: the axis of least overlap, or the gap */
+        double gx = dx - hax - hbx, gy = dy - hay - hby;
+        if (gx <= 0 && gy <= 0) return gx > gy ? gx : gy;
+        gx = gx > 0 ? gx : 0;
+        gy = gy > 0 ? gy : 0;
+        return sqrt(gx * gx + gy * gy);
+    }
+    /* a circle (a) and a box (b): from the centre to the box, less the radius */
+    double qx = dx - hbx, qy = dy - hby;
+    if (qx <= 0 && qy <= 0) return (qx > qy ? qx : qy) - hax;
+    qx = qx > 0 ? qx : 0;
+    qy = qy > 0 ? qy : 0;
+    return sqrt(qx * qx + qy * qy) - hax;
+}
+
+/* The rounding the library's gap may carry against surface_gap's: some ulps of the
+ * coordinates and sizes involved. */
+static double gap_rounding(rg_world *w, rg_body a, rg_body b)
+{
+    rg_vec2 pa = pos_of(w, a), pb = pos_of(w, b), ha, hb;
+    assert_ok(rg_body_get_shape(w, a, NULL, &ha));
+    assert_ok(rg_body_get_shape(w, b, NULL, &hb));
+    double scale = fabs((double)pa.x) + fabs((double)pa.y) + fabs((double)pb.x) + fabs((double)pb.y) +
+                   (double)ha.x + (double)ha.y + (double)hb.x + (double)hb.y;
+    return 64 * REAL_EPS * scale;
+}
+
+/* A ball (r 0.25) thrown at a static wall 0.2 m thick (x from 1.0 to 1.2) with a sensor
+ * right behind it (x from 1.2 to 2.0): the wall stops it at x = 0.75, its edge 0.2 m short
+ * of the sensor, at any speed.  So the sensor never touches it.  (When a sensor's touching
+ * came from the step's free motion, the balls thrown at 20 m/s and more, whose free motion
+ * ends inside the sensor, began touching it for a step.) */
+static void test_a_wall_stops_a_ball_short_of_a_sensor_behind_it_and_no_event_comes(void **state)
+{
+    (void)state;
+    const double speeds[] = {3, 10, 20, 30, 60, 120};
+    for (size_t s = 0; s < sizeof speeds / sizeof speeds[0]; s++) {
+        rg_world *w = gravity_world(0);
+        box_body(w, RG_BODY_STATIC, 0, 1.1, 0, 0.1, 2);
+        rg_body zone = box_body(w, RG_BODY_STATIC, 0, 1.6, 0, 0.4, 2);
+        assert_ok(rg_body_set_sensor(w, zone, 1));
+        rg_body ball = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 0, 0.25);
+        assert_ok(rg_body_set_velocity(w, ball, v2((rg_real)speeds[s], 0)));
+        int events = 0;
+        for (int i = 0; i < 60; i++) {
+            assert_ok(rg_world_step(w, (rg_real)DT));
+            rg_contact_event ev[8];
+            int32_t n = get_events(w, ev, 8);
+            for (int k = 0; k < n; k++) events += ev[k].sensor;
+            assert_true(PX(w, ball) <= 0.75 + SLOP);
+        }
+        if (events != 0) fail_msg("thrown at %g m/s: %d sensor events", speeds[s], events);
+        rg_world_destroy(w);
+    }
+}
+
+/* The touching of pair (a, b) that the events of the last step leave, given it before. */
+static int touching_after(rg_world *w, rg_body a, rg_body b, int was)
+{
+    rg_contact_event ev[16];
+    int32_t n = get_events(w, ev, 16);
+    for (int k = 0; k < n; k++) {
+        if (!((ev[k].a == a && ev[k].b == b) || (ev[k].a == b && ev[k].b == a))) continue;
+        assert_int_equal(ev[k].kind, was ? RG_CONTACT_END : RG_CONTACT_BEGIN);
+        was = !was;
+    }
+    return was;
+}
+
+/* Elastic balls (r 0.25) in zero gravity: A at 6 m/s (0.1 m a step) toward B, at rest 1 cm
+ * short of a sensor box (near enough for their pair to be found at rest: within the two
+ * fat boxes' margins, 5 mm and 1 cm).  A meets B 0.2 of the way into step 7 and stops; B
+ * leaves at 6 m/s and covers the 1 cm within that step, so it ends that step inside the
+ * sensor, which its free motion (at rest) never would.  Step by step the pair touches
+ * exactly when the shapes end the step overlapping, or, touching before, less than the slop
+ * apart: B enters in the step of the hit, crosses and leaves. */
+static void test_a_body_knocked_into_a_sensor_touches_it_in_that_step(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(0);
+    rg_body zone = box_body(w, RG_BODY_STATIC, 0, 2, 0, 0.5, 0.5);
+    assert_ok(rg_body_set_sensor(w, zone, 1));
+    rg_body a = circle_body(w, RG_BODY_DYNAMIC, 1, 0.12, 0, 0.25);
+    rg_body b = circle_body(w, RG_BODY_DYNAMIC, 1, 1.24, 0, 0.25);
+    assert_ok(rg_body_set_restitution(w, a, 1));
+    assert_ok(rg_body_set_restitution(w, b, 1));
+    assert_ok(rg_body_set_velocity(w, a, v2(6, 0)));
+    int touching = 0, entered = -1, left = -1;
+    for (int i = 1; i <= 40; i++) {
+        assert_ok(rg_world_step(w, (rg_real)DT));
+        touching = touching_after(w, zone, b, touching);
+        double gap = surface_gap(w, zone, b), tol = gap_rounding(w, zone, b);
+        if (gap <= -tol || (touching && gap < SLOP - tol)) assert_int_equal(touching, 1);
+        if (gap > tol && !(touching && gap < SLOP + tol)) assert_int_equal(touching, 0);
+        if (touching && entered < 0) entered = i;
+        if (!touching && entered > 0 && left < 0) left = i;
+    }
+    assert_int_equal(entered, 7);
+    assert_true(left > entered);
+    assert_near(VX(w, b), 6, 1e-4);
+    rg_world_destroy(w);
+}
+
+/* ---- random scenes: the ledger of begins and ends against the world's own lists */
+
+#define MAXB 40
+
+typedef struct ledger {
+    rg_body a[4096], b[4096];
+    int n;
+} ledger;
+
+static int ledger_find(const ledger *l, rg_body a, rg_body b)
+{
+    for (int i = 0; i < l->n; i++)
+        if (l->a[i] == a && l->b[i] == b) return i;
+    return -1;
+}
+
+/* Applies the last step's events: a begin of a pair not in the ledger, an end of one in it. */
+static void ledger_apply(rg_world *w, ledger *l)
+{
+    static rg_contact_event ev[2048];
+    int32_t n = get_events(w, ev, 2048);
+    for (int k = 0; k < n; k++) {
+        assert_true(ev[k].a < ev[k].b);
+        int i = ledger_find(l, ev[k].a, ev[k].b);
+        if (ev[k].kind == RG_CONTACT_BEGIN) {
+            if (i >= 0) fail_msg("a begin of a pair that touches");
+            assert_true(l->n < 4096);
+            l->a[l->n] = ev[k].a;
+            l->b[l->n++] = ev[k].b;
+        } else {
+            if (i < 0) fail_msg("an end of a pair that does not touch");
+            l->n--;
+            l->a[i] = l->a[l->n];
+            l->b[i] = l->b[l->n];
+        }
+    }
+}
+
+/* After a step: the ledger holds the pairs of live bodies only, each body's contacts are its
+ * pairs in the ledger, the touching count is the ledger's size, and a touching sensor pair's
+ * shapes end the step less than the slop apart. */
+static void ledger_check(rg_world *w, const ledger *l, const rg_body *bodies, int nb)
+{
+    assert_int_equal(rg_world_touching_count(w), l->n);
+    int listed = 0;
+    for (int i = 0; i < nb; i++) {
+        rg_contact c[MAXB];
+        int32_t n = rg_body_get_contacts(w, bodies[i], c, MAXB);
+        assert_true(n >= 0 && n <= MAXB);
+        for (int k = 0; k < n; k++) {
+            rg_body lo = bodies[i] < c[k].other ? bodies[i] : c[k].other;
+            rg_body hi = bodies[i] < c[k].other ? c[k].other : bodies[i];
+            if (ledger_find(l, lo, hi) < 0) fail_msg("a contact the events never began");
+            if (c[k].sensor) {
+                double gap = surface_gap(w, lo, hi);
+                if (!(gap < SLOP + gap_rounding(w, lo, hi))) fail_msg("a touching sensor pair %.4f m apart", gap);
+            }
+        }
+        listed += n;
+    }
+    for (int i = 0; i < l->n; i++) assert_true(rg_body_is_valid(w, l->a[i]) && rg_body_is_valid(w, l->b[i]));
+    assert_int_equal(listed, 2 * l->n); /* each pair from both sides */
+}
+
+static int32_t body_type(rg_world *w, rg_body b)
+{
+    int32_t t;
+    assert_ok(rg_body_get_type(w, b, &t));
+    return t;
+}
+
+static rg_vec2 random_v(uint32_t *s, double lo, double hi)
+{
+    double x = lo + (hi - lo) * next_uniform(s);
+    double y = lo + (hi - lo) * next_uniform(s);
+    return v2((rg_real)x, (rg_real)y);
+}
+
+/* One change between steps, drawn at random: a body created (dynamic, kinematic or static,
+ * a circle or a box, some sensors, some bouncy), destroyed, made a sensor or solid, given a
+ * filter, a new shape or none, moved, pushed, sent off, passed through another, woken, or
+ * sleeping switched. */
+static void random_change(rg_world *w, uint32_t *s, rg_body *bodies, int *nb)
+{
+    int op = (int)(next_uniform(s) * 13);
+    rg_body x = bodies[(int)(next_uniform(s) * *nb)];
+    if (op <= 3 && *nb < MAXB) {
+        double t = next_uniform(s);
+        int32_t type = t < 0.7 ? RG_BODY_DYNAMIC : t < 0.85 ? RG_BODY_KINEMATIC : RG_BODY_STATIC;
+        rg_vec2 at = random_v(s, 0, 1);
+        rg_body b;
+        assert_ok(rg_body_create(w, type, (rg_real)(0.5 + 3 * next_uniform(s)), v2(-4 + 8 * at.x, (rg_real)0.2 + 4 * at.y), &b));
+        rg_vec2 h = random_v(s, 0.1, 0.6);
+        if (next_uniform(s) < 0.5) assert_ok(rg_body_set_circle(w, b, h.x));
+        else assert_ok(rg_body_set_aabb(w, b, h.x, h.y));
+        rg_vec2 v = random_v(s, -3, 3);
+        if (type != RG_BODY_STATIC) assert_ok(rg_body_set_velocity(w, b, v));
+        if (next_uniform(s) < 0.25) assert_ok(rg_body_set_sensor(w, b, 1));
+        if (next_uniform(s) < 0.2) assert_ok(rg_body_set_restitution(w, b, (rg_real)next_uniform(s)));
+        bodies[(*nb)++] = b;
+    } else if (op == 4 && *nb > 1) {
+        int k = 1 + (int)(next_uniform(s) * (*nb - 1)); /* the floor stays */
+        assert_ok(rg_body_destroy(w, bodies[k]));
+        bodies[k] = bodies[--*nb];
+    } else if (op == 5) {
+        assert_ok(rg_body_set_sensor(w, x, !flag(rg_body_is_sensor, w, x)));
+    } else if (op == 6) {
+        uint32_t cat = 1u << (int)(next_uniform(s) * 2);
+        uint32_t mask = next_uniform(s) < 0.67 ? 0xFFFFFFFFu : 1u << (int)(next_uniform(s) * 2);
+        assert_ok(rg_body_set_filter(w, x, cat, mask));
+    } else if (op == 7) {
+        double t = next_uniform(s);
+        rg_vec2 h = random_v(s, 0.1, 0.6);
+        if (t < 0.33) assert_ok(rg_body_clear_shape(w, x));
+        else if (t < 0.67) assert_ok(rg_body_set_circle(w, x, h.x));
+        else assert_ok(rg_body_set_aabb(w, x, h.x, h.y));
+    } else if (op == 8) {
+        rg_vec2 at = random_v(s, 0, 1);
+        assert_ok(rg_body_set_position(w, x, v2(-4 + 8 * at.x, (rg_real)0.2 + 4 * at.y)));
+    } else if (op == 9) {
+        rg_vec2 j = random_v(s, -3, 3);
+        if (body_type(w, x) == RG_BODY_DYNAMIC) assert_ok(rg_body_apply_impulse(w, x, j));
+    } else if (op == 10) {
+        rg_status st = rg_body_pass_through(w, x, bodies[(int)(next_uniform(s) * *nb)]);
+        assert_true(st == RG_OK || st == RG_ERR_INVALID_ARGUMENT); /* itself, or no shape */
+    } else if (op == 11) {
+        rg_vec2 v = random_v(s, -8, 8);
+        if (body_type(w, x) != RG_BODY_STATIC) assert_ok(rg_body_set_velocity(w, x, v));
+    } else {
+        int32_t on;
+        assert_ok(rg_world_get_sleeping(w, &on));
+        if (next_uniform(s) < 0.2) assert_ok(rg_world_set_sleeping(w, !on));
+        else assert_ok(rg_body_wake(w, x));
+    }
+}
+
+/* 300 scenes of 300 steps (a quarter of them advances of a random frame time, which may take
+ * no step or several) on one thread and on two workers: after every step the ledger of the
+ * events agrees with the contact lists and the touching count, and no sensor touches a shape
+ * that ends the step more than the slop away. */
+static void test_events_contacts_and_the_touching_count_agree_in_random_scenes(void **state)
+{
+    (void)state;
+    static ledger l;
+    rg_thread_pool *pool;
+    rg_task_system tasks;
+    assert_ok(rg_thread_pool_create(2, &pool));
+    assert_ok(rg_thread_pool_task_system(pool, &tasks));
+    for (int scene = 0; scene < 300; scene++) {
+        uint32_t s = 7000u + (uint32_t)scene;
+        rg_world *w = gravity_world(-10);
+        if (scene % 2) assert_ok(rg_world_set_task_system(w, &tasks));
+        assert_ok(rg_world_set_sleeping(w, scene % 3 != 0));
+        assert_ok(rg_world_set_sleep_thresholds(w, (rg_real)0.05, (rg_real)(0.1 + 0.3 * next_uniform(&s))));
+        rg_body bodies[MAXB];
+        int nb = 0;
+        bodies[nb++] = box_body(w, RG_BODY_STATIC, 0, 0, -0.5, 10, 0.5);
+        l.n = 0;
+        for (int i = 0; i < 300; i++) {
+            int changes = (int)(next_uniform(&s) * 3);
+            for (int k = 0; k < changes; k++) random_change(w, &s, bodies, &nb);
+            int32_t steps = 1;
+            if (next_uniform(&s) < 0.25) assert_ok(rg_world_advance(w, (rg_real)(0.05 * next_uniform(&s)), &steps));
+            else assert_ok(rg_world_step(w, (rg_real)DT));
+            if (steps == 0) continue; /* no step: ends held for the next */
+            ledger_apply(w, &l);
+            ledger_check(w, &l, bodies, nb);
+        }
+        rg_world_destroy(w);
+    }
+    rg_thread_pool_destroy(pool);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_a_wall_stops_a_ball_short_of_a_sensor_behind_it_and_no_event_comes),
+        cmocka_unit_test(test_a_body_knocked_into_a_sensor_touches_it_in_that_step),
+        cmocka_unit_test(test_events_contacts_and_the_touching_count_agree_in_random_scenes),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
