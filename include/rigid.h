@@ -470,7 +470,8 @@ typedef struct rg_contact_event {
  * speed of its begin.  Touching means the step ends with the pair in contact: a body that
  * jumps off a surface ends its contact in that step.  A solid pair touches when the step's
  * free motion closes it (with a slop of hysteresis: a touching pair stays so while less than
- * the slop apart); a sensor pair is tested on the shapes where the step leaves them, so a body that a wall
+ * the slop apart) or the solve presses it together (a body driven onto another by a third);
+ * a sensor pair is tested on the shapes where the step leaves them, so a body that a wall
  * stops short of a sensor behind it never touches it, and one knocked into a sensor touches
  * it in that step.  A pair exists once the bodies' fat boxes meet (each its box grown by 2%
  * of its size, at least the slop, and by the path of its next four steps): a body that an

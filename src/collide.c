@@ -100,6 +100,7 @@ void collide_step_begin(rg_world *w, collide_step *x, rg_real dt)
     x->nblock = 0;
     x->woke = 0;
     x->sensed = 0;
+    x->pressed = 0;
     x->unite = cw->sleeping && cw->island.near_sleep;
     x->late = NULL;
     x->p.dt = dt;

@@ -649,6 +649,26 @@ static void narrow_commit_late(rg_world *w, collide_step *x)
     }
 }
 
+void narrow_press(rg_world *w, collide_step *x)
+{
+    const solver_constraint *con = w->coll.rows.stage;
+    int32_t left = x->pressed;
+    for (int32_t k = x->press0; k < x->press1 && left > 0; k++) {
+        int32_t id = con[k].cid;
+        contact *c = &w->coll.contacts.c[id];
+        if (!(c->flags & CT_PRESSED)) continue;
+        left--;
+        c->flags = (c->flags & ~CT_PRESSED) | CT_TOUCHING;
+        c->depth = rg_max(-c->s0, 0);
+        c->speed = rg_max(-c->vn0, 0);
+        int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
+        cbody rest_a, rest_b;
+        const cbody *A = views_of(w, ia, x->n, &rest_a), *B = views_of(w, ib, x->n, &rest_b);
+        /* solved, so its islands are joined already, and its bodies awake */
+        narrow_commit(w, id, ia, ib, x, ND_BEGIN | ND_NOW | narrow_grounded(w, c, A, B), NULL, 0, NULL);
+    }
+}
+
 void narrow_run(rg_world *w, collide_step *x)
 {
     contact_store *cs = &w->coll.contacts;

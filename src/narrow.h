@@ -9,7 +9,8 @@
  * the time of impact instead (continuous collision).  A pair is solved when it could close
  * within the step, counting each body's own motion toward the other (the solver may stop
  * either).  Touching (events, grounded, islands) means the step's free motion ends in
- * contact, with a slop of hysteresis.  Sensor pairs are neither measured nor decided here: sense.h
+ * contact, with a slop of hysteresis, or, after the solve, that the solve pressed the pair
+ * together (narrow_press).  Sensor pairs are neither measured nor decided here: sense.h
  * tests them where the step ends. */
 #ifndef RG_NARROW_H
 #define RG_NARROW_H
@@ -27,5 +28,11 @@ struct rg_world;
  * contact order (events, grounded flags, islands) are left in x->late, for the solve to run
  * beside its own first part. */
 void narrow_run(struct rg_world *w, collide_step *x);
+
+/* After the solve: the pairs it pressed together though the step's free motion left them
+ * apart (a body pushed into another by a third; x->pressed) touch from this step on, as the
+ * step ends with them in contact: their begin events and grounded flags come now, not a step
+ * late. */
+void narrow_press(struct rg_world *w, collide_step *x);
 
 #endif

@@ -111,6 +111,7 @@ typedef struct resolve_task {
     int cols[32];
     int32_t nedge[BANDS_MAX][32]; /* bands: the edge rows of band b's slice of colour cols[k] */
     int32_t pushing[RG_MAX_WORKERS];
+    int32_t pressed[RG_MAX_WORKERS], press0[RG_MAX_WORKERS], press1[RG_MAX_WORKERS];
 } resolve_task;
 
 /* Solver body q (1-based) that a row meets: one of the body passes. */
@@ -279,13 +280,29 @@ static void resolve_range(int32_t begin, int32_t end, int32_t worker, void *cont
     case RESOLVE_PREPARE:
         t->pushing[worker] += solver_prepare_position(t->con + b0, b1 - b0, t->v, &t->x->p);
         break;
-    case RESOLVE_KEEP:
+    case RESOLVE_KEEP: {
+        int32_t pressed = 0, p0 = b1, p1 = b0;
         for (int32_t k = b0; k < b1; k++) {
             contact *c = &t->w->coll.contacts.c[t->con[k].cid];
             c->pn = rg_min(t->con[k].pn, CONTACT_MAX_IMPULSE);
             c->pt = rg_max(rg_min(t->con[k].pt, CONTACT_MAX_IMPULSE), -CONTACT_MAX_IMPULSE);
+            /* a pair apart at the start, not touching (toi -1: it did not touch before, and
+             * the free motion does not close it), that the solve pressed together: it ends
+             * the step in contact, and narrow_press makes it touch now */
+            if (c->toi < 0 && c->pn > 0 && !(c->flags & CT_TOUCHING)) {
+                c->flags |= CT_PRESSED;
+                pressed++;
+                if (p0 > k) p0 = k;
+                p1 = k + 1;
+            }
+        }
+        if (pressed > 0) {
+            t->pressed[worker] += pressed;
+            if (t->press0[worker] > p0) t->press0[worker] = p0;
+            if (t->press1[worker] < p1) t->press1[worker] = p1;
         }
         break;
+    }
     default: resolve_bodies(t, t->what, b0, b1); break;
     }
 }
@@ -556,6 +573,7 @@ void resolve_run(rg_world *w, collide_step *x)
     solver_rows *rows = &cw->rows;
     if (x->woke) resolve_restage(w, x);
     int32_t nc = x->nc;
+    x->pressed = 0;
     if (nc == 0) {
         if (x->late != NULL) x->late(w, x);
         x->late = NULL;
@@ -610,9 +628,8 @@ void resolve_run(rg_world *w, collide_step *x)
     /* the body passes: the list of the bodies the rows meet, or every awake body */
     int32_t first = t.listed ? 0 : 1, bodies = t.listed ? t.nbody : ns;
     resolve_pass(&t, RESOLVE_MOVE, first, bodies);
-    int32_t pushing = 0;
+    int32_t pushing = 0, workers = task_workers(w);
     if (cw->position > 0) {
-        int32_t workers = task_workers(w);
         for (int32_t k = 0; k < workers; k++) t.pushing[k] = 0;
         resolve_pass(&t, RESOLVE_PREPARE, 0, nc);
         for (int32_t k = 0; k < workers; k++) pushing += t.pushing[k];
@@ -642,5 +659,18 @@ void resolve_run(rg_world *w, collide_step *x)
         rs->pv_valid = 1;
         resolve_pass(&t, RESOLVE_PUSH, first, bodies);
     }
+    for (int32_t k = 0; k < workers; k++) {
+        t.pressed[k] = 0;
+        t.press0[k] = nc;
+        t.press1[k] = 0;
+    }
     resolve_pass(&t, RESOLVE_KEEP, 0, nc);
+    x->pressed = 0;
+    x->press0 = nc;
+    x->press1 = 0;
+    for (int32_t k = 0; k < workers; k++) {
+        x->pressed += t.pressed[k];
+        if (x->press0 > t.press0[k]) x->press0 = t.press0[k];
+        if (x->press1 < t.press1[k]) x->press1 = t.press1[k];
+    }
 }

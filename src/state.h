@@ -132,6 +132,7 @@ typedef struct spring_store {
 #define CT_ONEWAY  16u  /* a body of the pair is one-way (narrow.c decides when it blocks) */
 #define CT_PASS    32u  /* passing: neither solved nor touching until a step ends apart */
 #define CT_ACTIVE  64u  /* scratch within the narrowphase: the pair meets within the step (narrow.c) */
+#define CT_PRESSED 128u /* scratch from the solve's keep pass to narrow_press: apart, pressed together */
 /* A pair is solved when its free motion over the step leaves it less than SPECULATIVE * slop
  * apart (narrow.c); a body the solve moves further than that off its free motion may meet a
  * pair that was not (continuous.c's sweep). */
@@ -277,6 +278,9 @@ typedef struct collide_step {
                          * with an event: narrow.c) */
     int woke;           /* the pair search or the narrowphase woke bodies: rows restaged */
     int sensed;         /* the narrowphase met a sensor pair (sense.h decides them) */
+    int32_t pressed;    /* rows the solve pressed together though the free motion left them
+                         * apart (CT_PRESSED), all within rows [press0, press1) */
+    int32_t press0, press1;
     int unite;          /* join islands in the narrowphase (sleeping is near) */
     /* What the narrowphase left to do after the rows are staged, which neither reads nor
      * writes what the solve's first serial part does (events, grounded flags, islands): the

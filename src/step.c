@@ -20,8 +20,9 @@
 #include "vec2.h"
 #include "views.h"
 
-/* The collide stage, in order: views and fat boxes, pairs, narrowphase, solve, the
- * continuous sweep, sensors, fat boxes refit, sleep.  Only with shapes. */
+/* The collide stage, in order: views and fat boxes, pairs, narrowphase, solve (and the
+ * pairs it pressed together), the continuous sweep, sensors, fat boxes refit, sleep.  Only
+ * with shapes. */
 static void step_collide(rg_world *w, rg_real dt)
 {
     collide_step x;
@@ -36,6 +37,7 @@ static void step_collide(rg_world *w, rg_real dt)
     if (x.woke) views_woken(w, &x);
     STEP_PROF(2);
     resolve_run(w, &x);
+    if (x.pressed > 0) narrow_press(w, &x);
     STEP_PROF(3);
     x.woke |= continuous_sweep(w, &x);
     sense_run(w, &x);

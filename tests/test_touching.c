@@ -1,7 +1,8 @@
 /* test_touching.c: what touching means after a step.  A sensor touches where the step leaves
  * the shapes (a wall that stops a body short of a sensor behind it gives no event; a body
- * knocked into a sensor touches it in that step); and in random scenes with every kind of
- * change between steps, the events' ledger, the contact lists and the touching count agree. */
+ * knocked into a sensor touches it in that step); a pair the solve presses together touches
+ * in that step; and in random scenes with every kind of change between steps, the events'
+ * ledger, the contact lists and the touching count agree. */
 #include "testutil.h"
 
 #define SLOP 0.005 /* the default contact slop (rg_world_get_contact_tuning) */
@@ -119,6 +120,29 @@ static void test_a_body_knocked_into_a_sensor_touches_it_in_that_step(void **sta
     assert_int_equal(entered, 7);
     assert_true(left > entered);
     assert_near(VX(w, b), 6, 1e-4);
+    rg_world_destroy(w);
+}
+
+/* Gravity 10: a box B at rest 1 cm above the floor (its free motion falls 2.8 mm in a step,
+ * so alone it would reach the floor in its third step) and a box A falling onto it at 3 m/s
+ * from 1 cm above.  A hits B early in the first step and drives it down onto the floor within that
+ * step: the solve presses B onto the floor, so B touches it and stands on it after that
+ * step (begin event and grounded flag), as the step ends with them in contact (the floor's
+ * row holds the gap at or above zero; the slop bounds the overlap the position pass
+ * leaves). */
+static void test_a_body_pressed_onto_the_floor_by_a_landing_one_touches_it_in_that_step(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-10);
+    rg_body fl = floor_of(w);
+    rg_body b = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.26, 0.25, 0.25);
+    rg_body a = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.77, 0.25, 0.25);
+    assert_ok(rg_body_set_velocity(w, a, v2(0, -3)));
+    assert_ok(rg_world_step(w, (rg_real)DT));
+    assert_int_equal(touching_after(w, fl, b, 0), 1);
+    assert_int_equal(flag(rg_body_is_grounded, w, b), 1);
+    double gap = surface_gap(w, fl, b);
+    assert_true(gap < SLOP && gap > -SLOP);
     rg_world_destroy(w);
 }
 
@@ -300,6 +324,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_a_wall_stops_a_ball_short_of_a_sensor_behind_it_and_no_event_comes),
         cmocka_unit_test(test_a_body_knocked_into_a_sensor_touches_it_in_that_step),
+        cmocka_unit_test(test_a_body_pressed_onto_the_floor_by_a_landing_one_touches_it_in_that_step),
         cmocka_unit_test(test_events_contacts_and_the_touching_count_agree_in_random_scenes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
