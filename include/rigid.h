@@ -523,7 +523,8 @@ RG_API int32_t rg_world_query_aabb(const rg_world *world, rg_vec2 lower, rg_vec2
    touching, no events) until a step ends with the shapes apart.  A blocking contact keeps blocking
    while it touches.  normal must be finite and of length 1 within 1e-3, or (0, 0); it is
    stored normalised.  Raycasts and queries see one-way shapes as any other; the mover
-   (rg_body_move) and the post-solve sweep respect them. */
+   (rg_body_move) and the post-solve sweep respect them.  A sensor blocks nothing, so its
+   one-way normal changes nothing: it reports every shape it overlaps. */
 RG_API rg_status rg_body_set_one_way(rg_world *world, rg_body body, rg_vec2 normal);
 RG_API rg_status rg_body_get_one_way(const rg_world *world, rg_body body, rg_vec2 *out_normal);
 

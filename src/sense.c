@@ -6,7 +6,7 @@
 #include "state.h"
 #include "vec2.h"
 
-/* The manifold of contact c's shapes where the bodies are now. */
+/* The manifold of dense bodies ia and ib's shapes where they are now. */
 static void sense_manifold(const body_store *b, int32_t ia, int32_t ib, coll_manifold *m)
 {
     coll_manifold_of(b->shape[ia], rg_v2(b->x[ia], b->y[ia]), rg_v2(b->hx[ia], b->hy[ia]), b->shape[ib],

@@ -123,6 +123,37 @@ static void test_a_body_knocked_into_a_sensor_touches_it_in_that_step(void **sta
     rg_world_destroy(w);
 }
 
+/* A sensor blocks nothing, so a one-way normal changes nothing for it: balls crossing a
+ * one-way sensor facing up, one rising through it from below and one falling through it from
+ * above (zero gravity, 3 m/s), each give one begin and one end. */
+static void test_a_one_way_sensor_reports_bodies_from_either_side(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(0);
+    rg_body zone = box_body(w, RG_BODY_STATIC, 0, 0, 0, 1, 0.2);
+    assert_ok(rg_body_set_sensor(w, zone, 1));
+    assert_ok(rg_body_set_one_way(w, zone, v2(0, 1)));
+    rg_body up = circle_body(w, RG_BODY_DYNAMIC, 1, -0.5, -0.6, 0.1);
+    rg_body down = circle_body(w, RG_BODY_DYNAMIC, 1, 0.5, 0.6, 0.1);
+    assert_ok(rg_body_set_velocity(w, up, v2(0, 3)));
+    assert_ok(rg_body_set_velocity(w, down, v2(0, -3)));
+    int begins[2] = {0, 0}, ends[2] = {0, 0};
+    for (int i = 0; i < 40; i++) {
+        assert_ok(rg_world_step(w, (rg_real)DT));
+        rg_contact_event ev[8];
+        int32_t n = get_events(w, ev, 8);
+        for (int k = 0; k < n; k++) {
+            int who = (ev[k].a == down || ev[k].b == down);
+            if (ev[k].kind == RG_CONTACT_BEGIN) begins[who]++;
+            else ends[who]++;
+        }
+    }
+    assert_true(begins[0] == 1 && ends[0] == 1 && begins[1] == 1 && ends[1] == 1);
+    assert_near(VY(w, up), 3, 1e-6); /* neither was slowed */
+    assert_near(VY(w, down), -3, 1e-6);
+    rg_world_destroy(w);
+}
+
 /* Gravity 10: a box B at rest 1 cm above the floor (its free motion falls 2.8 mm in a step,
  * so alone it would reach the floor in its third step) and a box A falling onto it at 3 m/s
  * from 1 cm above.  A hits B early in the first step and drives it down onto the floor within that
@@ -324,6 +355,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_a_wall_stops_a_ball_short_of_a_sensor_behind_it_and_no_event_comes),
         cmocka_unit_test(test_a_body_knocked_into_a_sensor_touches_it_in_that_step),
+        cmocka_unit_test(test_a_one_way_sensor_reports_bodies_from_either_side),
         cmocka_unit_test(test_a_body_pressed_onto_the_floor_by_a_landing_one_touches_it_in_that_step),
         cmocka_unit_test(test_events_contacts_and_the_touching_count_agree_in_random_scenes),
     };
