@@ -1,11 +1,11 @@
 /* sense.h: sensors touch where the step ends.
  *
- * A solid pair's touching is decided before the solve, from the step's free motion (narrow.h),
- * because the solve needs it.  A sensor's is not: the narrowphase leaves sensor pairs alone,
- * and once the solve and the continuous sweep have placed every body, sense_run tests each
- * awake sensor pair's shapes where they are.  So a body that a wall stops short of a sensor
- * behind it never reports entering it, and one that a collision throws into a sensor reports
- * it in that step. */
+ * A solid pair's touching is decided before the solve, from the step's free motion, because
+ * the solve needs it (and after it for the pairs the solve pressed together: narrow.h).  A
+ * sensor's is not: the narrowphase leaves sensor pairs alone, and once the solve and the
+ * continuous sweep have placed every body, sense_run tests each awake sensor pair's shapes
+ * where they are.  So a body that a wall stops short of a sensor behind it never reports
+ * entering it, and one that a collision throws into a sensor reports it in that step. */
 #ifndef RG_SENSE_H
 #define RG_SENSE_H
 
