@@ -440,6 +440,9 @@ void broadphase_insert(broadphase *bp, int32_t slot, rg_real lx, rg_real ly, rg_
     e->member = bp->count;
     e->moved = 0;
     e->apos = -1;
+    /* no pair-search mark: the slot's last member may have left one above bp->mark, where a
+     * restore moved the mark back (a restore clears only the marks of its members) */
+    e->mark = 0;
     bp->members[bp->count++] = slot;
     level_count_add(bp, e->level, 1);
     chain_link(bp, slot);
