@@ -642,9 +642,10 @@ static void narrow_commit_late(rg_world *w, collide_step *x)
         }
     }
     if (!x->unite) return;
+    /* touching or solved, as narrow_commit joins them */
     for (int32_t k = 0; k < cs->n_awake; k++) {
         const contact *c = &cs->c[cs->awake[k]];
-        if ((c->decided & ND_NOW) && !(c->flags & CT_SENSOR))
+        if (((c->decided & ND_NOW) || (c->flags & CT_SOLVE)) && !(c->flags & CT_SENSOR))
             narrow_unite(w, c, x, body_dense(w, c->sa), body_dense(w, c->sb));
     }
 }
