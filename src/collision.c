@@ -162,7 +162,7 @@ int coll_ray_rounded_box(rg_vec2 c, rg_vec2 h, rg_real radius, rg_vec2 origin, r
         if (!(tmin <= tmax)) return 0;
     }
     /* axis < 0: the origin is inside the expanded box, so (not being inside the rounded box)
-     * it lies in a corner square, and p = q */
+     * it lies in a corner square, or on a face within rounding (below), and p = q */
     rg_vec2 p = rg_v2(q.x + d.x * tmin, q.y + d.y * tmin);
     if (radius > 0 && rg_fabs(p.x) > h.x && rg_fabs(p.y) > h.y) {
         /* entered through a corner square: the corner circle decides (missing it means
@@ -176,7 +176,10 @@ int coll_ray_rounded_box(rg_vec2 c, rg_vec2 h, rg_real radius, rg_vec2 origin, r
         if (n->x == 0 && n->y == 0) *n = rg_v2(coll_sign(corner.x), 0);
         return 1;
     }
-    if (axis < 0) return 0;
+    /* the origin inside the expanded box and in no corner square lies in a face band of
+     * the rounded box, on its boundary within rounding (the inside test above, rounded the
+     * other way, found it outside): touching at the start, as an overlap is */
+    if (axis < 0) return -1;
     *t = tmin;
     *n = axis == 0 ? rg_v2(ds[0] > 0 ? RG_R(-1) : RG_R(1), 0)
                    : rg_v2(0, ds[1] > 0 ? RG_R(-1) : RG_R(1));

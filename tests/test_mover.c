@@ -1,5 +1,6 @@
 /* test_mover.c: the character mover: sliding into a corner ends flush at any speed, tile
- * seams do not snag, touch stops, cross reports, one-way shapes, bad input. */
+ * seams do not snag, touch stops, cross reports, one-way shapes, bad input, and moves among
+ * random shapes never end inside one. */
 #include "testutil.h"
 
 #define SLOP 0.005
@@ -194,6 +195,61 @@ static void test_bad_input_is_rejected_and_changes_nothing(void **state)
     rg_world_destroy(w);
 }
 
+/* Random maps: a floor of 40 flush 0.5 m tiles (tops at y = 0) and 60 static circles and
+ * boxes of random sizes scattered above it, a few of them one-way.  A circle or a box (r or
+ * half extents 0.1 to 0.5) placed where it overlaps nothing makes 200 moves to random
+ * targets (3 m away, one in five 30 m), slide or touch: after each it overlaps no two-way
+ * shape by more than the slop (the mover stops flush against what it meets; a one-way
+ * shape may be overlapped, entered from its open side).  Until 2026-12-07 a body flush
+ * against a face within rounding (where the last move had stopped it) could move through
+ * that shape on the next move: the sweep took its start for neither inside nor outside
+ * the shape and reported no hit (f020b76's library: 171 of these moves end inside). */
+static void test_moves_among_random_shapes_never_end_inside_one(void **state)
+{
+    (void)state;
+    for (int scene = 0; scene < 150; scene++) {
+        uint32_t s = 500u + (uint32_t)scene;
+        rg_world *w = gravity_world(-10);
+        rg_body shapes[100];
+        int n = 0;
+        for (int t = 0; t < 40; t++) shapes[n++] = box_body(w, RG_BODY_STATIC, 0, -9.75 + 0.5 * t, -0.25, 0.25, 0.25);
+        while (n < 100) {
+            double x = -10 + 20 * next_uniform(&s), y = 0.5 + 8 * next_uniform(&s);
+            double a = 0.05 + 0.8 * next_uniform(&s), c = 0.05 + 0.8 * next_uniform(&s);
+            rg_body b = next_uniform(&s) < 0.5 ? circle_body(w, RG_BODY_STATIC, 0, x, y, a)
+                                               : box_body(w, RG_BODY_STATIC, 0, x, y, a, c);
+            if (next_uniform(&s) < 0.15) assert_ok(rg_body_set_one_way(w, b, v2(0, 1)));
+            shapes[n++] = b;
+        }
+        double r = 0.1 + 0.4 * next_uniform(&s), hh = 0.1 + 0.4 * next_uniform(&s);
+        rg_body me = next_uniform(&s) < 0.5 ? circle_body(w, RG_BODY_KINEMATIC, 0, 0, 20, r)
+                                            : box_body(w, RG_BODY_KINEMATIC, 0, 0, 20, r, hh);
+        int placed = 0;
+        for (int tries = 0; tries < 200 && !placed; tries++) {
+            double x = -9 + 18 * next_uniform(&s), y = 0.6 + 8 * next_uniform(&s);
+            assert_ok(rg_body_set_position(w, me, v2((rg_real)x, (rg_real)y)));
+            placed = 1;
+            for (int i = 0; i < n && placed; i++) placed = surface_gap(w, me, shapes[i]) > 0.01;
+        }
+        for (int m = 0; placed && m < 200; m++) {
+            rg_vec2 p = pos_of(w, me);
+            double reach = next_uniform(&s) < 0.2 ? 30 : 3;
+            double dx = reach * (2 * next_uniform(&s) - 1), dy = reach * (2 * next_uniform(&s) - 1);
+            int32_t response = next_uniform(&s) < 0.7 ? RG_MOVE_SLIDE : RG_MOVE_TOUCH;
+            assert_ok(rg_body_move(w, me, v2(p.x + (rg_real)dx, p.y + (rg_real)dy), ALL, response, NULL, NULL, 0, NULL));
+            for (int i = 0; i < n; i++) {
+                rg_vec2 one_way;
+                assert_ok(rg_body_get_one_way(w, shapes[i], &one_way));
+                if (one_way.x != 0 || one_way.y != 0) continue;
+                double gap = surface_gap(w, me, shapes[i]);
+                if (!(gap > -SLOP - gap_rounding(w, me, shapes[i])))
+                    fail_msg("scene %d, move %d: %.4f m inside shape %d", scene, m, -gap, i);
+            }
+        }
+        rg_world_destroy(w);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -203,6 +259,7 @@ int main(void)
         cmocka_unit_test(test_cross_reaches_the_target_and_reports_every_shape_crossed),
         cmocka_unit_test(test_one_way_shapes_block_the_mover_only_against_their_normal),
         cmocka_unit_test(test_bad_input_is_rejected_and_changes_nothing),
+        cmocka_unit_test(test_moves_among_random_shapes_never_end_inside_one),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -7,46 +7,6 @@
 
 #define SLOP 0.005 /* the default contact slop (rg_world_get_contact_tuning) */
 
-/* Distance between the surfaces of two bodies' shapes (negative: the depth), in double, from
- * their positions and half extents. */
-static double surface_gap(rg_world *w, rg_body a, rg_body b)
-{
-    int32_t ka, kb;
-    rg_vec2 ha, hb;
-    assert_ok(rg_body_get_shape(w, a, &ka, &ha));
-    assert_ok(rg_body_get_shape(w, b, &kb, &hb));
-    if (ka == RG_SHAPE_AABB && kb == RG_SHAPE_CIRCLE) return surface_gap(w, b, a);
-    rg_vec2 pa = pos_of(w, a), pb = pos_of(w, b);
-    double dx = fabs((double)pb.x - (double)pa.x), dy = fabs((double)pb.y - (double)pa.y);
-    double hax = (double)ha.x, hay = (double)ha.y, hbx = (double)hb.x, hby = (double)hb.y;
-    if (ka == RG_SHAPE_CIRCLE && kb == RG_SHAPE_CIRCLE) return sqrt(dx * dx + dy * dy) - hax - hbx;
-    if (ka == RG_SHAPE_AABB) { /* two boxes: the axis of least overlap, or the gap */
-        double gx = dx - hax - hbx, gy = dy - hay - hby;
-        if (gx <= 0 && gy <= 0) return gx > gy ? gx : gy;
-        gx = gx > 0 ? gx : 0;
-        gy = gy > 0 ? gy : 0;
-        return sqrt(gx * gx + gy * gy);
-    }
-    /* a circle (a) and a box (b): from the centre to the box, less the radius */
-    double qx = dx - hbx, qy = dy - hby;
-    if (qx <= 0 && qy <= 0) return (qx > qy ? qx : qy) - hax;
-    qx = qx > 0 ? qx : 0;
-    qy = qy > 0 ? qy : 0;
-    return sqrt(qx * qx + qy * qy) - hax;
-}
-
-/* The rounding the library's gap may carry against surface_gap's: some ulps of the
- * coordinates and sizes involved. */
-static double gap_rounding(rg_world *w, rg_body a, rg_body b)
-{
-    rg_vec2 pa = pos_of(w, a), pb = pos_of(w, b), ha, hb;
-    assert_ok(rg_body_get_shape(w, a, NULL, &ha));
-    assert_ok(rg_body_get_shape(w, b, NULL, &hb));
-    double scale = fabs((double)pa.x) + fabs((double)pa.y) + fabs((double)pb.x) + fabs((double)pb.y) +
-                   (double)ha.x + (double)ha.y + (double)hb.x + (double)hb.y;
-    return 64 * REAL_EPS * scale;
-}
-
 /* A ball (r 0.25) thrown at a static wall 0.2 m thick (x from 1.0 to 1.2) with a sensor
  * right behind it (x from 1.2 to 2.0): the wall stops it at x = 0.75, its edge 0.2 m short
  * of the sensor, at any speed.  So the sensor never touches it.  (When a sensor's touching
