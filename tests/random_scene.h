@@ -81,6 +81,15 @@ static inline void random_change(rg_world *w, uint32_t *s, rg_body *bodies, int 
     }
 }
 
+/* A pool of two threads, its task system in *tasks: the scenes that run on two workers. */
+static inline rg_thread_pool *random_pool(rg_task_system *tasks)
+{
+    rg_thread_pool *pool;
+    assert_ok(rg_thread_pool_create(2, &pool));
+    assert_ok(rg_thread_pool_task_system(pool, tasks));
+    return pool;
+}
+
 /* Random scene `scene`'s world, gravity 10, on `tasks` (NULL: one thread), sleeping on in two
  * scenes of three with a random sleep time, and its floor (10 m each side of x = 0, top at
  * y = 0) as bodies[0]; *s is the scene's random state. */

@@ -34,10 +34,8 @@ static void test_a_world_restored_after_it_ran_on_replays_the_same_steps(void **
 {
     (void)state;
     static unsigned char saved[1 << 20];
-    rg_thread_pool *pool;
     rg_task_system tasks;
-    assert_ok(rg_thread_pool_create(2, &pool));
-    assert_ok(rg_thread_pool_task_system(pool, &tasks));
+    rg_thread_pool *pool = random_pool(&tasks);
     for (int scene = 0; scene < 200; scene++) {
         uint32_t s = 9000u + (uint32_t)scene;
         rg_body bodies[MAXB];

@@ -116,11 +116,11 @@ static void test_a_one_way_sensor_reports_bodies_from_either_side(void **state)
 
 /* Gravity 10: a box B at rest 1 cm above the floor (its free motion falls 2.8 mm in a step,
  * so alone it would reach the floor in its third step) and a box A falling onto it at 3 m/s
- * from 1 cm above.  A hits B early in the first step and drives it down onto the floor within that
- * step: the solve presses B onto the floor, so B touches it and stands on it after that
- * step (begin event and grounded flag), as the step ends with them in contact (the floor's
- * row holds the gap at or above zero; the slop bounds the overlap the position pass
- * leaves). */
+ * from 1 cm above.  A hits B early in the first step and drives it down onto the floor
+ * within that step: the solve presses B onto the floor, so B touches it and stands on it
+ * after that step (begin event and grounded flag), as the step ends with them in contact
+ * (the floor's row holds the gap at or above zero; the slop bounds the overlap the
+ * position pass leaves). */
 static void test_a_body_pressed_onto_the_floor_by_a_landing_one_touches_it_in_that_step(void **state)
 {
     (void)state;
@@ -208,10 +208,8 @@ static void test_events_contacts_and_the_touching_count_agree_in_random_scenes(v
 {
     (void)state;
     static ledger l;
-    rg_thread_pool *pool;
     rg_task_system tasks;
-    assert_ok(rg_thread_pool_create(2, &pool));
-    assert_ok(rg_thread_pool_task_system(pool, &tasks));
+    rg_thread_pool *pool = random_pool(&tasks);
     for (int scene = 0; scene < 300; scene++) {
         uint32_t s = 7000u + (uint32_t)scene;
         rg_body bodies[MAXB];
