@@ -370,8 +370,9 @@ RG_API rg_status rg_body_set_friction(rg_world *world, rg_body body, rg_real mu)
 RG_API rg_status rg_body_get_friction(const rg_world *world, rg_body body, rg_real *out);
 
 /* A sensor (is_sensor 1; 0 makes it solid again) reports begin/end contacts (with sensor = 1)
- * for the shapes it overlaps where each step leaves them, but never pushes nor is pushed.  Sensors see every shape their filter admits, other
- * sensors included.  Changing it ends the body's current contacts. */
+ * for the shapes it overlaps where each step leaves them, but never pushes nor is pushed.
+ * Sensors see every shape their filter admits, other sensors included.  Changing it ends
+ * the body's current contacts. */
 RG_API rg_status rg_body_set_sensor(rg_world *world, rg_body body, int32_t is_sensor);
 RG_API rg_status rg_body_is_sensor(const rg_world *world, rg_body body, int32_t *out_is_sensor);
 

@@ -104,7 +104,7 @@ static FORCE_INLINE void coll_contact_boxes(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, 
 /* Ray p(t) = origin + t * d, t in [0, 1], against the rounded box {q : dist(q, box(c, h))
  * <= radius} (a circle when h = 0, a box when radius = 0).  Returns 1 and the entry
  * fraction *t and outward unit normal *n on a hit, 0 on a miss, -1 when the origin lies
- * inside (then *t and *n are untouched). */
+ * inside or on the boundary within rounding (then *t and *n are untouched). */
 int coll_ray_rounded_box(rg_vec2 c, rg_vec2 h, rg_real radius, rg_vec2 origin, rg_vec2 d,
                          rg_real *t, rg_vec2 *n);
 
