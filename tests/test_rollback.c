@@ -25,11 +25,11 @@ static uint64_t changes_and_step(rg_world *w, uint32_t *s, rg_body *bodies, int 
 /* 200 scenes of 300 steps, half on two workers: every 40 steps the world saves (by turns a
  * snapshot and a kept state), takes 15 steps with their changes, restores the save into
  * itself and takes them again: each step of the replay hashes (state and events) as the
- * first time.  (Until 2026-12-07 a restore
- * left the pair-search marks of the broadphase slots that were no member of the saved
- * state, while the mark counter went back to the saved one: a body given such a slot in the
- * replay could meet its mark again, its pair was taken for one it had, and the replay lost
- * the contact: 9 of these 1,600 replays diverged.) */
+ * first time.  (Until 2026-12-07 a restore left the pair-search marks of the broadphase
+ * slots that were no member of the saved state, while the mark counter went back to the
+ * saved one: a body given such a slot in the replay could meet its mark again, its pair was
+ * taken for one it had, and the replay lost the contact: 9 of these 1,600 replays
+ * diverged.) */
 static void test_a_world_restored_after_it_ran_on_replays_the_same_steps(void **state)
 {
     (void)state;
