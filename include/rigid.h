@@ -163,8 +163,9 @@ RG_API rg_status rg_world_get_integrator(const rg_world *world, int32_t *out_int
 #define RG_MAX_DT 10.0
 
 /* Exactly one step of length dt seconds (0 < dt <= RG_MAX_DT):
- * forces -> integrate -> speed limits -> range guard -> collide -> range guard -> events ->
- * clear applied forces (the second guard when the world has shapes).  The range guard (see
+ * forces -> integrate -> range guard -> collide -> speed limits -> sleep -> range guard ->
+ * events -> clear applied forces (collide, sleep and the second guard when the world has
+ * shapes).  The range guard (see
  * rg_world_get_stopped) keeps every body's state finite and ends every step in range. */
 RG_API rg_status rg_world_step(rg_world *world, rg_real dt);
 
@@ -282,9 +283,13 @@ RG_API rg_status rg_body_set_drag(rg_world *world, rg_body body, rg_real linear,
  * (static friction). */
 RG_API rg_status rg_body_set_surface_friction(rg_world *world, rg_body body, rg_real mu,
                                               rg_real normal_force);
-/* After each step: |v| < min_speed -> v = 0 exactly; |v| > max_speed -> v scaled to
- * max_speed.  max_speed = 0 means no limit; both in [0, RG_MAX_SPEED], and max_speed >=
- * min_speed unless 0. */
+/* Where each step ends, after its collisions: |v| < min_speed -> v = 0 exactly; |v| >
+ * max_speed -> v scaled to max_speed, so the velocity read after any step obeys both (a crate
+ * sliding to a stop on the ground snaps to rest; a ball's bounce leaves it no faster than
+ * max_speed).  Within a step the integration starts from that velocity and adds
+ * acceleration * dt, so a body held at max_speed by gravity moves at most (max_speed +
+ * |g| dt) * dt a step.  max_speed = 0 means no limit; both in [0, RG_MAX_SPEED], and
+ * max_speed >= min_speed unless 0. */
 RG_API rg_status rg_body_set_speed_limits(rg_world *world, rg_body body, rg_real min_speed,
                                           rg_real max_speed);
 /* An opaque 64-bit value for the caller (an entity id, an index); 0 by default. */

@@ -21,8 +21,8 @@
 #include "views.h"
 
 /* The collide stage, in order: views and fat boxes, pairs, narrowphase, solve (and the
- * pairs it pressed together), the continuous sweep, sensors, fat boxes refit, sleep.  Only
- * with shapes. */
+ * pairs it pressed together), the continuous sweep, sensors, fat boxes refit, speed limits,
+ * sleep.  Only with shapes. */
 static void step_collide(rg_world *w, rg_real dt)
 {
     collide_step x;
@@ -42,6 +42,7 @@ static void step_collide(rg_world *w, rg_real dt)
     x.woke |= continuous_sweep(w, &x);
     sense_run(w, &x);
     pairs_refit(w, &x, dt);
+    speed_limits_apply(w); /* where the step ends: on what the collisions left */
     STEP_PROF(4);
     island_sleep(w, dt, x.unite && !x.woke);
     STEP_PROF(5);
@@ -49,8 +50,9 @@ static void step_collide(rg_world *w, rg_real dt)
 }
 
 /* One step after validation and preparation; cannot fail.  The pipeline of the header's
- * rg_world_step: forces, integrate, limits, range guard, collide (and sleep), events,
- * clear. */
+ * rg_world_step: forces, integrate, range guard, collide (then speed limits and sleep; the
+ * limits right after integration where there are no shapes, nothing else changing a
+ * velocity), events, clear. */
 static void step_run(rg_world *w, rg_real dt)
 {
     body_store *b = &w->b;
@@ -59,7 +61,7 @@ static void step_run(rg_world *w, rg_real dt)
     if (shapes) views_record_start(w);  /* where the step begins, for the collide stage */
     force_begin(w);
     int out = integrator_step(w, dt);
-    speed_limits_apply(w); /* only ever slows a body: it keeps a state in range */
+    if (!shapes) speed_limits_apply(w); /* the step's end (else step_collide's, before sleep) */
     if (out) {
         /* Verlet and RK4 keep where the step began (the integrator's scratch) */
         int kept = w->integrator == RG_INTEGRATOR_VELOCITY_VERLET || w->integrator == RG_INTEGRATOR_RK4;
