@@ -195,6 +195,13 @@ int lcheck_option_error(lua_State *L, const char *what, const char *key, const c
                       luaL_typename(L, -1));
 }
 
+/* v as a message shows it: a NaN without its sign, which 0/0 sets on x86 and the C library
+ * prints ("-nan"), as LuaJIT's binding words it ("nan"). */
+static lua_Number lcheck_shown(lua_Number v)
+{
+    return v != v ? fabs(v) : v;
+}
+
 int lcheck_option_real(lua_State *L, int t, const char *key, const char *what, rg_real *out)
 {
     lua_Number v;
@@ -202,7 +209,7 @@ int lcheck_option_real(lua_State *L, int t, const char *key, const char *what, r
     if (lua_type(L, -1) != LUA_TNUMBER) lcheck_option_error(L, what, key, "a number");
     v = lua_tonumber(L, -1);
     if (!isfinite(v) || !lcheck_fits(v))
-        luaL_error(L, "%s: option '%s' must be a finite number (got %f)", what, key, v);
+        luaL_error(L, "%s: option '%s' must be a finite number (got %f)", what, key, lcheck_shown(v));
     *out = (rg_real)v;
     lua_pop(L, 1);
     return 1;
@@ -250,7 +257,7 @@ int lcheck_option_pair(lua_State *L, int t, const char *key, const char *what, r
         v = lua_tonumber(L, -1);
         if (!isfinite(v) || !lcheck_fits(v))
             luaL_error(L, "%s: option '%s' must hold finite numbers (item %d is %f)", what, key,
-                       i + 1, v);
+                       i + 1, lcheck_shown(v));
         out[i] = (rg_real)v;
         lua_pop(L, 1);
     }

@@ -503,13 +503,14 @@ end
 get_vec2("position", C.rg_body_get_position)
 get_vec2("velocity", C.rg_body_get_velocity)
 -- Where the library's by-value getters compile (lib.R), position and velocity use them: no
--- out-struct to allocate.  NaN means the call failed: the out-pointer getter says why.
+-- out-struct to allocate.  NaN means the call failed: the out-pointer getter says why (not
+-- in a tail call, which would drop this public frame the error's position is found by).
 for name, by_value in pairs{ position = lib.R.rg_body_position, velocity = lib.R.rg_body_velocity } do
   local slow = Body[name]
   Body[name] = function(b)
     local p, h = body_wh(b)
     local x, y = by_value(p, h)
-    if x ~= x then return slow(b) end
+    if x ~= x then x, y = slow(b) end
     return x, y
   end
 end

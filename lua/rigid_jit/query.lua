@@ -109,7 +109,7 @@ return function(core)
   end
 
   -- A body list as an array of body values: list(p, a, b, c, d, mask, out, cap) counts with
-  -- (nil, 0), then copies.
+  -- (nil, 0), then copies.  It may raise, so its callers keep their frame (no tail call).
   local function body_list(w, p, what, list, a, b, c, d, mask)
     local n = list(p, a, b, c, d, mask, nil, 0)
     if n < 0 then status_error(p, n, what) end
@@ -124,17 +124,20 @@ return function(core)
   function World.query_aabb(w, ...)
     local p = open_world(w)
     local x0, y0, x1, y1 = real4(2, ...)
-    return body_list(w, p, "query_aabb", V.rg_world_query_aabb, x0, y0, x1, y1, optmask(6, select(5, ...)))
+    local out = body_list(w, p, "query_aabb", V.rg_world_query_aabb, x0, y0, x1, y1, optmask(6, select(5, ...)))
+    return out
   end
 
   function World.query_point(w, ...)
     local p = open_world(w)
     local x, y = real2(2, ...)
-    return body_list(w, p, "query_point", list_point, x, y, nil, nil, optmask(4, select(3, ...)))
+    local out = body_list(w, p, "query_point", list_point, x, y, nil, nil, optmask(4, select(3, ...)))
+    return out
   end
 
   function World.stopped(w)
-    return body_list(w, open_world(w), "stopped", list_stopped)
+    local out = body_list(w, open_world(w), "stopped", list_stopped)
+    return out
   end
 
   return { pushhit = pushhit, grow = grow }

@@ -288,6 +288,45 @@ test("springs: bad options raise", function()
   eq(w:spring_count(), 0)
 end)
 
+-- ---------------------------------------------------------------- where an error points
+
+-- The message f(...) raises when a function of this file calls it, and the position of that
+-- call: error(_, 2) from pcall, on the same line, names the line as luaL_error does.
+local function raised_from_here(f, ...)
+  local args = { n = select("#", ...), ... }
+  local here, err
+  local _, e = pcall(function() here = select(2, pcall(error, "", 2)); f(unpack(args, 1, args.n)) end)
+  err = tostring(e)
+  return err, here
+end
+
+test("an error points at the script line that called, whichever way the binding failed", function()
+  local w = rigid.world()
+  local b = w:body{ circle = 0.5 }
+  b:destroy()
+  for _, case in ipairs{
+    -- the library refused a destroyed body's handle (position and velocity: their fast
+    -- path failed, then the getter said why; LuaJIT lost the line until 2026-12-07)
+    { "attempt to use a destroyed body", b.position, b },
+    { "attempt to use a destroyed body", b.velocity, b },
+    { "attempt to use a destroyed body", b.set_circle, b, 1 },
+    { "attempt to use a destroyed body", b.contacts, b },
+    { "attempt to use a destroyed body", b.move, b, 1, 1 },
+    -- the library refused a query's bounds (query_aabb and query_point, as above)
+    { "query_aabb: lower (1, 1) is not <= upper (0, 0)", w.query_aabb, w, 1, 1, 0, 0 },
+    { "query_point: point.x 1e+30 is above RG_MAX_QUERY_COORD (1e+12)", w.query_point, w, 1e30, 0 },
+    { "raycast: origin.x 1e+30 is above RG_MAX_QUERY_COORD (1e+12)", w.raycast, w, 1e30, 0, 1, 0 },
+    -- the binding's own checks (of options: a bad argument's number depends on the call's
+    -- form, a method's or a function's)
+    { "world:body: option 'x' must be a finite number (got nan)", w.body, w, { x = 0 / 0 } },
+    { "world:body: option 'aabb' must hold finite numbers (item 2 is nan)", w.body, w, { aabb = { 1, 0 / 0 } } },
+  } do
+    local err, here = raised_from_here(unpack(case, 2))
+    if not here:match("^[^ ]+:%d+: $") then error("not a line's position: " .. here) end
+    eq(err, here .. case[1], "the message")
+  end
+end)
+
 
 print(passed .. " passed, " .. failed .. " failed")
 if failed > 0 then error(failed .. " Lua test(s) failed", 0) end
