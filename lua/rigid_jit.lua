@@ -670,10 +670,16 @@ end
 
 -- ---------------------------------------------------------------- module
 
+-- A method is known by its name (check.argerror names it so where a tail call hid it).
 PUBLIC[new_world] = true
-for _, t in ipairs{ World, Body, Spring, world_mt, body_mt, spring_mt } do
+for _, t in ipairs{ world_mt, body_mt, spring_mt } do
   for _, f in pairs(t) do
     if type(f) == "function" then PUBLIC[f] = true end
+  end
+end
+for _, t in ipairs{ World, Body, Spring } do
+  for name, f in pairs(t) do
+    if type(f) == "function" then PUBLIC[f] = name end
   end
 end
 

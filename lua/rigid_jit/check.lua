@@ -3,8 +3,8 @@
 --
 -- An error carries the position of the script line that called the binding (as luaL_error
 -- does), and "bad argument #n to 'name'" counts as Lua 5.4 does: a method call does not
--- count self.  The binding puts every function scripts call into M.PUBLIC, which is how
--- the checks find that line however deep they are called.
+-- count self.  The binding puts every function scripts call into M.PUBLIC (a method under
+-- its name), which is how the checks find that line however deep they are called.
 local ffi = require "ffi"
 local C = require("rigid_jit.ffi").C
 local REAL = require("rigid_jit.ffi").real_size
@@ -34,10 +34,17 @@ function M.raise(msg)
 end
 local raise = M.raise
 
+-- Where the script called the public function by a tail call (`return b:set_circle(r)`),
+-- LuaJIT keeps no trace of the call's name or form: a method is named by its own name and
+-- counted as called in the method form, the common one (Lua 5.4 reads both off the call).
 function M.argerror(i, msg)
   local level, ar = public_level()
-  local name = ar and ar.name or "?"
-  if ar and ar.namewhat == "method" then
+  local name, method = ar and ar.name, ar and ar.namewhat == "method"
+  if ar and name == nil and type(PUBLIC[ar.func]) == "string" then
+    name, method = PUBLIC[ar.func], true
+  end
+  name = name or "?"
+  if method then
     i = i - 1
     if i == 0 then error(("calling '%s' on bad self (%s)"):format(name, msg), level) end
   end

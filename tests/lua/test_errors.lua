@@ -327,6 +327,24 @@ test("an error points at the script line that called, whichever way the binding 
   end
 end)
 
+test("a method a script calls by a tail call names itself and counts as a method", function()
+  local w = rigid.world()
+  local b = w:body{ circle = 0.5 }
+  local function tail(r) return b:set_circle(r) end
+  local function tail_world(i) return w:set_solver_iterations(i) end
+  for _, case in ipairs{
+    { "bad argument #1 to 'set_circle' (number expected, got string)", tail, "1" },
+    { "bad argument #1 to 'set_solver_iterations' (number expected, got boolean)", tail_world, true },
+  } do
+    local ok, err = pcall(case[2], case[3])
+    err = tostring(err)
+    -- Lua 5.4 names the tail call's line; LuaJIT has no frame left to name
+    if ok or not (err == case[1] or err:match("^[^ ]+:%d+: (.*)$") == case[1]) then
+      error(("expected: %s\n      got: %s"):format(case[1], err))
+    end
+  end
+end)
+
 
 print(passed .. " passed, " .. failed .. " failed")
 if failed > 0 then error(failed .. " Lua test(s) failed", 0) end
