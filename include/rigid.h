@@ -611,7 +611,8 @@ RG_API int32_t rg_world_cast_shape(const rg_world *world, int32_t shape, rg_vec2
    min(count, capacity) are copied.  target is a position (each component within
    +-RG_MAX_COORD).  The body must have a shape (else RG_ERR_INVALID_ARGUMENT); it is woken,
    and rendering interpolates from where it was at the last step (the previous position is
-   kept). */
+   kept) until the next step; a static body, which takes no step, is drawn where it ends at
+   once, as after rg_body_set_position. */
 RG_API rg_status rg_body_move(rg_world *world, rg_body body, rg_vec2 target, uint32_t mask,
                               int32_t response, rg_vec2 *out_position, rg_ray_hit *out_hits,
                               int32_t capacity, int32_t *out_count);

@@ -206,6 +206,11 @@ RG_API rg_status rg_body_move(rg_world *world, rg_body body, rg_vec2 target, uin
     }
     b->x[i] = pos.x;
     b->y[i] = pos.y;
+    if (b->type[i] == RG_BODY_STATIC) {
+        /* no step brings a static body's previous position along: drawn where it ends */
+        b->px[i] = pos.x;
+        b->py[i] = pos.y;
+    }
     int32_t s = b->slot[i];
     island_touch(world, s);
     pairs_teleported(world, s);

@@ -250,6 +250,40 @@ static void test_moves_among_random_shapes_never_end_inside_one(void **state)
     }
 }
 
+/* Under rg_world_advance, a dynamic box the mover carries 1 m is drawn from where it was
+ * at the last step until the next step, then where it is; a static platform the mover
+ * carries, which takes no step, is drawn where it ends at once, and stays so.  (Until
+ * 2026-12-07 the platform's previous position stayed where it was before the move, which no
+ * step refreshes for a static body: it was drawn on the way between the two for good.) */
+static void test_a_static_body_the_mover_carries_is_drawn_where_it_ends(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(0);
+    rg_body crate = box_body(w, RG_BODY_DYNAMIC, 1, 0, 5, 0.5, 0.5);
+    rg_body plat = box_body(w, RG_BODY_STATIC, 0, 10, 0, 2, 0.25);
+    int32_t steps;
+    assert_ok(rg_world_advance(w, (rg_real)(1.5 * DT), &steps)); /* alpha 0.5 */
+    assert_int_equal(steps, 1);
+    assert_ok(rg_body_move(w, crate, v2(1, 5), 0xFFFFFFFFu, RG_MOVE_SLIDE, NULL, NULL, 0, NULL));
+    assert_ok(rg_body_move(w, plat, v2(10, 3), 0xFFFFFFFFu, RG_MOVE_SLIDE, NULL, NULL, 0, NULL));
+    rg_vec2 ip;
+    rg_real alpha;
+    assert_ok(rg_world_get_alpha(w, &alpha));
+    assert_ok(rg_body_get_interpolated_position(w, crate, &ip));
+    assert_near(ip.x, alpha, 4 * REAL_EPS); /* from 0 toward 1 */
+    assert_ok(rg_body_get_interpolated_position(w, plat, &ip));
+    assert_true(ip.x == 10 && ip.y == 3);
+    for (int i = 0; i < 3; i++) {
+        assert_ok(rg_world_advance(w, (rg_real)DT, &steps));
+        assert_int_equal(steps, 1);
+        assert_ok(rg_body_get_interpolated_position(w, crate, &ip));
+        assert_true(ip.x == 1 && ip.y == 5);
+        assert_ok(rg_body_get_interpolated_position(w, plat, &ip));
+        assert_true(ip.x == 10 && ip.y == 3);
+    }
+    rg_world_destroy(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -260,6 +294,7 @@ int main(void)
         cmocka_unit_test(test_one_way_shapes_block_the_mover_only_against_their_normal),
         cmocka_unit_test(test_bad_input_is_rejected_and_changes_nothing),
         cmocka_unit_test(test_moves_among_random_shapes_never_end_inside_one),
+        cmocka_unit_test(test_a_static_body_the_mover_carries_is_drawn_where_it_ends),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
