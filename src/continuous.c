@@ -170,8 +170,15 @@ static void continuous_meet(sweep_body *sb, int32_t j)
     rg_vec2 o0 = rg_v2_sub(o1, dob);
     rg_real t;
     coll_manifold hit, end;
-    if (!coll_sweep(b->shape[j], o0, ho, b->shape[i], sb->p0, sb->hf, rg_v2_sub(sb->D, dob), &t, &hit)) return;
-    if (!(t > 0 && t < sb->tmin)) return;
+    rg_vec2 rel = rg_v2_sub(sb->D, dob);
+    if (!coll_sweep(b->shape[j], o0, ho, b->shape[i], sb->p0, sb->hf, rel, &t, &hit)) return;
+    if (!(t < sb->tmin)) return;
+    /* touching or overlapping j at the start (t = 0, hit.normal the normal of least
+     * penetration): met only where the motion goes into j by more than the slop (a body
+     * flush against a thin wall that the solve pushes through it), not where it leaves j or
+     * slides along it (a slider's motion into the surface it rests on is rounding) */
+    if (!(t > 0) && !(rg_v2_dot(rel, hit.normal) < -w->coll.slop)) return;
+
     /* a one-way shape blocks only against its normal (hit.normal: from j toward i); a two-way
      * one always */
     if (!continuous_one_way_blocks(b, j, hit.normal.x, hit.normal.y) ||

@@ -147,6 +147,60 @@ static void test_bodies_an_impact_drives_toward_a_thin_wall_stay_on_their_side(v
     assert_int_equal(crossed, 0);
 }
 
+/* Up to 30 bodies (circles and boxes of 2-32 cm, 0.1-3 kg, restitution 0-1) thrown at up to
+ * 200 m/s inside a box of thin static walls (1-5 cm thick), under gravity of 0-10 m/s^2,
+ * stepped at random steps from 0.1 ms to 2 s (log-uniform): no body that begins a step wholly
+ * inside ends it outside the walls.  (Until 2026-12-07 the post-solve sweep skipped a wall the
+ * body touched at the start of the step: a body flush against a wall that the solve pushed
+ * through it in a long step went out: 2 of these 1,000 scenes lost one.) */
+static void test_bodies_boxed_in_by_thin_walls_stay_inside_at_any_step_size(void **state)
+{
+    (void)state;
+    int crossed = 0;
+    long checks = 0;
+    for (int scene = 0; scene < 1000; scene++) {
+        uint32_t s = 700u + (uint32_t)scene;
+        rg_world *w = gravity_world(-10 * next_uniform(&s));
+        assert_ok(rg_world_set_sleeping(w, scene % 2));
+        double th = 0.005 + 0.02 * next_uniform(&s);
+        box_body(w, RG_BODY_STATIC, 0, -3, 0, th, 3 + th);
+        box_body(w, RG_BODY_STATIC, 0, 3, 0, th, 3 + th);
+        box_body(w, RG_BODY_STATIC, 0, 0, -3, 3 + th, th);
+        box_body(w, RG_BODY_STATIC, 0, 0, 3, 3 + th, th);
+        int n = 1 + (int)(next_uniform(&s) * 30);
+        rg_body b[30];
+        double r[30];
+        for (int k = 0; k < n; k++) {
+            r[k] = 0.02 + 0.3 * next_uniform(&s);
+            double x = -2.6 + 5.2 * next_uniform(&s), y = -2.6 + 5.2 * next_uniform(&s);
+            double m = 0.1 + 3 * next_uniform(&s);
+            b[k] = next_uniform(&s) < 0.5 ? circle_body(w, RG_BODY_DYNAMIC, m, x, y, r[k])
+                                          : box_body(w, RG_BODY_DYNAMIC, m, x, y, r[k], r[k]);
+            double u = next_uniform(&s), sp = 200 * u * next_uniform(&s), a = 6.283185307 * next_uniform(&s);
+            assert_ok(rg_body_set_velocity(w, b[k], v2((rg_real)(sp * cos(a)), (rg_real)(sp * sin(a)))));
+            assert_ok(rg_body_set_restitution(w, b[k], (rg_real)next_uniform(&s)));
+        }
+        for (int i = 0; i < 200; i++) {
+            double dt = exp(log(1e-4) + (log(2.0) - log(1e-4)) * next_uniform(&s));
+            rg_vec2 p0[30];
+            for (int k = 0; k < n; k++) p0[k] = pos_of(w, b[k]);
+            assert_ok(rg_world_step(w, (rg_real)dt));
+            for (int k = 0; k < n; k++) {
+                double in = 3 - th - r[k]; /* wholly inside: the body's reach within the faces */
+                if (!(fabs(p0[k].x) <= in && fabs(p0[k].y) <= in)) continue;
+                checks++;
+                if (fabs(PX(w, b[k])) > 3 || fabs(PY(w, b[k])) > 3) {
+                    print_message("scene %d, step %d (dt %.3g s): body %d went out\n", scene, i, dt, k);
+                    crossed++;
+                }
+            }
+        }
+        rg_world_destroy(w);
+    }
+    print_message("%ld body-steps inside, %d ended outside\n", checks, crossed);
+    assert_int_equal(crossed, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -156,6 +210,7 @@ int main(void)
         cmocka_unit_test(test_a_fast_fall_onto_a_thin_floor_lands_on_it),
         cmocka_unit_test(test_a_fast_ball_rammed_into_a_thin_wall_stays_on_its_side),
         cmocka_unit_test(test_bodies_an_impact_drives_toward_a_thin_wall_stay_on_their_side),
+        cmocka_unit_test(test_bodies_boxed_in_by_thin_walls_stay_inside_at_any_step_size),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
