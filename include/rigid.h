@@ -227,7 +227,8 @@ RG_API int32_t rg_world_spring_count(const rg_world *world);
  * surface friction, no speed limits. */
 RG_API rg_status rg_body_create(rg_world *world, int32_t type, rg_real mass, rg_vec2 position,
                                 rg_body *out_body);
-/* Destroys the body and the springs attached to it (their handles go stale). */
+/* Destroys the body and the springs attached to it (their handles go stale; the bodies at
+ * their other ends wake). */
 RG_API rg_status rg_body_destroy(rg_world *world, rg_body body);
 /* 1 when body is a live body of this world, else 0 (also for NULL world). */
 RG_API int32_t rg_body_is_valid(const rg_world *world, rg_body body);
@@ -314,7 +315,9 @@ RG_API rg_status rg_body_get_user_data(const rg_world *world, rg_body body, uint
  * within +-RG_MAX_COORD; ignored otherwise).  stiffness in N/m, in [0, RG_MAX_STIFFNESS];
  * damping in N*s/m, in [0, RG_MAX_DAMPING]; rest_length in m, in [0, RG_MAX_COORD].
  * A zero rest length gives F = -stiffness * d exactly.  Evaluated at every stage of a
- * multi-stage integrator.  a and b must be distinct live bodies of this world. */
+ * multi-stage integrator.  a and b must be distinct live bodies of this world.  Making or
+ * destroying a spring wakes its bodies (a sleeping body is not integrated, so it would not
+ * feel the change: a crate asleep on a rope falls when the rope is cut). */
 RG_API rg_status rg_spring_create(rg_world *world, rg_body a, rg_body b, rg_vec2 anchor,
                                   rg_real rest_length, rg_real stiffness, rg_real damping,
                                   uint64_t *out_spring);

@@ -3,6 +3,7 @@
 
 #include "arg.h"
 #include "body.h"
+#include "island.h"
 #include "spring.h"
 #include "state.h"
 #include "vec2.h"
@@ -17,6 +18,18 @@ static void spring_remove_dense(rg_world *w, int32_t s)
         pool_set_dense(&ss->pool, ss->items[s].self_slot, s);
     }
     ss->count--;
+}
+
+/* Wakes spring sp's bodies but slot `except` (-1: none; a static body never sleeps): a
+ * spring made or removed changes the forces on them, which a sleeping body, not integrated,
+ * would never feel (a body asleep on a rope that is cut would hang in the air). */
+static void spring_wake_ends(rg_world *w, const spring *sp, int32_t except)
+{
+    const int32_t ends[2] = { sp->slot_a, sp->slot_b };
+    for (int k = 0; k < 2; k++) {
+        if (ends[k] < 0 || ends[k] == except) continue;
+        if (w->b.type[body_dense(w, ends[k])] != RG_BODY_STATIC) island_touch(w, ends[k]);
+    }
 }
 
 rg_status spring_reserve(rg_world *w, int32_t n)
@@ -70,6 +83,7 @@ RG_API rg_status rg_spring_create(rg_world *world, rg_body a, rg_body b, rg_vec2
     sp->rest = rest_length;
     sp->k = stiffness;
     sp->c = damping;
+    spring_wake_ends(world, sp, -1);
     *out_spring = h;
     return RG_OK;
 }
@@ -79,6 +93,7 @@ RG_API rg_status rg_spring_destroy(rg_world *world, uint64_t spring_handle)
     WORLD_WRITABLE(world);
     int32_t s = arg_handle(world, __func__, "spring", &world->springs.pool, spring_handle);
     if (s < 0) return RG_ERR_STALE_HANDLE;
+    spring_wake_ends(world, &world->springs.items[s], -1);
     spring_remove_dense(world, s);
     return RG_OK;
 }
@@ -101,7 +116,9 @@ void spring_detach_body(rg_world *w, int32_t slot)
 {
     spring_store *ss = &w->springs;
     for (int32_t s = ss->count - 1; s >= 0; s--) {
-        if (ss->items[s].slot_a == slot || ss->items[s].slot_b == slot) spring_remove_dense(w, s);
+        if (ss->items[s].slot_a != slot && ss->items[s].slot_b != slot) continue;
+        spring_wake_ends(w, &ss->items[s], slot);
+        spring_remove_dense(w, s);
     }
 }
 

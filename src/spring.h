@@ -12,7 +12,7 @@ struct rg_world;
 
 /* Room for n springs; all-or-nothing. */
 rg_status spring_reserve(struct rg_world *w, int32_t n);
-/* Destroys the springs attached to body slot `slot`. */
+/* Destroys the springs attached to body slot `slot`, waking the bodies at their other ends. */
 void spring_detach_body(struct rg_world *w, int32_t slot);
 void spring_release(struct rg_world *w);
 
