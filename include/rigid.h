@@ -148,7 +148,9 @@ RG_API void rg_world_destroy(rg_world *world);
 #define RG_MAX_FORCE 1.0e12
 
 /* Gravity as an acceleration in m/s^2 (each component within +-RG_MAX_ACCELERATION),
- * applied to dynamic bodies times their gravity scale. */
+ * applied to dynamic bodies times their gravity scale.  A change (of gravity or wind) wakes
+ * every sleeping body: what rested under the old one may not under the new (gravity flipped
+ * up, wind across a pile); setting the same value again wakes nothing. */
 RG_API rg_status rg_world_set_gravity(rg_world *world, rg_vec2 gravity);
 RG_API rg_status rg_world_get_gravity(const rg_world *world, rg_vec2 *out_gravity);
 /* Wind as a force in N (each component within +-RG_MAX_FORCE): the same force on every
@@ -269,7 +271,7 @@ RG_API rg_status rg_body_apply_impulse(rg_world *world, rg_body body, rg_vec2 im
 /* Largest |gravity scale|. */
 #define RG_MAX_GRAVITY_SCALE 1.0e3
 /* Multiplies world gravity for this body (within +-RG_MAX_GRAVITY_SCALE; 0 floats, -1 falls
- * up). */
+ * up).  A change wakes the body. */
 RG_API rg_status rg_body_set_gravity_scale(rg_world *world, rg_body body, rg_real scale);
 /* Largest drag coefficient: linear in kg/s, quadratic in kg/m. */
 #define RG_MAX_DRAG 1.0e9

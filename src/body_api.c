@@ -211,8 +211,10 @@ RG_API rg_status rg_body_set_gravity_scale(rg_world *world, rg_body body, rg_rea
     BODY_SET(world, body, i);
     ARG_ABS(world, scale, RG_MAX_GRAVITY_SCALE);
     if (world->b.type[i] != RG_BODY_DYNAMIC) return RG_OK;
+    int changed = scale != world->b.gscale[i];
     world->b.gscale[i] = scale;
     body_update_flags(world, i);
+    if (changed) island_touch(world, world->b.slot[i]); /* asleep, it would not feel it */
     return RG_OK;
 }
 

@@ -6,6 +6,7 @@
 #include "arg.h"
 #include "body.h"
 #include "collide.h"
+#include "island.h"
 #include "spring.h"
 #include "state.h"
 #include "vec2.h"
@@ -124,6 +125,9 @@ RG_API rg_status rg_world_set_gravity(rg_world *world, rg_vec2 gravity)
 {
     WORLD_WRITABLE(world);
     ARG_VEC(world, gravity, RG_MAX_ACCELERATION);
+    /* a sleeping body is not integrated: a change it must feel wakes it (a pile at rest
+     * under the old gravity may not be under the new) */
+    if (gravity.x != world->gravity.x || gravity.y != world->gravity.y) island_wake_all(world);
     world->gravity = gravity;
     return RG_OK;
 }
@@ -140,6 +144,7 @@ RG_API rg_status rg_world_set_wind(rg_world *world, rg_vec2 force)
 {
     WORLD_WRITABLE(world);
     ARG_VEC(world, force, RG_MAX_FORCE);
+    if (force.x != world->wind.x || force.y != world->wind.y) island_wake_all(world); /* as gravity */
     world->wind = force;
     return RG_OK;
 }
