@@ -239,7 +239,8 @@ RG_API rg_status rg_body_get_type(const rg_world *world, rg_body body, int32_t *
 /* Mass in kg; 0 for static and kinematic bodies. */
 RG_API rg_status rg_body_get_mass(const rg_world *world, rg_body body, rg_real *out_mass);
 /* New mass in kg ([RG_MIN_MASS, RG_MAX_MASS]) of a dynamic body; RG_ERR_INVALID_ARGUMENT
- * for the others. */
+ * for the others.  A change wakes the body (it may rest no longer: on a spring, or held by
+ * friction against wind). */
 RG_API rg_status rg_body_set_mass(rg_world *world, rg_body body, rg_real mass);
 
 /* Position in m (each component within +-RG_MAX_COORD), velocity in m/s (each within
@@ -283,7 +284,7 @@ RG_API rg_status rg_body_set_drag(rg_world *world, rg_body body, rg_real linear,
 /* Surface friction F = -mu * normal_force * v/|v| (mu in [0, RG_MAX_FRICTION], normal_force
  * in [0, RG_MAX_FORCE] N): a body sliding on a surface, as seen from above.  It brings the
  * body exactly to rest, never reverses it, and holds it at rest against any smaller force
- * (static friction). */
+ * (static friction).  A change wakes the body. */
 RG_API rg_status rg_body_set_surface_friction(rg_world *world, rg_body body, rg_real mu,
                                               rg_real normal_force);
 /* Where each step ends, after its collisions: |v| < min_speed -> v = 0 exactly; |v| >
@@ -373,7 +374,8 @@ RG_API rg_status rg_body_get_shape(const rg_world *world, rg_body body, int32_t 
 /* Materials.  A touching pair uses the larger of the two restitutions and the geometric mean
  * of the two frictions.  Defaults: restitution 0, friction 0.6.  restitution in [0, 1]
  * (0: no bounce, 1: elastic); friction in [0, RG_MAX_FRICTION] (the Coulomb coefficient:
- * the tangential impulse is at most friction * normal impulse). */
+ * the tangential impulse is at most friction * normal impulse).  A change of friction wakes
+ * the body and the bodies touching it (what friction held at rest may slide). */
 RG_API rg_status rg_body_set_restitution(rg_world *world, rg_body body, rg_real restitution);
 RG_API rg_status rg_body_get_restitution(const rg_world *world, rg_body body, rg_real *out);
 RG_API rg_status rg_body_set_friction(rg_world *world, rg_body body, rg_real mu);

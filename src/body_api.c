@@ -64,8 +64,11 @@ RG_API rg_status rg_body_set_mass(rg_world *world, rg_body body, rg_real mass)
     ARG_IN(world, mass, RG_MIN_MASS, RG_MAX_MASS);
     if (world->b.type[i] != RG_BODY_DYNAMIC)
         return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "body is not dynamic (only a dynamic body has a mass)");
+    int changed = mass != world->b.mass[i];
     world->b.mass[i] = mass;
     world->b.inv_mass[i] = 1 / mass;
+    /* asleep, it would not feel it (held by a spring, or by friction against wind) */
+    if (changed) island_touch(world, world->b.slot[i]);
     return RG_OK;
 }
 
@@ -235,8 +238,11 @@ RG_API rg_status rg_body_set_surface_friction(rg_world *world, rg_body body, rg_
     BODY_SET(world, body, i);
     ARG_IN(world, mu, 0, RG_MAX_FRICTION);
     ARG_IN(world, normal_force, 0, RG_MAX_FORCE);
-    world->b.fric[i] = mu * normal_force; /* <= 1e15 N */
+    rg_real fric = mu * normal_force; /* <= 1e15 N */
+    int changed = fric != world->b.fric[i];
+    world->b.fric[i] = fric;
     body_update_flags(world, i);
+    if (changed) island_touch(world, world->b.slot[i]); /* what it held at rest may move */
     return RG_OK;
 }
 

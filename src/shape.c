@@ -120,8 +120,16 @@ RG_API rg_status rg_body_set_friction(rg_world *world, rg_body body, rg_real mu)
 {
     BODY_SET(world, body, i);
     ARG_IN(world, mu, 0, RG_MAX_FRICTION);
+    int changed = mu != world->b.mu[i];
     world->b.mu[i] = mu;
-    contact_refresh_materials(world, world->b.slot[i]);
+    int32_t s = world->b.slot[i];
+    contact_refresh_materials(world, s);
+    if (changed) {
+        /* what its friction held at rest (against wind, sideways gravity) may slide: the
+         * body and what touches it wake (a static body never sleeps) */
+        if (world->b.type[i] != RG_BODY_STATIC) island_touch(world, s);
+        island_wake_touching(world, s);
+    }
     return RG_OK;
 }
 

@@ -367,9 +367,35 @@ static void test_a_change_of_gravity_wind_or_gravity_scale_wakes_sleeping_bodies
     }
 }
 
+/* A box asleep on the floor held by friction (0.6 * 10 N) against 5 N of wind slides once
+ * what held it changes: its friction or the floor's made 0 (the pair's is their geometric
+ * mean), or its mass halved (friction 3 N).  Each wakes it.  (Until 2026-12-07 it slept on.) */
+static void test_a_change_of_friction_or_mass_wakes_a_body_friction_held_at_rest(void **state)
+{
+    (void)state;
+    for (int change = 0; change < 3; change++) {
+        rg_world *w = gravity_world(-10);
+        assert_ok(rg_world_set_wind(w, v2(5, 0)));
+        rg_body fl = floor_of(w);
+        rg_body c = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.25, 0.25, 0.25);
+        step_n(w, 120, DT);
+        assert_int_equal(flag(rg_body_is_awake, w, c), 0);
+        double x0 = PX(w, c);
+        if (change == 0) assert_ok(rg_body_set_friction(w, c, 0));
+        if (change == 1) assert_ok(rg_body_set_friction(w, fl, 0));
+        if (change == 2) assert_ok(rg_body_set_mass(w, c, 0.5));
+        assert_int_equal(flag(rg_body_is_awake, w, c), 1);
+        step_n(w, 30, DT);
+        /* 5 N on 1 kg, or 5 - 3 N on 0.5 kg: 5 or 4 m/s^2 for 0.5 s, some 0.6 or 0.5 m */
+        assert_true(PX(w, c) - x0 > 0.4);
+        rg_world_destroy(w);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_a_change_of_friction_or_mass_wakes_a_body_friction_held_at_rest),
         cmocka_unit_test(test_a_change_of_gravity_wind_or_gravity_scale_wakes_sleeping_bodies),
         cmocka_unit_test(test_a_body_at_rest_sleeps_and_wakes_when_pushed),
         cmocka_unit_test(test_sleeping_bodies_do_not_move_and_cost_no_steps),
