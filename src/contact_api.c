@@ -12,8 +12,11 @@
 RG_API rg_status rg_world_set_pre_solve(rg_world *world, rg_pre_solve_fn *fn, void *user)
 {
     WORLD_WRITABLE(world);
+    if (fn == NULL) user = NULL;
+    /* a sleeping pair is not asked: a new hook may answer it otherwise */
+    if (fn != world->pre_solve || user != world->pre_solve_user) island_wake_all(world);
     world->pre_solve = fn;
-    world->pre_solve_user = fn != NULL ? user : NULL;
+    world->pre_solve_user = user;
     return RG_OK;
 }
 
