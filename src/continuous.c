@@ -178,7 +178,6 @@ static void continuous_meet(sweep_body *sb, int32_t j)
      * flush against a thin wall that the solve pushes through it), not where it leaves j or
      * slides along it (a slider's motion into the surface it rests on is rounding) */
     if (!(t > 0) && !(rg_v2_dot(rel, hit.normal) < -w->coll.slop)) return;
-
     /* a one-way shape blocks only against its normal (hit.normal: from j toward i); a two-way
      * one always */
     if (!continuous_one_way_blocks(b, j, hit.normal.x, hit.normal.y) ||
