@@ -12,11 +12,10 @@
 RG_API rg_status rg_world_set_pre_solve(rg_world *world, rg_pre_solve_fn *fn, void *user)
 {
     WORLD_WRITABLE(world);
-    if (fn == NULL) user = NULL;
-    /* a sleeping pair is not asked: a new hook may answer it otherwise */
-    if (fn != world->pre_solve || user != world->pre_solve_user) island_wake_all(world);
+    /* no state changes (nothing wakes): a world restored from a snapshot, then given its
+     * hook, steps as the saving world did */
     world->pre_solve = fn;
-    world->pre_solve_user = user;
+    world->pre_solve_user = fn != NULL ? user : NULL;
     return RG_OK;
 }
 
