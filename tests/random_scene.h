@@ -1,7 +1,11 @@
 /* random_scene.h: random changes between steps, for the tests that run random scenes
- * (test_touching.c, test_rollback.c): bodies of every type and shape created and destroyed,
- * sensors toggled, filters, shapes, teleports, impulses, velocities, pass-through, waking and
- * sleeping switched, drawn from a 32-bit state in one order on every compiler. */
+ * (test_touching.c, test_rollback.c, test_random_workers.c, test_random_more.c): bodies of
+ * every type and shape created and destroyed, sensors toggled, filters, shapes, teleports,
+ * impulses, velocities, pass-through, waking and sleeping switched (random_change); springs
+ * made and destroyed, one-way normals, masses, drag, frictions, speed limits, gravity scales,
+ * materials, the integrator, the solver's iterations, continuous collision, the contact
+ * tuning, gravity and wind, forces, moves and the pre-solve hook (random_more); drawn from a
+ * 32-bit state in one order on every compiler. */
 #ifndef RG_RANDOM_SCENE_H
 #define RG_RANDOM_SCENE_H
 
@@ -102,6 +106,130 @@ static inline rg_world *random_world(int scene, uint32_t *s, const rg_task_syste
     *nb = 0;
     bodies[(*nb)++] = box_body(w, RG_BODY_STATIC, 0, 0, -0.5, 10, 0.5);
     return w;
+}
+
+/* ---- random_more's record of what it did that the tests check against */
+
+#define MAXS 24 /* springs a random scene records */
+#define MAXLIM 64 /* speed limits it records */
+typedef struct random_extra {
+    uint64_t spring[MAXS];
+    rg_body end_a[MAXS], end_b[MAXS]; /* end_b 0: tied to a point */
+    int ns;
+    int hook;                         /* the pre-solve hook is installed */
+    rg_body lim_body[MAXLIM];         /* speed limits set, in order (the last one holds) */
+    double lim_min[MAXLIM], lim_max[MAXLIM];
+    int nlim;
+} random_extra;
+
+/* The pre-solve hook: skips one pair in five, chosen by the bodies' handles without the
+ * world's tag (their low 40 bits), so that a world and its restored clone skip the same. */
+static inline int32_t random_hook(rg_body a, rg_body b, rg_vec2 normal, rg_real separation, void *user)
+{
+    (void)normal;
+    (void)separation;
+    (void)user;
+    return ((a & 0xFFFFFFFFFFull) * 3 + (b & 0xFFFFFFFFFFull)) % 5 != 0;
+}
+
+/* Installs the hook or not, as e->hook says. */
+static inline void random_hook_set(rg_world *w, const random_extra *e)
+{
+    assert_ok(rg_world_set_pre_solve(w, e->hook ? random_hook : NULL, NULL));
+}
+
+static inline void random_tolerate(rg_status st)
+{
+    assert_true(st == RG_OK || st == RG_ERR_INVALID_ARGUMENT);
+}
+
+/* One more change between steps, drawn at random (e records springs, limits and the hook). */
+static inline void random_more(rg_world *w, uint32_t *s, rg_body *bodies, int nb, random_extra *e)
+{
+    int op = (int)(next_uniform(s) * 17);
+    rg_body x = bodies[(int)(next_uniform(s) * nb)], y = bodies[(int)(next_uniform(s) * nb)];
+    if (op == 0 && e->ns < MAXS) {
+        uint64_t sp;
+        rg_body other = next_uniform(s) < 0.3 ? 0 : y;
+        rg_status st = rg_spring_create(w, x, other, random_v(s, -3, 3), (rg_real)(2 * next_uniform(s)),
+                                        (rg_real)(300 * next_uniform(s)), (rg_real)(5 * next_uniform(s)), &sp);
+        random_tolerate(st); /* x == y */
+        if (st == RG_OK) {
+            e->spring[e->ns] = sp;
+            e->end_a[e->ns] = x;
+            e->end_b[e->ns++] = other;
+        }
+    } else if (op == 1 && e->ns > 0) {
+        int k = (int)(next_uniform(s) * e->ns);
+        rg_status st = rg_spring_destroy(w, e->spring[k]);
+        assert_true(st == RG_OK || st == RG_ERR_STALE_HANDLE); /* gone with a body */
+        e->ns--;
+        e->spring[k] = e->spring[e->ns];
+        e->end_a[k] = e->end_a[e->ns];
+        e->end_b[k] = e->end_b[e->ns];
+    } else if (op == 2) {
+        double t = next_uniform(s);
+        assert_ok(rg_body_set_one_way(w, x, t < 0.4 ? v2(0, 1) : t < 0.7 ? v2(0, 0) : t < 0.85 ? v2(1, 0) : v2(0, -1)));
+    } else if (op == 3) {
+        random_tolerate(rg_body_set_mass(w, x, (rg_real)(0.1 + 5 * next_uniform(s)))); /* not dynamic */
+    } else if (op == 4) {
+        assert_ok(rg_body_set_drag(w, x, (rg_real)(3 * next_uniform(s)), (rg_real)next_uniform(s)));
+    } else if (op == 5) {
+        assert_ok(rg_body_set_surface_friction(w, x, (rg_real)next_uniform(s), (rg_real)(20 * next_uniform(s))));
+    } else if (op == 6) {
+        rg_real lo = (rg_real)(0.5 * next_uniform(s));
+        rg_real hi = next_uniform(s) < 0.3 ? 0 : (rg_real)(0.5 + 8 * next_uniform(s));
+        assert_ok(rg_body_set_speed_limits(w, x, lo, hi));
+        if (e->nlim < MAXLIM) {
+            e->lim_body[e->nlim] = x;
+            e->lim_min[e->nlim] = (double)lo;
+            e->lim_max[e->nlim++] = (double)hi;
+        }
+    } else if (op == 7) {
+        assert_ok(rg_body_set_gravity_scale(w, x, (rg_real)(-1 + 3 * next_uniform(s))));
+    } else if (op == 8) {
+        assert_ok(rg_body_set_friction(w, x, (rg_real)(2 * next_uniform(s))));
+        assert_ok(rg_body_set_restitution(w, x, (rg_real)next_uniform(s)));
+    } else if (op == 9) {
+        assert_ok(rg_world_set_integrator(w, (int32_t)(next_uniform(s) * 4)));
+    } else if (op == 10) {
+        assert_ok(rg_world_set_solver_iterations(w, 1 + (int32_t)(next_uniform(s) * 10), (int32_t)(next_uniform(s) * 5)));
+    } else if (op == 11) {
+        int32_t on;
+        assert_ok(rg_world_get_continuous(w, &on));
+        assert_ok(rg_world_set_continuous(w, !on));
+    } else if (op == 12) {
+        assert_ok(rg_world_set_contact_tuning(w, (rg_real)(0.02 * next_uniform(s)), (rg_real)(0.05 + 0.95 * next_uniform(s)),
+                                              (rg_real)(0.05 + next_uniform(s)), (rg_real)(2 * next_uniform(s))));
+    } else if (op == 13) {
+        assert_ok(rg_world_set_wind(w, random_v(s, -5, 5)));
+        if (next_uniform(s) < 0.3) assert_ok(rg_world_set_gravity(w, random_v(s, -15, 5)));
+    } else if (op == 14) {
+        assert_ok(rg_body_apply_force(w, x, random_v(s, -50, 50)));
+    } else if (op == 15) {
+        rg_vec2 p, d = random_v(s, -2, 2);
+        assert_ok(rg_body_get_position(w, x, &p));
+        random_tolerate(rg_body_move(w, x, v2(p.x + d.x, p.y + d.y), 0xFFFFFFFFu, (int32_t)(next_uniform(s) * 3),
+                                     NULL, NULL, 0, NULL)); /* no shape */
+    } else {
+        e->hook = next_uniform(s) < 0.5;
+        random_hook_set(w, e);
+    }
+}
+
+/* Up to three changes of either kind, then a step (a quarter of them advances of a random
+ * frame time, which may take no step or several); returns the steps taken. */
+static inline int32_t random_changes_and_step(rg_world *w, uint32_t *s, rg_body *bodies, int *nb, random_extra *e)
+{
+    int changes = (int)(next_uniform(s) * 4);
+    for (int k = 0; k < changes; k++) {
+        if (next_uniform(s) < 0.5) random_change(w, s, bodies, nb);
+        else random_more(w, s, bodies, *nb, e);
+    }
+    int32_t steps = 1;
+    if (next_uniform(s) < 0.25) assert_ok(rg_world_advance(w, (rg_real)(0.05 * next_uniform(s)), &steps));
+    else assert_ok(rg_world_step(w, (rg_real)DT));
+    return steps;
 }
 
 #endif
