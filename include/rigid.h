@@ -455,7 +455,9 @@ RG_API rg_status rg_world_get_contact_tuning(const rg_world *world, rg_real *out
  * leaves them (a discrete check: fast bodies tunnel), for comparison. */
 RG_API rg_status rg_world_set_continuous(rg_world *world, int32_t enabled);
 RG_API rg_status rg_world_get_continuous(const rg_world *world, int32_t *out_enabled);
-/* Pairs touching after the last step (sensor overlaps included); 0 for NULL. */
+/* Pairs touching after the last step (sensor overlaps included), less those ended since (a
+ * body destroyed, its shape, sensor flag or filter changed: their end events come with the
+ * next step's); 0 for NULL. */
 RG_API int32_t rg_world_touching_count(const rg_world *world);
 
 /* ---- contact events of the last step or advance, read after it */
