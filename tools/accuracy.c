@@ -593,6 +593,15 @@ static void print_soups(int quick)
         }
         printf("\n");
     }
+    static const double bands[][2] = {{5, 25}, {25, 50}, {50, 100}, {100, 200}};
+    int paddle_scenes = quick ? 100 : 400;
+    printf("\na kinematic paddle 2-12 cm thick driven through 1-19 loose bodies (%d scenes a band of\n"
+           "speeds): the bodies that end a step behind it (exact: none)\n", paddle_scenes);
+    for (size_t k = 0; k < sizeof bands / sizeof bands[0]; k++) {
+        int through, bodies;
+        if (acc_paddle_run(paddle_scenes, bands[k][0], bands[k][1], &through, &bodies) != RG_OK) through = -1;
+        printf("  %3.0f-%3.0f m/s  %d of %d\n", bands[k][0], bands[k][1], through, bodies);
+    }
 }
 #endif
 

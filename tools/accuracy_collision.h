@@ -84,4 +84,12 @@ rg_status acc_soup_run(const acc_soup *s, acc_soup_result *r);
  * velocity_iterations per step: the fastest it moves back over 2 s.  Exact: 0 (it stops). */
 rg_status acc_push_rebound(double ratio, double speed, int velocity_iterations, double *out_back);
 
+/* `scenes` scenes of a kinematic paddle (2-12 cm thick, 3 m tall, standing on the floor)
+ * driven at a speed uniform in [lo, hi) m/s through 1-19 bodies (circles and boxes of 3-33
+ * cm, 0.1-5.1 kg, at rest on a 3 m band above the floor ahead of it), gravity 0 or 10, 2 s at
+ * 60 Hz, continuous collision on: *out_through of *out_bodies end a step behind the paddle
+ * (ahead of its centre at the step's start, behind it at the end, below its top).  Exact: 0
+ * (the paddle pushes all of them ahead, or over its top). */
+rg_status acc_paddle_run(int scenes, double lo, double hi, int *out_through, int *out_bodies);
+
 #endif

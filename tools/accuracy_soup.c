@@ -1,6 +1,7 @@
 /* accuracy_soup.c: random soups of boxes and circles without gravity, for the accuracy lab:
- * how far contacts keep momentum and kinetic energy (accuracy --soup); and a heavy box run
- * into a light one against a wall, which should stop dead. */
+ * how far contacts keep momentum and kinetic energy (accuracy --soup); a heavy box run into a
+ * light one against a wall, which should stop dead; and a fast kinematic paddle through loose
+ * bodies, which should push every one ahead. */
 #include <math.h>
 
 #include "accuracy_collision.h"
@@ -117,4 +118,54 @@ rg_status acc_push_rebound(double ratio, double speed, int velocity_iterations, 
     rg_world_destroy(w);
     *out_back = back;
     return st;
+}
+
+/* One paddle scene (acc_paddle_run): adds its bodies and those that got behind the paddle. */
+static rg_status paddle_scene(uint32_t u, double lo, double hi, int *through, int *bodies)
+{
+    enum { PADDLE_MAX = 20 };
+    rg_world *w = NULL;
+    rg_body floor, pad, b[PADDLE_MAX];
+    int n = 1 + (int)(soup_uniform(&u) * 19), behind[PADDLE_MAX] = { 0 };
+    double th = 0.01 + 0.05 * soup_uniform(&u), speed = lo + (hi - lo) * soup_uniform(&u);
+    rg_status st = rg_world_create(&w);
+    if (st == RG_OK) st = rg_world_set_gravity(w, acc_cv2(0, soup_uniform(&u) < 0.5 ? 0 : -10));
+    if (st == RG_OK) st = rg_world_set_sleeping(w, 0);
+    if (st == RG_OK) st = rg_body_create(w, RG_BODY_STATIC, 0, acc_cv2(0, -0.5), &floor);
+    if (st == RG_OK) st = rg_body_set_aabb(w, floor, 100, 0.5);
+    if (st == RG_OK) st = rg_body_create(w, RG_BODY_KINEMATIC, 0, acc_cv2(-5, 1.5), &pad);
+    if (st == RG_OK) st = rg_body_set_aabb(w, pad, (rg_real)th, 1.5);
+    if (st == RG_OK) st = rg_body_set_velocity(w, pad, acc_cv2(speed, 0));
+    for (int k = 0; k < n && st == RG_OK; k++) {
+        double r = 0.03 + 0.3 * soup_uniform(&u), x = -3 + 8 * soup_uniform(&u), y = r + 2.2 * soup_uniform(&u);
+        int circle = soup_uniform(&u) < 0.5;
+        st = rg_body_create(w, RG_BODY_DYNAMIC, (rg_real)(0.1 + 5 * soup_uniform(&u)), acc_cv2(x, y), &b[k]);
+        if (st == RG_OK) st = circle ? rg_body_set_circle(w, b[k], (rg_real)r) : rg_body_set_aabb(w, b[k], (rg_real)r, (rg_real)r);
+    }
+    for (int i = 0; i < 120 && st == RG_OK; i++) {
+        rg_vec2 p0, p1, q[PADDLE_MAX];
+        st = rg_body_get_position(w, pad, &p0);
+        for (int k = 0; k < n && st == RG_OK; k++) st = rg_body_get_position(w, b[k], &q[k]);
+        if (st == RG_OK) st = rg_world_step(w, (rg_real)(1.0 / 60));
+        if (st == RG_OK) st = rg_body_get_position(w, pad, &p1);
+        for (int k = 0; k < n && st == RG_OK; k++) {
+            rg_vec2 e;
+            st = rg_body_get_position(w, b[k], &e);
+            if (st == RG_OK && q[k].x > p0.x && e.x < p1.x && e.y < 3) behind[k] = 1;
+        }
+    }
+    for (int k = 0; k < n; k++) *through += behind[k];
+    *bodies += n;
+    rg_world_destroy(w);
+    return st;
+}
+
+rg_status acc_paddle_run(int scenes, double lo, double hi, int *out_through, int *out_bodies)
+{
+    *out_through = *out_bodies = 0;
+    for (int k = 1; k <= scenes; k++) {
+        rg_status st = paddle_scene((uint32_t)k * 104729u, lo, hi, out_through, out_bodies);
+        if (st != RG_OK) return st;
+    }
+    return RG_OK;
 }
