@@ -187,7 +187,7 @@ static void test_bodies_boxed_in_by_thin_walls_stay_inside_at_any_step_size(void
             assert_ok(rg_world_step(w, (rg_real)dt));
             for (int k = 0; k < n; k++) {
                 double in = 3 - th - r[k]; /* wholly inside: the body's reach within the faces */
-                if (!(fabs(p0[k].x) <= in && fabs(p0[k].y) <= in)) continue;
+                if (!(fabs((double)p0[k].x) <= in && fabs((double)p0[k].y) <= in)) continue;
                 checks++;
                 if (fabs(PX(w, b[k])) > 3 || fabs(PY(w, b[k])) > 3) {
                     print_message("scene %d, step %d (dt %.3g s): body %d went out\n", scene, i, dt, k);
