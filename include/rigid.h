@@ -167,8 +167,8 @@ RG_API rg_status rg_world_get_integrator(const rg_world *world, int32_t *out_int
 /* Exactly one step of length dt seconds (0 < dt <= RG_MAX_DT):
  * forces -> integrate -> range guard -> collide -> speed limits -> sleep -> range guard ->
  * events -> clear applied forces (collide, sleep and the second guard when the world has
- * shapes).  The range guard (see
- * rg_world_get_stopped) keeps every body's state finite and ends every step in range. */
+ * shapes).  The range guard (see rg_world_get_stopped) keeps every body's state finite and
+ * ends every step in range. */
 RG_API rg_status rg_world_step(rg_world *world, rg_real dt);
 
 /* The step rg_world_advance takes (0 < dt <= RG_MAX_DT) and the most steps one advance may
