@@ -217,19 +217,33 @@ static inline void random_more(rg_world *w, uint32_t *s, rg_body *bodies, int nb
     }
 }
 
-/* Up to three changes of either kind, then a step (a quarter of them advances of a random
- * frame time, which may take no step or several); returns the steps taken. */
-static inline int32_t random_changes_and_step(rg_world *w, uint32_t *s, rg_body *bodies, int *nb, random_extra *e)
+/* Up to three changes of either kind. */
+static inline void random_changes(rg_world *w, uint32_t *s, rg_body *bodies, int *nb, random_extra *e)
 {
     int changes = (int)(next_uniform(s) * 4);
     for (int k = 0; k < changes; k++) {
         if (next_uniform(s) < 0.5) random_change(w, s, bodies, nb);
         else random_more(w, s, bodies, *nb, e);
     }
+}
+
+/* A step, or (one time in four, *advanced set) an advance of a random frame time, which may
+ * take no step or several; returns the steps taken. */
+static inline int32_t random_step(rg_world *w, uint32_t *s, int *advanced)
+{
     int32_t steps = 1;
-    if (next_uniform(s) < 0.25) assert_ok(rg_world_advance(w, (rg_real)(0.05 * next_uniform(s)), &steps));
+    *advanced = next_uniform(s) < 0.25;
+    if (*advanced) assert_ok(rg_world_advance(w, (rg_real)(0.05 * next_uniform(s)), &steps));
     else assert_ok(rg_world_step(w, (rg_real)DT));
     return steps;
+}
+
+/* Both, as the random scenes take them. */
+static inline int32_t random_changes_and_step(rg_world *w, uint32_t *s, rg_body *bodies, int *nb, random_extra *e)
+{
+    int advanced;
+    random_changes(w, s, bodies, nb, e);
+    return random_step(w, s, &advanced);
 }
 
 #endif

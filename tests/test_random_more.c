@@ -184,11 +184,7 @@ static void test_random_scenes_with_every_change_keep_what_each_change_promises(
         rscene r;
         rscene_begin(&r, scene, scene % 2 ? &tasks : NULL);
         for (int i = 0; i < STEPS; i++) {
-            int changes = (int)(next_uniform(&r.s) * 4);
-            for (int k = 0; k < changes; k++) {
-                if (next_uniform(&r.s) < 0.5) random_change(r.w, &r.s, r.bodies, &r.nb);
-                else random_more(r.w, &r.s, r.bodies, r.nb, &r.e);
-            }
+            random_changes(r.w, &r.s, r.bodies, &r.nb, &r.e);
             rg_vec2 p0[MAXB], v0[MAXB];
             int32_t type[MAXB], awake[MAXB];
             for (int k = 0; k < r.nb; k++) {
@@ -197,15 +193,12 @@ static void test_random_scenes_with_every_change_keep_what_each_change_promises(
                 type[k] = body_type(r.w, r.bodies[k]);
                 awake[k] = flag(rg_body_is_awake, r.w, r.bodies[k]);
             }
-            int32_t steps = 1;
+            int advanced;
+            int32_t steps = random_step(r.w, &r.s, &advanced);
             rg_real alpha = 0;
-            int advanced = next_uniform(&r.s) < 0.25;
             if (advanced) {
-                assert_ok(rg_world_advance(r.w, (rg_real)(0.05 * next_uniform(&r.s)), &steps));
                 assert_ok(rg_world_get_alpha(r.w, &alpha));
                 assert_true(alpha >= 0 && alpha < 1);
-            } else {
-                assert_ok(rg_world_step(r.w, (rg_real)DT));
             }
             check_step(&r, p0, v0, type, awake, steps, alpha, advanced, scene, i);
         }
