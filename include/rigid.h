@@ -274,6 +274,9 @@ RG_API rg_status rg_body_apply_impulse(rg_world *world, rg_body body, rg_vec2 im
 /* Multiplies world gravity for this body (within +-RG_MAX_GRAVITY_SCALE; 0 floats, -1 falls
  * up).  A change wakes the body. */
 RG_API rg_status rg_body_set_gravity_scale(rg_world *world, rg_body body, rg_real scale);
+/* 1 by default; 0 for static and kinematic bodies, on which gravity does not act (as their
+ * mass; the setter changes nothing there). */
+RG_API rg_status rg_body_get_gravity_scale(const rg_world *world, rg_body body, rg_real *out_scale);
 /* Largest drag coefficient: linear in kg/s, quadratic in kg/m. */
 #define RG_MAX_DRAG 1.0e9
 /* Largest friction coefficient (surface friction's mu, a body's contact friction). */
@@ -281,6 +284,9 @@ RG_API rg_status rg_body_set_gravity_scale(rg_world *world, rg_body body, rg_rea
 /* Air drag F = -(linear + quadratic * |v|) * v, with linear in kg/s and quadratic in kg/m
  * (quadratic = 1/2 * rho * Cd * A); both in [0, RG_MAX_DRAG]. */
 RG_API rg_status rg_body_set_drag(rg_world *world, rg_body body, rg_real linear, rg_real quadratic);
+/* 0 and 0 by default.  Either output may be NULL, not both. */
+RG_API rg_status rg_body_get_drag(const rg_world *world, rg_body body, rg_real *out_linear,
+                                  rg_real *out_quadratic);
 /* Surface friction F = -mu * normal_force * v/|v| (mu in [0, RG_MAX_FRICTION], normal_force
  * in [0, RG_MAX_FORCE] N): a body sliding on a surface, as seen from above.  It brings the
  * body exactly to rest, never reverses it, and holds it at rest against any smaller force
@@ -296,6 +302,9 @@ RG_API rg_status rg_body_set_surface_friction(rg_world *world, rg_body body, rg_
  * max_speed >= min_speed unless 0. */
 RG_API rg_status rg_body_set_speed_limits(rg_world *world, rg_body body, rg_real min_speed,
                                           rg_real max_speed);
+/* 0 and 0 by default (no limits).  Either output may be NULL, not both. */
+RG_API rg_status rg_body_get_speed_limits(const rg_world *world, rg_body body, rg_real *out_min_speed,
+                                          rg_real *out_max_speed);
 /* An opaque 64-bit value for the caller (an entity id, an index); 0 by default. */
 RG_API rg_status rg_body_set_user_data(rg_world *world, rg_body body, uint64_t user_data);
 RG_API rg_status rg_body_get_user_data(const rg_world *world, rg_body body, uint64_t *out);

@@ -370,6 +370,7 @@ typedef rg_status (*lbody_setvec)(rg_world *, rg_body, rg_vec2);
 typedef rg_status (*lbody_getreal)(const rg_world *, rg_body, rg_real *);
 typedef rg_status (*lbody_setreal)(rg_world *, rg_body, rg_real);
 typedef rg_status (*lbody_setreal2)(rg_world *, rg_body, rg_real, rg_real);
+typedef rg_status (*lbody_getreal2)(const rg_world *, rg_body, rg_real *, rg_real *);
 typedef rg_status (*lbody_getflag)(const rg_world *, rg_body, int32_t *);
 
 static int lbody_get_vec2(lua_State *L, lbody_getvec get, const char *what)
@@ -420,6 +421,17 @@ static int lbody_set_real2(lua_State *L, lbody_setreal2 set, int opt, const char
     return 0;
 }
 
+static int lbody_get_real2(lua_State *L, lbody_getreal2 get, const char *what)
+{
+    lbody *b = lbody_check(L, 1);
+    rg_world *w = lbody_world_of(L, b);
+    rg_real first = 0, second = 0;
+    LCHECK(L, w, get(w, b->h, &first, &second), what);
+    lcheck_pushreal(L, first);
+    lcheck_pushreal(L, second);
+    return 2;
+}
+
 static int lbody_get_flag(lua_State *L, lbody_getflag get, const char *what)
 {
     lbody *b = lbody_check(L, 1);
@@ -440,6 +452,8 @@ static int lbody_get_flag(lua_State *L, lbody_getflag get, const char *what)
     static int lbody_##name(lua_State *L) { return lbody_set_real(L, call, #name); }
 #define LBODY_SET_REAL2(name, call, opt)                                        \
     static int lbody_##name(lua_State *L) { return lbody_set_real2(L, call, opt, #name); }
+#define LBODY_GET_REAL2(name, call)                                             \
+    static int lbody_##name(lua_State *L) { return lbody_get_real2(L, call, #name); }
 #define LBODY_GET_FLAG(name, call)                                              \
     static int lbody_##name(lua_State *L) { return lbody_get_flag(L, call, #name); }
 
@@ -462,6 +476,9 @@ LBODY_SET_VEC2(apply_impulse, rg_body_apply_impulse)
 LBODY_GET_REAL(mass, rg_body_get_mass)
 LBODY_GET_REAL(restitution, rg_body_get_restitution)
 LBODY_GET_REAL(friction, rg_body_get_friction)
+LBODY_GET_REAL(gravity_scale, rg_body_get_gravity_scale)
+LBODY_GET_REAL2(drag, rg_body_get_drag)
+LBODY_GET_REAL2(speed_limits, rg_body_get_speed_limits)
 LBODY_SET_REAL(set_mass, rg_body_set_mass)
 LBODY_SET_REAL(set_gravity_scale, rg_body_set_gravity_scale)
 LBODY_SET_REAL(set_restitution, rg_body_set_restitution)
@@ -634,9 +651,12 @@ const luaL_Reg lbody_methods[] = {
     { "mass", lbody_mass },
     { "set_mass", lbody_set_mass },
     { "set_gravity_scale", lbody_set_gravity_scale },
+    { "gravity_scale", lbody_gravity_scale },
     { "set_drag", lbody_set_drag },
+    { "drag", lbody_drag },
     { "set_surface_friction", lbody_set_surface_friction },
     { "set_speed_limits", lbody_set_speed_limits },
+    { "speed_limits", lbody_speed_limits },
     { "user_data", lbody_user_data },
     { "set_user_data", lbody_set_user_data },
     { "name", lbody_name },

@@ -39,8 +39,9 @@
  *   body:position() / set_position(x, y)   body:velocity() / set_velocity(vx, vy)
  *   body:apply_force(fx, fy)  body:apply_impulse(ix, iy)  body:acceleration()
  *   body:interpolated_position()  body:type()  body:mass() / set_mass(m)
- *   body:set_gravity_scale(s)  set_drag(linear [, quadratic])  set_surface_friction(mu, n)
- *   body:set_speed_limits(min [, max])  user_data() / set_user_data(i)  name()  world()  id()
+ *   body:set_gravity_scale(s) / gravity_scale()  set_drag(linear [, quadratic]) / drag() -->
+ *   linear, quadratic  set_surface_friction(mu, n)  set_speed_limits(min [, max]) /
+ *   speed_limits() --> min, max  user_data() / set_user_data(i)  name()  world()  id()
  *   body:set_circle(r)  set_aabb(hw, hh)  clear_shape()  shape() --> "circle", r | "aabb",
  *   hw, hh | "none"   restitution() / set_restitution(e)  friction() / set_friction(mu)
  *   is_sensor() / set_sensor(on)  filter() / set_filter(category, mask)  grounded()

@@ -471,6 +471,15 @@ local function get_real(name, get)
   end
 end
 
+local function get_real2(name, get)
+  Body[name] = function(b)
+    local p, h = body_wh(b)
+    local st = get(p, h, real, real + 1)
+    if st ~= 0 then status_error(p, st, name) end
+    return real[0], real[1]
+  end
+end
+
 local function set_real(name, set)
   Body[name] = function(b, ...)
     local p, h = body_wh(b)
@@ -527,6 +536,9 @@ get_real("restitution", C.rg_body_get_restitution)
 get_real("friction", C.rg_body_get_friction)
 set_real("set_mass", C.rg_body_set_mass)
 set_real("set_gravity_scale", C.rg_body_set_gravity_scale)
+get_real("gravity_scale", C.rg_body_get_gravity_scale)
+get_real2("drag", C.rg_body_get_drag)
+get_real2("speed_limits", C.rg_body_get_speed_limits)
 set_real("set_restitution", C.rg_body_set_restitution)
 set_real("set_friction", C.rg_body_set_friction)
 set_real("set_circle", C.rg_body_set_circle)

@@ -246,6 +246,36 @@ RG_API rg_status rg_body_set_surface_friction(rg_world *world, rg_body body, rg_
     return RG_OK;
 }
 
+RG_API rg_status rg_body_get_gravity_scale(const rg_world *world, rg_body body, rg_real *out_scale)
+{
+    BODY_GET(world, body, i);
+    ARG_PTR(world, out_scale);
+    *out_scale = world->b.gscale[i];
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_get_drag(const rg_world *world, rg_body body, rg_real *out_linear,
+                                  rg_real *out_quadratic)
+{
+    BODY_GET(world, body, i);
+    if (out_linear == NULL && out_quadratic == NULL)
+        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "out_linear and out_quadratic are both NULL");
+    if (out_linear != NULL) *out_linear = world->b.drag_lin[i];
+    if (out_quadratic != NULL) *out_quadratic = world->b.drag_quad[i];
+    return RG_OK;
+}
+
+RG_API rg_status rg_body_get_speed_limits(const rg_world *world, rg_body body, rg_real *out_min_speed,
+                                          rg_real *out_max_speed)
+{
+    BODY_GET(world, body, i);
+    if (out_min_speed == NULL && out_max_speed == NULL)
+        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "out_min_speed and out_max_speed are both NULL");
+    if (out_min_speed != NULL) *out_min_speed = world->b.min_speed[i];
+    if (out_max_speed != NULL) *out_max_speed = world->b.max_speed[i];
+    return RG_OK;
+}
+
 RG_API rg_status rg_body_set_speed_limits(rg_world *world, rg_body body, rg_real min_speed,
                                           rg_real max_speed)
 {

@@ -331,6 +331,39 @@ static void test_every_allocation_failure_is_reported_and_recoverable(void **sta
     assert_true(completed_without_failure); /* every allocation point was visited */
 }
 
+/* Gravity scale, drag and speed limits read back what was set, exactly (they are stored as
+ * given), and their defaults: scale 1, no drag, no limits.  A kinematic body's scale is 0,
+ * as its mass, and its setter changes nothing. */
+static void test_gravity_scale_drag_and_speed_limits_read_back_what_was_set(void **state)
+{
+    (void)state;
+    rg_world *w = gravity_world(-10);
+    rg_body d = make_body(w, 1, 0, 0), k;
+    assert_ok(rg_body_create(w, RG_BODY_KINEMATIC, 0, v2(3, 0), &k));
+    rg_real a, b;
+    assert_ok(rg_body_get_gravity_scale(w, d, &a));
+    assert_true(a == 1);
+    assert_ok(rg_body_get_drag(w, d, &a, &b));
+    assert_true(a == 0 && b == 0);
+    assert_ok(rg_body_get_speed_limits(w, d, &a, &b));
+    assert_true(a == 0 && b == 0);
+    assert_ok(rg_body_set_gravity_scale(w, d, (rg_real)-0.25));
+    assert_ok(rg_body_set_drag(w, d, (rg_real)0.3, (rg_real)0.07));
+    assert_ok(rg_body_set_speed_limits(w, d, (rg_real)0.1, 9));
+    assert_ok(rg_body_get_gravity_scale(w, d, &a));
+    assert_true(a == (rg_real)-0.25);
+    assert_ok(rg_body_get_drag(w, d, &a, &b));
+    assert_true(a == (rg_real)0.3 && b == (rg_real)0.07);
+    assert_ok(rg_body_get_speed_limits(w, d, &a, NULL));
+    assert_true(a == (rg_real)0.1);
+    assert_ok(rg_body_get_speed_limits(w, d, NULL, &b));
+    assert_true(b == 9);
+    assert_ok(rg_body_set_gravity_scale(w, k, 5));
+    assert_ok(rg_body_get_gravity_scale(w, k, &a));
+    assert_true(a == 0);
+    rg_world_destroy(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -339,6 +372,7 @@ int main(void)
         cmocka_unit_test(test_destroyed_zero_foreign_and_forged_handles_are_rejected),
         cmocka_unit_test(test_a_million_cycles_never_resurrect_a_handle_and_leak_nothing),
         cmocka_unit_test(test_by_value_getters_match_the_status_getters),
+        cmocka_unit_test(test_gravity_scale_drag_and_speed_limits_read_back_what_was_set),
         cmocka_unit_test(test_body_calls_reject_bad_input_and_change_nothing),
         cmocka_unit_test(test_every_allocation_failure_is_reported_and_recoverable),
     };

@@ -84,6 +84,13 @@ static void test_forces_fail_and_say_why(void **state)
     EACH_STALE(s, h, "body", rg_body_set_drag(w, h, 0, 0));
     EACH_STALE(s, h, "body", rg_body_set_surface_friction(w, h, 0, 0));
     EACH_STALE(s, h, "body", rg_body_set_speed_limits(w, h, 0, 0));
+    rg_real r;
+    EACH_STALE(s, h, "body", rg_body_get_gravity_scale(w, h, &r));
+    EACH_STALE(s, h, "body", rg_body_get_drag(w, h, &r, &r));
+    EACH_STALE(s, h, "body", rg_body_get_speed_limits(w, h, &r, &r));
+    FAILS(s, INVALID, "out_scale", rg_body_get_gravity_scale(w, d, NULL));
+    FAILS(s, INVALID, "out_quadratic", rg_body_get_drag(w, d, NULL, NULL));
+    FAILS(s, INVALID, "out_max_speed", rg_body_get_speed_limits(w, d, NULL, NULL));
     FAILS(s, INVALID, "force.x", rg_body_apply_force(w, d, v2(NaN, 0)));
     FAILS_SAYING(s, INVALID, "force.y", "RG_MAX_FORCE", rg_body_apply_force(w, d, v2(0, -2e12)));
     FAILS(s, INVALID, "impulse.y", rg_body_apply_impulse(w, d, v2(0, INF)));
@@ -111,6 +118,9 @@ static void test_forces_fail_and_say_why(void **state)
     SUCCEEDS(s, rg_body_set_drag(w, d, 1, 0.5f));
     SUCCEEDS(s, rg_body_set_surface_friction(w, d, 0.5f, 10));
     SUCCEEDS(s, rg_body_set_speed_limits(w, d, 0.1f, 0));
+    SUCCEEDS(s, rg_body_get_gravity_scale(w, d, &r));
+    SUCCEEDS(s, rg_body_get_drag(w, d, NULL, &r));
+    SUCCEEDS(s, rg_body_get_speed_limits(w, d, &r, NULL));
 }
 
 static void test_springs_fail_and_say_why(void **state)

@@ -272,6 +272,9 @@ static void test_a_null_world_is_refused_everywhere(void **state)
     NULL_WORLD(INVALID, rg_body_get_shape(W, b, &i, &v));
     NULL_WORLD(INVALID, rg_body_set_restitution(W, b, 0));
     NULL_WORLD(INVALID, rg_body_get_restitution(W, b, &r));
+    NULL_WORLD(INVALID, rg_body_get_gravity_scale(W, b, &r));
+    NULL_WORLD(INVALID, rg_body_get_drag(W, b, &r, &r));
+    NULL_WORLD(INVALID, rg_body_get_speed_limits(W, b, &r, &r));
     NULL_WORLD(INVALID, rg_body_set_friction(W, b, 0));
     NULL_WORLD(INVALID, rg_body_get_friction(W, b, &r));
     NULL_WORLD(INVALID, rg_body_set_sensor(W, b, 0));

@@ -87,9 +87,12 @@ rg_status rg_body_get_acceleration(const rg_world *world, rg_body body, rg_vec2 
 rg_status rg_body_apply_force(rg_world *world, rg_body body, rg_vec2 force);
 rg_status rg_body_apply_impulse(rg_world *world, rg_body body, rg_vec2 impulse);
 rg_status rg_body_set_gravity_scale(rg_world *world, rg_body body, rg_real scale);
+rg_status rg_body_get_gravity_scale(const rg_world *world, rg_body body, rg_real *out_scale);
 rg_status rg_body_set_drag(rg_world *world, rg_body body, rg_real linear, rg_real quadratic);
+rg_status rg_body_get_drag(const rg_world *world, rg_body body, rg_real *out_linear, rg_real *out_quadratic);
 rg_status rg_body_set_surface_friction(rg_world *world, rg_body body, rg_real mu, rg_real normal_force);
 rg_status rg_body_set_speed_limits(rg_world *world, rg_body body, rg_real min_speed, rg_real max_speed);
+rg_status rg_body_get_speed_limits(const rg_world *world, rg_body body, rg_real *out_min_speed, rg_real *out_max_speed);
 rg_status rg_body_set_user_data(rg_world *world, rg_body body, uint64_t user_data);
 rg_status rg_body_get_user_data(const rg_world *world, rg_body body, uint64_t *out);
 rg_status rg_spring_create(rg_world *world, rg_body a, rg_body b, rg_vec2 anchor, rg_real rest_length, rg_real stiffness, rg_real damping, uint64_t *out_spring);
