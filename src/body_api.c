@@ -254,26 +254,34 @@ RG_API rg_status rg_body_get_gravity_scale(const rg_world *world, rg_body body, 
     return RG_OK;
 }
 
+/* (as[i], bs[i]) of body into *out_a and *out_b (either may be NULL, not both: `names`
+ * says so), for the getter `func` of two fields. */
+static rg_status get_two(const rg_world *world, const char *func, rg_body body, const rg_real *as,
+                         const rg_real *bs, rg_real *out_a, rg_real *out_b, const char *names)
+{
+    int32_t i = arg_handle(world, func, "body", &world->body_pool, body);
+    if (i < 0) return RG_ERR_STALE_HANDLE;
+    if (out_a == NULL && out_b == NULL)
+        return error_set(world, RG_ERR_INVALID_ARGUMENT, func, "%s are both NULL", names);
+    if (out_a != NULL) *out_a = as[i];
+    if (out_b != NULL) *out_b = bs[i];
+    return RG_OK;
+}
+
 RG_API rg_status rg_body_get_drag(const rg_world *world, rg_body body, rg_real *out_linear,
                                   rg_real *out_quadratic)
 {
-    BODY_GET(world, body, i);
-    if (out_linear == NULL && out_quadratic == NULL)
-        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "out_linear and out_quadratic are both NULL");
-    if (out_linear != NULL) *out_linear = world->b.drag_lin[i];
-    if (out_quadratic != NULL) *out_quadratic = world->b.drag_quad[i];
-    return RG_OK;
+    ERROR_BEGIN(world);
+    return get_two(world, __func__, body, world->b.drag_lin, world->b.drag_quad, out_linear, out_quadratic,
+                   "out_linear and out_quadratic");
 }
 
 RG_API rg_status rg_body_get_speed_limits(const rg_world *world, rg_body body, rg_real *out_min_speed,
                                           rg_real *out_max_speed)
 {
-    BODY_GET(world, body, i);
-    if (out_min_speed == NULL && out_max_speed == NULL)
-        return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "out_min_speed and out_max_speed are both NULL");
-    if (out_min_speed != NULL) *out_min_speed = world->b.min_speed[i];
-    if (out_max_speed != NULL) *out_max_speed = world->b.max_speed[i];
-    return RG_OK;
+    ERROR_BEGIN(world);
+    return get_two(world, __func__, body, world->b.min_speed, world->b.max_speed, out_min_speed,
+                   out_max_speed, "out_min_speed and out_max_speed");
 }
 
 RG_API rg_status rg_body_set_speed_limits(rg_world *world, rg_body body, rg_real min_speed,
