@@ -459,9 +459,12 @@ RG_API rg_status rg_world_get_contact_tuning(const rg_world *world, rg_real *out
  * is solved at its time of impact, so fast bodies never pass through thin walls; after the
  * solve, a body that moved more than half its size, or that the solve moved more than the
  * slop off its free motion (a body an impact sends off), is swept once more against the
- * static, kinematic and sleeping shapes on its path and stopped at the first impact (a
- * sleeping one wakes and takes its momentum).  0 checks only the shapes where the step
- * leaves them (a discrete check: fast bodies tunnel), for comparison. */
+ * static, kinematic and sleeping shapes on its path: at a static or kinematic one the rest of
+ * its motion goes on along the surface, less its part into it, and with the kinematic body's
+ * motion (a fast paddle carries what it meets), swept again, up to 4 legs, the last stopped
+ * at its impact; at a sleeping one it stops (that one wakes and takes its momentum).  0
+ * checks only the shapes where the step leaves them (a discrete check: fast bodies tunnel),
+ * for comparison. */
 RG_API rg_status rg_world_set_continuous(rg_world *world, int32_t enabled);
 RG_API rg_status rg_world_get_continuous(const rg_world *world, int32_t *out_enabled);
 /* Pairs touching after the last step (sensor overlaps included), less those ended since (a

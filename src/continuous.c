@@ -137,15 +137,18 @@ AVX2_FN static uint32_t continuous_fast8(const rg_world *w, int32_t k, int32_t i
 }
 #endif
 
-/* One body's sweep: from p0 along D to p1 (half extents hf), the first impact so far (tmin,
- * the hit surface's normal from the other body toward it, that body's velocity and slot). */
+/* One leg of a body's sweep: from p0 along D to p1 (half extents hf) over the last `rest` of
+ * the step, and the first impact so far (tmin, a fraction of the leg; the hit surface's
+ * normal from the other body toward it, that body's velocity, its motion over the whole
+ * step and its slot). */
 typedef struct sweep_body {
     const rg_world *w;
     int32_t i, s; /* dense index and slot */
     rg_vec2 p0, p1, D, hf;
+    rg_real rest;
     int asleep;   /* meets sleeping bodies (the serial pass), else immovable ones */
     rg_real tmin;
-    rg_vec2 nbest, vbest;
+    rg_vec2 nbest, vbest, dbest;
     int32_t sbest;
 } sweep_body;
 
@@ -166,7 +169,8 @@ static void continuous_meet(sweep_body *sb, int32_t j)
     int active = j < b->n_active;
     rg_vec2 ho = rg_v2(b->hx[j], b->hy[j]);
     rg_vec2 o1 = rg_v2(b->x[j], b->y[j]);
-    rg_vec2 dob = active ? rg_v2(b->dx[j], b->dy[j]) : rg_v2(0, 0);
+    rg_vec2 dstep = active ? rg_v2(b->dx[j], b->dy[j]) : rg_v2(0, 0);
+    rg_vec2 dob = rg_v2_scale(dstep, sb->rest); /* j's motion over the leg */
     rg_vec2 o0 = rg_v2_sub(o1, dob);
     rg_real t;
     coll_manifold hit, end;
@@ -190,6 +194,7 @@ static void continuous_meet(sweep_body *sb, int32_t j)
     sb->tmin = t;
     sb->nbest = hit.normal;
     sb->vbest = active ? rg_v2(b->vx[j], b->vy[j]) : rg_v2(0, 0);
+    sb->dbest = dstep;
     sb->sbest = b->slot[j];
 }
 
@@ -211,6 +216,32 @@ static void continuous_visit(void *ctx, int32_t t)
     continuous_meet(sb, j);
 }
 
+/* The first impact on the leg in sb: the bodies the pass meets that the body has contacts
+ * with, and, where the leg may leave its fat box (left), those on its path it has none with. */
+static void continuous_leg(sweep_body *sb, int left)
+{
+    const rg_world *w = sb->w;
+    const body_store *b = &w->b;
+    const contact_store *cs = &w->coll.contacts;
+    sb->tmin = 1;
+    sb->nbest = sb->vbest = sb->dbest = rg_v2(0, 0);
+    sb->sbest = -1;
+    for (int32_t id = b->chead[sb->i] - 1; id >= 0; id = contact_next(&cs->c[id], sb->s)) {
+        const contact *c = &cs->c[id];
+        if (c->flags & (CT_SENSOR | CT_PASS)) continue;
+        int32_t j = body_dense(w, contact_other(c, sb->s));
+        if (continuous_met(b, sb, j)) continuous_meet(sb, j);
+    }
+    if (left)
+        broadphase_query(&w->coll.bp, rg_min(sb->p0.x, sb->p1.x) - sb->hf.x, rg_min(sb->p0.y, sb->p1.y) - sb->hf.y,
+                         rg_max(sb->p0.x, sb->p1.x) + sb->hf.x, rg_max(sb->p0.y, sb->p1.y) + sb->hf.y,
+                         continuous_visit, sb);
+}
+
+/* Legs of a body's sweep in the parallel pass: after an impact the rest of the motion goes on
+ * along the surface (relative to the body met, which carries it along), as the mover's. */
+#define SWEEP_LEGS 4
+
 /* Awake bodies [begin, end): each dynamic body that moved more than half its size, or that
  * the solve moved more than the slop off its free motion, against the bodies the pass meets
  * (continuous_met) it has contacts with, and, out of its fat box, against those on its path
@@ -225,7 +256,6 @@ static void continuous_visit(void *ctx, int32_t t)
 static int continuous_sweep_bodies(rg_world *w, int asleep, int32_t k0, int32_t k1)
 {
     collide_world *cw = &w->coll;
-    const contact_store *cs = &cw->contacts;
     const views_state *ns = &cw->views;
     body_store *b = &w->b;
     int woke = 0;
@@ -261,42 +291,50 @@ static int continuous_sweep_bodies(rg_world *w, int asleep, int32_t k0, int32_t 
             !(pushed.x * pushed.x + pushed.y * pushed.y > cw->slop * cw->slop))
             continue;
         int left = continuous_left(w, i, sb.p1, sb.hf);
-        sb.tmin = 1;
-        sb.nbest = sb.vbest = rg_v2(0, 0);
-        sb.sbest = -1;
-        for (int32_t id = b->chead[i] - 1; id >= 0; id = contact_next(&cs->c[id], sb.s)) {
-            const contact *c = &cs->c[id];
-            if (c->flags & (CT_SENSOR | CT_PASS)) continue;
-            int32_t j = body_dense(w, contact_other(c, sb.s));
-            if (continuous_met(b, &sb, j)) continuous_meet(&sb, j);
+        sb.rest = 1;
+        for (int leg = 0;; leg++) {
+            continuous_leg(&sb, left);
+            if (sb.tmin >= 1) break;
+            rg_real len = rg_v2_len(sb.D);
+            rg_real tb = len > 0 ? rg_max(sb.tmin - RG_R(0.5) * cw->slop / len, 0) : 0;
+            rg_vec2 at = rg_v2(sb.p0.x + sb.D.x * tb, sb.p0.y + sb.D.y * tb);
+            b->x[i] = at.x;
+            b->y[i] = at.y;
+            rg_real vn = (b->vx[i] - sb.vbest.x) * sb.nbest.x + (b->vy[i] - sb.vbest.y) * sb.nbest.y;
+            if (vn < 0 && !asleep) {
+                b->vx[i] -= vn * sb.nbest.x;
+                b->vy[i] -= vn * sb.nbest.y;
+            } else if (vn < 0) {
+                /* a sleeping body at rest: the impulse that ends the approach of the two, P n
+                 * on i and -P n on it, once it is awake (its dense index moves with the wake) */
+                island_wake(w, sb.sbest);
+                woke = 1;
+                int32_t j = body_dense(w, sb.sbest);
+                rg_real ima = b->inv_mass[i], imb = b->inv_mass[j];
+                rg_real p = -vn / (ima + imb);
+                b->vx[i] += p * ima * sb.nbest.x;
+                b->vy[i] += p * ima * sb.nbest.y;
+                b->vx[j] -= p * imb * sb.nbest.x;
+                b->vy[j] -= p * imb * sb.nbest.y;
+            }
+            /* the serial pass stops at a sleeping body (what is left of the motion would need
+             * the parallel pass again); the last leg stops where it meets */
+            if (asleep || leg == SWEEP_LEGS - 1) break;
+            /* the rest of the step: the motion relative to the body met, less its part into
+             * the surface, and the body met's own motion, from where it met */
+            rg_real rest = sb.rest * (1 - sb.tmin);
+            rg_vec2 rel = rg_v2_scale(rg_v2_sub(sb.D, rg_v2_scale(sb.dbest, sb.rest)), 1 - sb.tmin);
+            rg_real into = rg_v2_dot(rel, sb.nbest);
+            if (into < 0) rel = rg_v2_sub(rel, rg_v2_scale(sb.nbest, into));
+            sb.D = rg_v2_add(rel, rg_v2_scale(sb.dbest, rest));
+            sb.p0 = at;
+            sb.p1 = rg_v2_add(at, sb.D);
+            sb.rest = rest;
+            if (!(sb.D.x != 0 || sb.D.y != 0)) break;
+            left = left || continuous_left(w, i, sb.p1, sb.hf);
+            b->x[i] = sb.p1.x;
+            b->y[i] = sb.p1.y;
         }
-        if (left)
-            broadphase_query(&cw->bp, rg_min(sb.p0.x, sb.p1.x) - sb.hf.x, rg_min(sb.p0.y, sb.p1.y) - sb.hf.y,
-                             rg_max(sb.p0.x, sb.p1.x) + sb.hf.x, rg_max(sb.p0.y, sb.p1.y) + sb.hf.y,
-                             continuous_visit, &sb);
-        if (sb.tmin >= 1) continue;
-        rg_real len = rg_v2_len(sb.D);
-        rg_real tb = len > 0 ? rg_max(sb.tmin - RG_R(0.5) * cw->slop / len, 0) : 0;
-        b->x[i] = sb.p0.x + sb.D.x * tb;
-        b->y[i] = sb.p0.y + sb.D.y * tb;
-        rg_real vn = (b->vx[i] - sb.vbest.x) * sb.nbest.x + (b->vy[i] - sb.vbest.y) * sb.nbest.y;
-        if (!(vn < 0)) continue;
-        if (!asleep) {
-            b->vx[i] -= vn * sb.nbest.x;
-            b->vy[i] -= vn * sb.nbest.y;
-            continue;
-        }
-        /* a sleeping body at rest: the impulse that ends the approach of the two, P n on i
-         * and -P n on it, once it is awake (its dense index moves with the wake) */
-        island_wake(w, sb.sbest);
-        woke = 1;
-        int32_t j = body_dense(w, sb.sbest);
-        rg_real ima = b->inv_mass[i], imb = b->inv_mass[j];
-        rg_real p = -vn / (ima + imb);
-        b->vx[i] += p * ima * sb.nbest.x;
-        b->vy[i] += p * ima * sb.nbest.y;
-        b->vx[j] -= p * imb * sb.nbest.x;
-        b->vy[j] -= p * imb * sb.nbest.y;
     }
     return woke;
 }

@@ -127,6 +127,7 @@ static rg_status paddle_scene(uint32_t u, double lo, double hi, int *through, in
     rg_world *w = NULL;
     rg_body floor, pad, b[PADDLE_MAX];
     int n = 1 + (int)(soup_uniform(&u) * 19), behind[PADDLE_MAX] = { 0 };
+    double size[PADDLE_MAX];
     double th = 0.01 + 0.05 * soup_uniform(&u), speed = lo + (hi - lo) * soup_uniform(&u);
     rg_status st = rg_world_create(&w);
     if (st == RG_OK) st = rg_world_set_gravity(w, acc_cv2(0, soup_uniform(&u) < 0.5 ? 0 : -10));
@@ -138,6 +139,7 @@ static rg_status paddle_scene(uint32_t u, double lo, double hi, int *through, in
     if (st == RG_OK) st = rg_body_set_velocity(w, pad, acc_cv2(speed, 0));
     for (int k = 0; k < n && st == RG_OK; k++) {
         double r = 0.03 + 0.3 * soup_uniform(&u), x = -3 + 8 * soup_uniform(&u), y = r + 2.2 * soup_uniform(&u);
+        size[k] = r;
         int circle = soup_uniform(&u) < 0.5;
         st = rg_body_create(w, RG_BODY_DYNAMIC, (rg_real)(0.1 + 5 * soup_uniform(&u)), acc_cv2(x, y), &b[k]);
         if (st == RG_OK) st = circle ? rg_body_set_circle(w, b[k], (rg_real)r) : rg_body_set_aabb(w, b[k], (rg_real)r, (rg_real)r);
@@ -151,7 +153,9 @@ static rg_status paddle_scene(uint32_t u, double lo, double hi, int *through, in
         for (int k = 0; k < n && st == RG_OK; k++) {
             rg_vec2 e;
             st = rg_body_get_position(w, b[k], &e);
-            if (st == RG_OK && q[k].x > p0.x && e.x < p1.x && e.y < 3) behind[k] = 1;
+            /* ahead of the paddle's centre, then behind it, level with it (not a body that
+             * fell off the floor's end below it) */
+            if (st == RG_OK && q[k].x > p0.x && e.x < p1.x && (double)e.y - size[k] < 3 && (double)e.y + size[k] > 0) behind[k] = 1;
         }
     }
     for (int k = 0; k < n; k++) *through += behind[k];
