@@ -37,6 +37,9 @@ static void collide_layout(mem_layout *l, void *ctx)
     cw->pairs.count = mem_take(l, (size_t)cw->scap + 1, sizeof(int32_t));
     island_layout(l, &cw->island, cw->scap);
     resolve_layout(l, &cw->resolve, cw->scap);
+    cw->sweep.stop = mem_take(l, (size_t)cw->scap, sizeof(int32_t));
+    cw->sweep.nx = mem_take(l, (size_t)cw->scap, sizeof(rg_real));
+    cw->sweep.ny = mem_take(l, (size_t)cw->scap, sizeof(rg_real));
 }
 
 void collide_release(rg_world *w)
@@ -72,6 +75,7 @@ rg_status collide_prepare(rg_world *w)
     cw->island.itail = grown.island.itail;
     cw->island.list = grown.island.list;
     cw->resolve = grown.resolve;
+    cw->sweep = grown.sweep;
     cw->scratch = grown.scratch;
     cw->scratch_size = grown.scratch_size;
     cw->scap = n;

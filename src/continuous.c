@@ -146,17 +146,16 @@ typedef struct sweep_body {
     int32_t i, s; /* dense index and slot */
     rg_vec2 p0, p1, D, hf;
     rg_real rest;
-    int asleep;   /* meets sleeping bodies (the serial pass), else immovable ones */
     rg_real tmin;
     rg_vec2 nbest, vbest, dbest;
     int32_t sbest;
+    int sleeping; /* the body of the first impact is asleep */
 } sweep_body;
 
-/* Whether dense body j is one the pass meets: immovable, or asleep. */
-static inline int continuous_met(const body_store *b, const sweep_body *sb, int32_t j)
+/* Whether dense body j is one the sweep meets: immovable, or asleep. */
+static inline int continuous_met(const body_store *b, int32_t j)
 {
-    if (b->type[j] != RG_BODY_DYNAMIC) return !sb->asleep;
-    return sb->asleep && j >= b->n_active;
+    return b->type[j] != RG_BODY_DYNAMIC || j >= b->n_active;
 }
 
 /* Dense body j (immovable, or asleep) against the sweep: a hit before the first so far, that
@@ -196,6 +195,7 @@ static void continuous_meet(sweep_body *sb, int32_t j)
     sb->vbest = active ? rg_v2(b->vx[j], b->vy[j]) : rg_v2(0, 0);
     sb->dbest = dstep;
     sb->sbest = b->slot[j];
+    sb->sleeping = b->type[j] == RG_BODY_DYNAMIC;
 }
 
 /* A member of the broadphase on the path of a body that left its fat box: a shape the sweep
@@ -209,7 +209,7 @@ static void continuous_visit(void *ctx, int32_t t)
     const contact_store *cs = &w->coll.contacts;
     if (t == sb->s) return;
     int32_t j = body_dense(w, t);
-    if (!continuous_met(b, sb, j)) return;
+    if (!continuous_met(b, j)) return;
     if (((b->cflags[sb->i] | b->cflags[j]) & CF_SENSOR) || !pairs_admitted(w, sb->i, j)) return;
     for (int32_t id = b->chead[sb->i] - 1; id >= 0; id = contact_next(&cs->c[id], sb->s))
         if (contact_other(&cs->c[id], sb->s) == t) return;
@@ -226,11 +226,12 @@ static void continuous_leg(sweep_body *sb, int left)
     sb->tmin = 1;
     sb->nbest = sb->vbest = sb->dbest = rg_v2(0, 0);
     sb->sbest = -1;
+    sb->sleeping = 0;
     for (int32_t id = b->chead[sb->i] - 1; id >= 0; id = contact_next(&cs->c[id], sb->s)) {
         const contact *c = &cs->c[id];
         if (c->flags & (CT_SENSOR | CT_PASS)) continue;
         int32_t j = body_dense(w, contact_other(c, sb->s));
-        if (continuous_met(b, sb, j)) continuous_meet(sb, j);
+        if (continuous_met(b, j)) continuous_meet(sb, j);
     }
     if (left)
         broadphase_query(&w->coll.bp, rg_min(sb->p0.x, sb->p1.x) - sb->hf.x, rg_min(sb->p0.y, sb->p1.y) - sb->hf.y,
@@ -238,38 +239,39 @@ static void continuous_leg(sweep_body *sb, int left)
                          continuous_visit, sb);
 }
 
-/* Legs of a body's sweep in the parallel pass: after an impact the rest of the motion goes on
- * along the surface (relative to the body met, which carries it along), as the mover's. */
+/* Legs of a body's sweep: after an impact with an immovable body the rest of the motion goes
+ * on along the surface (relative to that body, which carries it along), as the mover's. */
 #define SWEEP_LEGS 4
 
-/* Awake bodies [begin, end): each dynamic body that moved more than half its size, or that
- * the solve moved more than the slop off its free motion, against the bodies the pass meets
- * (continuous_met) it has contacts with, and, out of its fat box, against those on its path
+/* Awake bodies [k0, k1): each dynamic body that moved more than half its size, or that the
+ * solve moved more than the slop off its free motion, against the static, kinematic and
+ * sleeping bodies it has contacts with, and, out of its fat box, against those on its path
  * it has none with.  A push of less than SPECULATIVE * slop meets no pair the step did not
  * solve, and one of less than the slop leaves the fat box (which holds the box moved by the
- * free motion: views_build) by less than the slop.  The parallel pass meets immovable bodies,
- * which no body of the sweep moves, so each body is its own; the serial pass meets sleeping
- * ones, and a body it stops at one hands it its momentum along the normal, as an inelastic
- * impact of the two, and wakes it (returns whether it woke one).  Eight places of
- * consecutive bodies at a time pass over those with no such body (continuous_fast8) where the
- * CPU has AVX2. */
-static int continuous_sweep_bodies(rg_world *w, int asleep, int32_t k0, int32_t k1)
+ * free motion: views_build) by less than the slop.  Nothing moves the bodies met, so each
+ * body is its own: it slides on from an immovable one (up to SWEEP_LEGS legs, the last
+ * stopped at its impact) and stops at a sleeping one, which sweep.stop[k] names for
+ * continuous_wake.  Eight places of consecutive bodies at a time pass over those with no
+ * such body (continuous_fast8) where the CPU has AVX2. */
+static void continuous_sweep_bodies(rg_world *w, int32_t k0, int32_t k1)
 {
     collide_world *cw = &w->coll;
     const views_state *ns = &cw->views;
+    sweep_state *ss = &cw->sweep;
     body_store *b = &w->b;
-    int woke = 0;
 #if RG_AVX2_PATHS
     int wide = __builtin_cpu_supports("avx2");
 #endif
     for (int32_t k = k0; k < k1; k++) {
         int32_t i = ns->adense[k];
+        ss->stop[k] = -1;
 #if RG_AVX2_PATHS
         /* at the start of each block of eight */
         if (wide && (k - k0) % 8 == 0 && k1 - k >= 8) {
             int run = 1;
             for (int l = 1; l < 8; l++) run &= ns->adense[k + l] == i + l;
             if (run && continuous_fast8(w, k, i) == 0) {
+                for (int l = 1; l < 8; l++) ss->stop[k + l] = -1;
                 k += 7;
                 continue;
             }
@@ -284,7 +286,6 @@ static int continuous_sweep_bodies(rg_world *w, int asleep, int32_t k0, int32_t 
         sb.p1 = rg_v2(b->x[i], b->y[i]);
         sb.D = rg_v2_sub(sb.p1, sb.p0);
         sb.hf = rg_v2(b->hx[i], b->hy[i]);
-        sb.asleep = asleep;
         rg_real h = rg_min(sb.hf.x, sb.hf.y);
         rg_vec2 pushed = rg_v2(sb.D.x - b->dx[i], sb.D.y - b->dy[i]);
         if (!(sb.D.x * sb.D.x + sb.D.y * sb.D.y > RG_R(0.25) * h * h) &&
@@ -300,26 +301,18 @@ static int continuous_sweep_bodies(rg_world *w, int asleep, int32_t k0, int32_t 
             rg_vec2 at = rg_v2(sb.p0.x + sb.D.x * tb, sb.p0.y + sb.D.y * tb);
             b->x[i] = at.x;
             b->y[i] = at.y;
+            if (sb.sleeping) {
+                ss->stop[k] = sb.sbest;
+                ss->nx[k] = sb.nbest.x;
+                ss->ny[k] = sb.nbest.y;
+                break;
+            }
             rg_real vn = (b->vx[i] - sb.vbest.x) * sb.nbest.x + (b->vy[i] - sb.vbest.y) * sb.nbest.y;
-            if (vn < 0 && !asleep) {
+            if (vn < 0) {
                 b->vx[i] -= vn * sb.nbest.x;
                 b->vy[i] -= vn * sb.nbest.y;
-            } else if (vn < 0) {
-                /* a sleeping body at rest: the impulse that ends the approach of the two, P n
-                 * on i and -P n on it, once it is awake (its dense index moves with the wake) */
-                island_wake(w, sb.sbest);
-                woke = 1;
-                int32_t j = body_dense(w, sb.sbest);
-                rg_real ima = b->inv_mass[i], imb = b->inv_mass[j];
-                rg_real p = -vn / (ima + imb);
-                b->vx[i] += p * ima * sb.nbest.x;
-                b->vy[i] += p * ima * sb.nbest.y;
-                b->vx[j] -= p * imb * sb.nbest.x;
-                b->vy[j] -= p * imb * sb.nbest.y;
             }
-            /* the serial pass stops at a sleeping body (what is left of the motion would need
-             * the parallel pass again); the last leg stops where it meets */
-            if (asleep || leg == SWEEP_LEGS - 1) break;
+            if (leg == SWEEP_LEGS - 1) break;
             /* the rest of the step: the motion relative to the body met, less its part into
              * the surface, and the body met's own motion, from where it met */
             rg_real rest = sb.rest * (1 - sb.tmin);
@@ -336,13 +329,43 @@ static int continuous_sweep_bodies(rg_world *w, int asleep, int32_t k0, int32_t 
             b->y[i] = sb.p1.y;
         }
     }
+}
+
+/* On the stepping thread, in order: each body the sweep stopped at a sleeping one that it
+ * approaches hands it its momentum along the normal, as an inelastic impact of the two, once
+ * it is awake (its dense index moves with the wake).  Returns whether it woke one. */
+static int continuous_wake(rg_world *w, int32_t n)
+{
+    const views_state *ns = &w->coll.views;
+    const sweep_state *ss = &w->coll.sweep;
+    body_store *b = &w->b;
+    int woke = 0;
+    for (int32_t k = 0; k < n; k++) {
+        int32_t s = ss->stop[k];
+        if (s < 0) continue;
+        int32_t i = ns->adense[k], j = body_dense(w, s);
+        rg_vec2 nb = rg_v2(ss->nx[k], ss->ny[k]);
+        rg_real vn = (b->vx[i] - b->vx[j]) * nb.x + (b->vy[i] - b->vy[j]) * nb.y;
+        if (!(vn < 0)) continue;
+        if (j >= b->n_active) {
+            island_wake(w, s);
+            woke = 1;
+            j = body_dense(w, s);
+        }
+        rg_real ima = b->inv_mass[i], imb = b->inv_mass[j];
+        rg_real p = -vn / (ima + imb);
+        b->vx[i] += p * ima * nb.x;
+        b->vy[i] += p * ima * nb.y;
+        b->vx[j] -= p * imb * nb.x;
+        b->vy[j] -= p * imb * nb.y;
+    }
     return woke;
 }
 
 static void continuous_sweep_range(int32_t k0, int32_t k1, int32_t worker, void *context)
 {
     (void)worker;
-    continuous_sweep_bodies(((const sweep_task *)context)->w, 0, k0, k1);
+    continuous_sweep_bodies(((const sweep_task *)context)->w, k0, k1);
 }
 
 /* Bodies per sweep range (most are slow and skip at once). */
@@ -355,7 +378,7 @@ int continuous_sweep(rg_world *w, const collide_step *x)
     /* the bodies awake at the start, and those woken since (views_woken) */
     int32_t n = x->woke ? w->coll.bp.n_active : x->na;
     task_for(w, continuous_sweep_range, n, SWEEP_RANGE, &t);
-    /* against sleeping bodies, on this thread: it wakes what it meets */
+    /* the sleeping bodies met, on this thread: it wakes them */
     if (w->b.n_moving == w->b.n_active) return 0;
-    return continuous_sweep_bodies(w, 1, 0, n);
+    return continuous_wake(w, n);
 }

@@ -17,11 +17,14 @@
  * correction) exceeds half its size, or that the solve moved more than the slop off its free
  * motion (an impact it took: the pairs the step did not solve were judged by that free
  * motion, and the fat box holds it), is swept from its start to where the step left it
- * against the static and kinematic shapes it has contacts with, and, where it ended out of
- * its fat box, those on its path it has none with (the pair search never looked there);
- * then, on the stepping thread, against sleeping shapes.  If the path crosses one, the body
- * stops just short of the first impact and loses its velocity into it; a sleeping body it
- * stops at wakes and takes that momentum (an inelastic impact of the two).  The solver's
+ * against the static, kinematic and sleeping shapes it has contacts with, and, where it
+ * ended out of its fat box, those on its path it has none with (the pair search never
+ * looked there).  If the path crosses one, the body stops just short of the first impact and
+ * loses its velocity into it; at a static or kinematic shape the rest of its motion, relative
+ * to that shape and less its part into the surface, goes on along it with the shape's own
+ * motion (a kinematic paddle carries what it meets), swept again, up to 4 legs; a sleeping
+ * body ends the sweep and, on the stepping thread, wakes and takes the momentum (an
+ * inelastic impact of the two).  The solver's
  * time-of-impact rows normally make this a no-op; it catches what an unconverged solve (a
  * light body crushed by a far heavier one) would push through, and a body an impact drives
  * into a shape it had no row with (a ball hit toward a thin wall, or down onto a one-way

@@ -241,6 +241,13 @@ typedef struct resolve_state {
     int64_t banded;           /* solves whose colours ran in bands (test_bands.c reads it) */
 } resolve_state;
 
+/* The post-solve sweep's stops at sleeping bodies (continuous.c), k: the slot of the one a
+ * body stopped at (-1: none) and the normal from it toward the body. */
+typedef struct sweep_state {
+    int32_t *stop;
+    rg_real *nx, *ny;
+} sweep_state;
+
 typedef struct collide_world {
     broadphase bp;
     contact_store contacts;
@@ -251,6 +258,7 @@ typedef struct collide_world {
     pairs_state pairs;
     island_state island;
     resolve_state resolve;
+    sweep_state sweep;
     void *scratch;
     size_t scratch_size;
     int32_t scap;
