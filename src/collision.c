@@ -85,12 +85,13 @@ static int graze_circle(rg_vec2 q, rg_real rad, rg_vec2 hb, rg_vec2 rc, rg_real 
     if (!(rg_fabs(q.x) > hb.x && rg_fabs(q.y) > hb.y)) return 0; /* not at a corner */
     rg_real dx = rg_fabs(q.x) - hb.x, dy = rg_fabs(q.y) - hb.y;
     if (rg_v2_len(rg_v2(dx, dy)) - rad > tol + rg_v2_len(rc)) return 0; /* the corner is out of reach */
-    if (rg_fabs(dy - rad) <= tol && q.x * rc.x < 0) {
+    int y_can = rg_fabs(dy - rad) <= tol && q.x * rc.x < 0, x_can = rg_fabs(dx - rad) <= tol && q.y * rc.y < 0;
+    if (y_can && (!x_can || coll_graze_y(rad - dx, rad - dy, rc))) {
         *n_out = rg_v2(0, -coll_sign(q.y));
         *depth = rad - dy;
         return 1;
     }
-    if (rg_fabs(dx - rad) <= tol && q.y * rc.y < 0) {
+    if (x_can) {
         *n_out = rg_v2(-coll_sign(q.x), 0);
         *depth = rad - dx;
         return 1;

@@ -67,18 +67,29 @@ static inline void coll_boxes(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 hb, co
     if (oy != oy) m->depth = oy; /* NaN in, NaN out: never touching */
 }
 
+/* Which face two grazing candidates give (coll_graze_boxes, the circle's): overlapping on
+ * both axes (by ox and oy), the one of least penetration; else the one along the motion r.
+ * (A box pressed against a tile wall and sliding up it across a seam grazes the wall; one
+ * resting across a floor seam, the floor.)  1: the face across y (normal along y). */
+static inline int coll_graze_y(rg_real ox, rg_real oy, rg_vec2 r)
+{
+    return ox > 0 && oy > 0 ? ox >= oy : rg_fabs(r.x) >= rg_fabs(r.y);
+}
+
 /* Box-box grazing (coll_contact): separation along one axis within tol of zero while the
  * other axis overlaps, or closes by enough to overlap within the step (its gap at most tol
- * plus the motion r along it): the contact is along the touching axis.  (A gap the step
- * cannot close would leave the face's plane holding a box beside the other, apart from it.)
- * 0 when the boxes do not graze (*m untouched). */
+ * plus the motion r along it): the contact is along the touching axis (both: coll_graze_y).
+ * (A gap the step cannot close would leave the face's plane holding a box beside the other,
+ * apart from it.)  0 when the boxes do not graze (*m untouched). */
 static inline int coll_graze_boxes(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 hb, rg_vec2 r, rg_real tol,
                                    coll_manifold *m)
 {
     rg_vec2 d = rg_v2_sub(pb, pa);
     rg_real ox = (ha.x + hb.x) - rg_fabs(d.x), oy = (ha.y + hb.y) - rg_fabs(d.y);
-    int y_face = rg_fabs(oy) <= tol && (ox > 0 || (d.x * r.x < 0 && -ox <= tol + rg_fabs(r.x)));
-    int x_face = !y_face && rg_fabs(ox) <= tol && (oy > 0 || (d.y * r.y < 0 && -oy <= tol + rg_fabs(r.y)));
+    int y_can = rg_fabs(oy) <= tol && (ox > 0 || (d.x * r.x < 0 && -ox <= tol + rg_fabs(r.x)));
+    int x_can = rg_fabs(ox) <= tol && (oy > 0 || (d.y * r.y < 0 && -oy <= tol + rg_fabs(r.y)));
+    int y_face = y_can && (!x_can || coll_graze_y(ox, oy, r));
+    int x_face = x_can && !y_face;
     if (!y_face && !x_face) return 0;
     if (y_face) {
         rg_real sy = coll_sign(d.y);
@@ -92,6 +103,28 @@ static inline int coll_graze_boxes(rg_vec2 pa, rg_vec2 ha, rg_vec2 pb, rg_vec2 h
         m->point = rg_v2(pa.x + sx * ha.x, pb.y - coll_sign(d.y) * rg_min(hb.y, rg_fabs(d.y)));
     }
     return 1;
+}
+
+/* A swept hit blocks when the motion goes into the surface by more than this fraction of its
+ * length (rounding of a motion along a surface does not stop it). */
+#define COLL_INTO RG_R(1e-5)
+
+/* The normal a swept hit on box B (centre c, half extents hb) really has, the moving shape
+ * (a box, or a circle: half extents r, r) at pm when it meets B moving by r.  A shape whose
+ * side lies within tol of one of B's face planes, outside B, when it meets B grazes that face
+ * (a tile seam, a corner met tangentially, a step lower than the tolerance): the face's
+ * normal replaces the sweep's n, which at a corner is tilted by rounding or by the tolerance.
+ * When it lies within tol of two faces (corner to corner) the face along the motion r wins.
+ * (The mover's legs and the step's post-solve sweep.) */
+static inline rg_vec2 coll_graze_normal(rg_vec2 c, rg_vec2 hb, rg_vec2 pm, rg_vec2 hm, rg_vec2 r, rg_vec2 n,
+                                        rg_real tol)
+{
+    int top = pm.y - hm.y >= c.y + hb.y - tol, bottom = pm.y + hm.y <= c.y - hb.y + tol;
+    int right = pm.x - hm.x >= c.x + hb.x - tol, left = pm.x + hm.x <= c.x - hb.x + tol;
+    int vertical = top || bottom, horizontal = right || left;
+    if (vertical && (!horizontal || rg_fabs(r.x) >= rg_fabs(r.y))) return rg_v2(0, top ? RG_R(1) : RG_R(-1));
+    if (horizontal) return rg_v2(right ? RG_R(1) : RG_R(-1), 0);
+    return n;
 }
 
 /* coll_contact's manifold of two boxes. */

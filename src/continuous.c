@@ -146,6 +146,7 @@ typedef struct sweep_body {
     int32_t i, s; /* dense index and slot */
     rg_vec2 p0, p1, D, hf;
     rg_real rest;
+    rg_real tol;  /* grazing tolerance (coll_graze_normal), m */
     rg_real tmin;
     rg_vec2 nbest, vbest, dbest;
     int32_t sbest;
@@ -176,6 +177,14 @@ static void continuous_meet(sweep_body *sb, int32_t j)
     rg_vec2 rel = rg_v2_sub(sb->D, dob);
     if (!coll_sweep(b->shape[j], o0, ho, b->shape[i], sb->p0, sb->hf, rel, &t, &hit)) return;
     if (!(t < sb->tmin)) return;
+    rg_vec2 n = hit.normal;
+    if (t > 0 && b->shape[j] == RG_SHAPE_AABB) {
+        /* flush with a face of box j where they meet and moving along it: it grazes the face
+         * (a tile seam), as the mover's legs do */
+        rg_vec2 cj = rg_v2_add(o0, rg_v2_scale(dob, t)), pi = rg_v2_add(sb->p0, rg_v2_scale(sb->D, t));
+        n = coll_graze_normal(cj, ho, pi, sb->hf, rel, n, sb->tol);
+        if (!(rg_v2_dot(rel, n) < -COLL_INTO * rg_v2_len(rel))) return;
+    }
     /* touching or overlapping j at the start (t = 0, hit.normal the normal of least
      * penetration): met only where the motion goes into j by more than the slop (a body
      * flush against a thin wall that the solve pushes through it), not where it leaves j or
@@ -183,15 +192,13 @@ static void continuous_meet(sweep_body *sb, int32_t j)
     if (!(t > 0) && !(rg_v2_dot(rel, hit.normal) < -w->coll.slop)) return;
     /* a one-way shape blocks only against its normal (hit.normal: from j toward i); a two-way
      * one always */
-    if (!continuous_one_way_blocks(b, j, hit.normal.x, hit.normal.y) ||
-        !continuous_one_way_blocks(b, i, -hit.normal.x, -hit.normal.y))
-        return;
+    if (!continuous_one_way_blocks(b, j, n.x, n.y) || !continuous_one_way_blocks(b, i, -n.x, -n.y)) return;
     coll_manifold_of(b->shape[j], o1, ho, b->shape[i], sb->p1, sb->hf, &end);
     /* resting at the end, on the side it hit (a body through to the far side, just touching
      * it there, is not resting) */
-    if (end.depth >= 0 && end.depth <= w->coll.slop && rg_v2_dot(end.normal, hit.normal) > 0) return;
+    if (end.depth >= 0 && end.depth <= w->coll.slop && rg_v2_dot(end.normal, n) > 0) return;
     sb->tmin = t;
-    sb->nbest = hit.normal;
+    sb->nbest = n;
     sb->vbest = active ? rg_v2(b->vx[j], b->vy[j]) : rg_v2(0, 0);
     sb->dbest = dstep;
     sb->sbest = b->slot[j];
@@ -286,6 +293,7 @@ static void continuous_sweep_bodies(rg_world *w, int32_t k0, int32_t k1)
         sb.p1 = rg_v2(b->x[i], b->y[i]);
         sb.D = rg_v2_sub(sb.p1, sb.p0);
         sb.hf = rg_v2(b->hx[i], b->hy[i]);
+        sb.tol = cw->slop + 64 * RG_EPSILON * (rg_fabs(sb.p0.x) + rg_fabs(sb.p0.y) + sb.hf.x + sb.hf.y);
         rg_real h = rg_min(sb.hf.x, sb.hf.y);
         rg_vec2 pushed = rg_v2(sb.D.x - b->dx[i], sb.D.y - b->dy[i]);
         if (!(sb.D.x * sb.D.x + sb.D.y * sb.D.y > RG_R(0.25) * h * h) &&

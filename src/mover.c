@@ -10,9 +10,6 @@
 #include "vec2.h"
 
 #define MOVER_LEGS 8
-/* A hit blocks when the motion goes into the surface by more than this fraction of its
- * length (rounding of a motion along a surface does not stop it). */
-#define MOVER_INTO RG_R(1e-5)
 
 typedef struct mover {
     const rg_world *w;
@@ -31,22 +28,6 @@ typedef struct mover {
     rg_ray_hit *out;
     int32_t cap, count;
 } mover;
-
-/* The normal a hit on box B (centre c, half extents hb) really has.  A shape whose side lies
- * within tol of one of B's face planes, outside B, when it meets B grazes that face (a tile
- * seam, a corner met tangentially, a step lower than the tolerance): the face's normal
- * replaces the sweep's, which at a corner is tilted by rounding or by the tolerance.  When it
- * lies within tol of two faces (corner to corner) the face along the motion r wins. */
-static rg_vec2 mover_graze(rg_vec2 c, rg_vec2 hb, rg_vec2 pm, rg_vec2 hm, rg_vec2 r, rg_vec2 n,
-                           rg_real tol)
-{
-    int top = pm.y - hm.y >= c.y + hb.y - tol, bottom = pm.y + hm.y <= c.y - hb.y + tol;
-    int right = pm.x - hm.x >= c.x + hb.x - tol, left = pm.x + hm.x <= c.x - hb.x + tol;
-    int vertical = top || bottom, horizontal = right || left;
-    if (vertical && (!horizontal || rg_fabs(r.x) >= rg_fabs(r.y))) return rg_v2(0, top ? RG_R(1) : RG_R(-1));
-    if (horizontal) return rg_v2(right ? RG_R(1) : RG_R(-1), 0);
-    return n;
-}
 
 /* Whether a one-way body i blocks a hit whose normal n points from i toward the mover. */
 static int mover_one_way_blocks(const body_store *b, int32_t i, rg_vec2 n, rg_real t)
@@ -124,9 +105,9 @@ static rg_real mover_visit(void *p, int32_t slot, rg_real max_t)
     if (!query_sweep(b->shape[i], c, hb, q->kind, q->p, q->h, q->r, &t, &m)) return max_t;
     rg_vec2 n = m.normal;
     if (b->shape[i] == RG_SHAPE_AABB && t > 0)
-        n = mover_graze(c, hb, rg_v2(q->p.x + q->r.x * t, q->p.y + q->r.y * t), q->h, q->r, n, q->tol);
+        n = coll_graze_normal(c, hb, rg_v2(q->p.x + q->r.x * t, q->p.y + q->r.y * t), q->h, q->r, n, q->tol);
     rg_real into = q->r.x * n.x + q->r.y * n.y, len = rg_v2_len(q->r);
-    if (!(into < -MOVER_INTO * len)) return max_t; /* along or away from it */
+    if (!(into < -COLL_INTO * len)) return max_t; /* along or away from it */
     rg_ray_hit h;
     h.body = pool_handle(&q->w->body_pool, slot);
     h.point = m.point;

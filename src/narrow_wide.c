@@ -102,11 +102,16 @@ AVX2_INLINE void narrow_wide_boxes(const narrow_wide_body *A, const narrow_wide_
     __m256 y_closes = NARROW_WIDE_AND(NARROW_WIDE_CMP(_mm256_mul_ps(dy, ry), zero, _CMP_LT_OQ),
                                       NARROW_WIDE_CMP(narrow_wide_neg(oy), _mm256_add_ps(tol, narrow_wide_abs(ry)),
                                                       _CMP_LE_OQ));
-    __m256 y_face = NARROW_WIDE_AND(NARROW_WIDE_CMP(narrow_wide_abs(oy), tol, _CMP_LE_OQ),
-                                    NARROW_WIDE_OR(NARROW_WIDE_CMP(ox, zero, _CMP_GT_OQ), x_closes));
-    __m256 x_face = _mm256_andnot_ps(
-        y_face, NARROW_WIDE_AND(NARROW_WIDE_CMP(narrow_wide_abs(ox), tol, _CMP_LE_OQ),
-                                NARROW_WIDE_OR(NARROW_WIDE_CMP(oy, zero, _CMP_GT_OQ), y_closes)));
+    __m256 y_can = NARROW_WIDE_AND(NARROW_WIDE_CMP(narrow_wide_abs(oy), tol, _CMP_LE_OQ),
+                                   NARROW_WIDE_OR(NARROW_WIDE_CMP(ox, zero, _CMP_GT_OQ), x_closes));
+    __m256 x_can = NARROW_WIDE_AND(NARROW_WIDE_CMP(narrow_wide_abs(ox), tol, _CMP_LE_OQ),
+                                   NARROW_WIDE_OR(NARROW_WIDE_CMP(oy, zero, _CMP_GT_OQ), y_closes));
+    /* coll_graze_y: both overlapping, the least penetration; else along the motion */
+    __m256 both_over = NARROW_WIDE_AND(NARROW_WIDE_CMP(ox, zero, _CMP_GT_OQ), NARROW_WIDE_CMP(oy, zero, _CMP_GT_OQ));
+    __m256 prefer_y = narrow_wide_pick(both_over, NARROW_WIDE_CMP(ox, oy, _CMP_GE_OQ),
+                                       NARROW_WIDE_CMP(narrow_wide_abs(rx), narrow_wide_abs(ry), _CMP_GE_OQ));
+    __m256 y_face = _mm256_andnot_ps(_mm256_andnot_ps(prefer_y, x_can), y_can);
+    __m256 x_face = _mm256_andnot_ps(y_face, x_can);
     __m256 yf_px = _mm256_sub_ps(B->sx, _mm256_mul_ps(sx, _mm256_min_ps(B->hx, adx)));
     __m256 yf_py = _mm256_add_ps(A->sy, _mm256_mul_ps(sy, A->hy));
     __m256 xf_px = _mm256_add_ps(A->sx, _mm256_mul_ps(sx, A->hx));
