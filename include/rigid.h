@@ -567,7 +567,9 @@ RG_API rg_status rg_body_pass_through(rg_world *world, rg_body body, rg_body oth
    RG_ERR_LOCKED and change nothing; getters and queries work. NULL removes the hook.
    "Touching" here: the narrowphase would solve the pair or find it touching this step.  A
    skipped pair is neither solved nor touching in this step (no begin event, no grounded
-   flag), exactly as if it were apart.  The calls come in a fixed order (the order of the
+   flag), exactly as if it were apart, and the post-solve sweep lets its bodies through each
+   other (a body an impact sends into a shape it has no pair with, outside the reach of its
+   step's free motion, meets that shape in the sweep unasked).  The calls come in a fixed order (the order of the
    awake contacts, which the same history always gives), a < b as in events, separation
    at the start of the step (< 0 when overlapping).  rg_world_destroy from inside is a
    no-op.  Pairs of sleeping bodies are not stepped, so not asked: after installing a hook,

@@ -236,7 +236,7 @@ static void continuous_leg(sweep_body *sb, int left)
     sb->sleeping = 0;
     for (int32_t id = b->chead[sb->i] - 1; id >= 0; id = contact_next(&cs->c[id], sb->s)) {
         const contact *c = &cs->c[id];
-        if (c->flags & (CT_SENSOR | CT_PASS)) continue;
+        if (c->flags & (CT_SENSOR | CT_PASS | CT_SKIPPED)) continue;
         int32_t j = body_dense(w, contact_other(c, sb->s));
         if (continuous_met(b, j)) continuous_meet(sb, j);
     }

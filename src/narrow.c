@@ -107,7 +107,10 @@ static int narrow_skip(rg_world *w, contact *c, int32_t ia, int32_t ib, const cb
         int32_t keep = w->pre_solve(pool_handle(&w->body_pool, c->sa), pool_handle(&w->body_pool, c->sb),
                                     rg_v2(c->nx, c->ny), s0, w->pre_solve_user);
         w->locked = 0;
-        if (!keep) return 1;
+        if (!keep) {
+            c->flags |= CT_SKIPPED; /* the sweep lets it pass too */
+            return 1;
+        }
     }
     return 0;
 }
@@ -668,6 +671,12 @@ void narrow_press(rg_world *w, collide_step *x)
         /* solved, so its islands are joined already, and its bodies awake */
         narrow_commit(w, id, ia, ib, x, ND_BEGIN | ND_NOW | narrow_grounded(w, c, A, B), NULL, 0, NULL);
     }
+}
+
+void narrow_unskip(rg_world *w)
+{
+    contact_store *cs = &w->coll.contacts;
+    for (int32_t k = 0; k < cs->n_awake; k++) cs->c[cs->awake[k]].flags &= ~CT_SKIPPED;
 }
 
 void narrow_run(rg_world *w, collide_step *x)

@@ -34,5 +34,7 @@ void narrow_run(struct rg_world *w, collide_step *x);
  * step ends with them in contact: their begin events and grounded flags come now, not a step
  * late. */
 void narrow_press(struct rg_world *w, collide_step *x);
+/* After the post-solve sweep of a step with a pre-solve hook: clears the pairs' CT_SKIPPED. */
+void narrow_unskip(struct rg_world *w);
 
 #endif

@@ -133,6 +133,8 @@ typedef struct spring_store {
 #define CT_PASS    32u  /* passing: neither solved nor touching until a step ends apart */
 #define CT_ACTIVE  64u  /* scratch within the narrowphase: the pair meets within the step (narrow.c) */
 #define CT_PRESSED 128u /* scratch from the solve's keep pass to narrow_press: apart, pressed together */
+#define CT_SKIPPED 256u /* scratch from the narrowphase to the post-solve sweep: the pre-solve hook
+                         * skipped the pair this step (narrow_unskip clears it) */
 /* A pair is solved when its free motion over the step leaves it less than SPECULATIVE * slop
  * apart (narrow.c); a body the solve moves further than that off its free motion may meet a
  * pair that was not (continuous.c's sweep). */

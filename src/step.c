@@ -40,6 +40,7 @@ static void step_collide(rg_world *w, rg_real dt)
     if (x.pressed > 0) narrow_press(w, &x);
     STEP_PROF(3);
     x.woke |= continuous_sweep(w, &x);
+    if (w->pre_solve != NULL) narrow_unskip(w);
     sense_run(w, &x);
     pairs_refit(w, &x, dt);
     speed_limits_apply(w); /* where the step ends: on what the collisions left */
