@@ -391,7 +391,8 @@ RG_API rg_status rg_body_set_friction(rg_world *world, rg_body body, rg_real mu)
 RG_API rg_status rg_body_get_friction(const rg_world *world, rg_body body, rg_real *out);
 
 /* A sensor (is_sensor 1; 0 makes it solid again) reports begin/end contacts (with sensor = 1)
- * for the shapes it overlaps where each step leaves them, but never pushes nor is pushed.
+ * for the shapes it overlaps where each step leaves them, or that crossed it within the
+ * step (rg_world_get_contact_events), but never pushes nor is pushed.
  * Sensors see every shape their filter admits, other sensors included.  Changing it ends
  * the body's current contacts. */
 RG_API rg_status rg_body_set_sensor(rg_world *world, rg_body body, int32_t is_sensor);
@@ -500,7 +501,10 @@ typedef struct rg_contact_event {
  * the slop apart) or the solve presses it together (a body driven onto another by a third);
  * a sensor pair is tested on the shapes where the step leaves them, so a body that a wall
  * stops short of a sensor behind it never touches it, and one knocked into a sensor touches
- * it in that step.  A pair exists once the bodies' fat boxes meet (each its box grown by 2%
+ * it in that step; and one whose straight path from where the step took it to where it left
+ * it crossed the sensor (a bullet through a thin trigger, moving more than half the smaller
+ * shape relative to it) touches it for that step, where it entered, and ends with the next.
+ * A pair exists once the bodies' fat boxes meet (each its box grown by 2%
  * of its size, at least the slop, and by the path of its next four steps): a body that an
  * impact sends out of its fat box into a shape it was not near touches it from the next
  * step. */

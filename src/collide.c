@@ -96,7 +96,7 @@ void collide_step_begin(rg_world *w, collide_step *x, rg_real dt)
 {
     collide_world *cw = &w->coll;
     cw->resolve.pv_valid = 0;
-    x->n = w->b.n_active;
+    x->n = x->nv = w->b.n_active;
     x->na = cw->bp.n_active;
     x->nc = 0;
     x->ns = x->n;

@@ -667,7 +667,12 @@ void narrow_press(rg_world *w, collide_step *x)
         c->speed = rg_max(-c->vn0, 0);
         int32_t ia = body_dense(w, c->sa), ib = body_dense(w, c->sb);
         cbody rest_a, rest_b;
-        const cbody *A = views_of(w, ia, x->n, &rest_a), *B = views_of(w, ib, x->n, &rest_b);
+        const cbody *A = views_of(w, ia, x->nv, &rest_a), *B = views_of(w, ib, x->nv, &rest_b);
+        /* a body the step woke has no view (x->nv, not the restage's x->n): awake now, it
+         * feels its gravity */
+        const body_store *b = &w->b;
+        if (ia >= x->nv) rest_a.gs = b->type[ia] == RG_BODY_DYNAMIC ? b->gscale[ia] : 0;
+        if (ib >= x->nv) rest_b.gs = b->type[ib] == RG_BODY_DYNAMIC ? b->gscale[ib] : 0;
         /* solved, so its islands are joined already, and its bodies awake */
         narrow_commit(w, id, ia, ib, x, ND_BEGIN | ND_NOW | narrow_grounded(w, c, A, B), NULL, 0, NULL);
     }

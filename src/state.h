@@ -279,7 +279,9 @@ typedef struct collide_world {
 /* What one step's collide stage hands from module to module: solver rows staged by the
  * narrowphase in contact order with their sort keys, and what it woke. */
 typedef struct collide_step {
-    int32_t n;          /* active bodies when the stage started (those with a body view) */
+    int32_t n;          /* active bodies when the stage started (those with a body view);
+                         * after a restage (woke), the active bodies then */
+    int32_t nv;         /* those with a body view: n when the stage started (views_of) */
     int32_t na;         /* awake shaped bodies then (the island list's range) */
     int32_t nc;         /* staged rows */
     int32_t ns;         /* solver bodies after the ground: the awake bodies, 1..n */
