@@ -15,8 +15,8 @@ static void sense_manifold(const body_store *b, int32_t ia, int32_t ib, coll_man
 }
 
 /* Whether dense bodies ia and ib's shapes, apart where the step leaves them, met within it:
- * the straight path of their relative motion, from their views' starts (n: the step's awake
- * count) to where they are, crosses the other shape (*m: where it enters).  Only where that
+ * the straight path of their relative motion, from their views' starts (n: the bodies with
+ * a view, x->nv) to where they are, crosses the other shape (*m: where it enters).  Only where that
  * motion exceeds half the smaller shape: a slower pair that meets within a step ends it
  * touching, but at a corner grazed in passing. */
 static int sense_crossed(const rg_world *w, int32_t ia, int32_t ib, int32_t n, coll_manifold *m)
