@@ -504,10 +504,9 @@ typedef struct rg_contact_event {
  * it in that step; and one whose straight path from where the step took it to where it left
  * it crossed the sensor (a bullet through a thin trigger, moving more than half the smaller
  * shape relative to it) touches it for that step, where it entered, and ends with the next.
- * A pair exists once the bodies' fat boxes meet (each its box grown by 2%
- * of its size, at least the slop, and by the path of its next four steps): a body that an
- * impact sends out of its fat box into a shape it was not near touches it from the next
- * step. */
+ * A pair exists once the bodies' fat boxes meet (each its box grown by 2% of its size, at
+ * least the slop, and by the path of its next four steps): a body that an impact sends out
+ * of its fat box into a shape it was not near touches it from the next step. */
 RG_API int32_t rg_world_get_contact_events(const rg_world *world, rg_contact_event *out,
                                            int32_t capacity);
 
@@ -573,8 +572,9 @@ RG_API rg_status rg_body_pass_through(rg_world *world, rg_body body, rg_body oth
    skipped pair is neither solved nor touching in this step (no begin event, no grounded
    flag), exactly as if it were apart, and the post-solve sweep lets its bodies through each
    other (a body an impact sends into a shape it has no pair with, outside the reach of its
-   step's free motion, meets that shape in the sweep unasked).  The calls come in a fixed order (the order of the
-   awake contacts, which the same history always gives), a < b as in events, separation
+   step's free motion, meets that shape in the sweep unasked).  The calls come in a fixed
+   order (the order of the awake contacts, which the same history always gives), a < b as
+   in events, separation
    at the start of the step (< 0 when overlapping).  rg_world_destroy from inside is a
    no-op.  Pairs of sleeping bodies are not stepped, so not asked: after installing a hook,
    or where its answer for a pair changes with the game's own state, wake one of the pair's

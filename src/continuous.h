@@ -24,11 +24,10 @@
  * to that shape and less its part into the surface, goes on along it with the shape's own
  * motion (a kinematic paddle carries what it meets), swept again, up to 4 legs; a sleeping
  * body ends the sweep and, on the stepping thread, wakes and takes the momentum (an
- * inelastic impact of the two).  The solver's
- * time-of-impact rows normally make this a no-op; it catches what an unconverged solve (a
- * light body crushed by a far heavier one) would push through, and a body an impact drives
- * into a shape it had no row with (a ball hit toward a thin wall, or down onto a one-way
- * platform it hovered over). */
+ * inelastic impact of the two).  The solver's time-of-impact rows normally make this a
+ * no-op; it catches what an unconverged solve (a light body crushed by a far heavier one)
+ * would push through, and a body an impact drives into a shape it had no row with (a ball
+ * hit toward a thin wall, or down onto a one-way platform it hovered over). */
 #ifndef RG_CONTINUOUS_H
 #define RG_CONTINUOUS_H
 

@@ -296,7 +296,8 @@ static void test_bodies_thrown_among_sleeping_piles_never_end_inside_a_static(vo
             r[k] = 0.05 + 0.2 * next_uniform(&s);
             round[k] = next_uniform(&s) < 0.5;
             double x = -3.5 + 7 * next_uniform(&s), y = -3.5 + 7 * next_uniform(&s), m = 0.2 + 2 * next_uniform(&s);
-            b[k] = round[k] ? circle_body(w, RG_BODY_DYNAMIC, m, x, y, r[k]) : box_body(w, RG_BODY_DYNAMIC, m, x, y, r[k], r[k]);
+            b[k] = round[k] ? circle_body(w, RG_BODY_DYNAMIC, m, x, y, r[k])
+                            : box_body(w, RG_BODY_DYNAMIC, m, x, y, r[k], r[k]);
         }
         for (int i = 0; i < 300; i++) assert_ok(rg_world_step(w, 1.0f / 60));
         for (int k = 0, throws = 3 + (int)(next_uniform(&s) * 20); k < n && throws > 0; k++) {
@@ -311,7 +312,8 @@ static void test_bodies_thrown_among_sleeping_piles_never_end_inside_a_static(vo
             for (int k = 0; k < n; k++) {
                 rg_vec2 p = pos_of(w, b[k]);
                 d0[k] = -1;
-                for (int q = 0; q < ns; q++) d0[k] = fmax(d0[k], depth_in_box(p, r[k], round[k], st[q][0], st[q][1], st[q][2], st[q][3]));
+                for (int q = 0; q < ns; q++)
+                    d0[k] = fmax(d0[k], depth_in_box(p, r[k], round[k], st[q][0], st[q][1], st[q][2], st[q][3]));
             }
             assert_ok(rg_world_step(w, (rg_real)dt));
             for (int k = 0; k < n; k++) {
@@ -321,7 +323,8 @@ static void test_bodies_thrown_among_sleeping_piles_never_end_inside_a_static(vo
                 for (int q = 0; q < ns; q++) {
                     double d = depth_in_box(p, r[k], round[k], st[q][0], st[q][1], st[q][2], st[q][3]);
                     if (d > 0.02) {
-                        print_message("scene %d, step %d (dt %.3f s): body %d %.3f m deep in static %d\n", scene, i, dt, k, d, q);
+                        print_message("scene %d, step %d (dt %.3f s): body %d %.3f m deep in static %d\n", scene, i,
+                                      dt, k, d, q);
                         deep++;
                     }
                 }

@@ -577,7 +577,8 @@ static void test_fast_bodies_slide_along_tiled_floors_ceilings_and_walls(void **
         double r = 0.05 + 0.3 * next_uniform(&s), speed = 5 + 195 * next_uniform(&s), u0 = -95 + next_uniform(&s);
         int round = next_uniform(&s) < 0.5;
         double bx = along_x ? u0 : -r * in, by = along_x ? -r * in : u0;
-        rg_body b = round ? circle_body(w, RG_BODY_DYNAMIC, 1, bx, by, r) : box_body(w, RG_BODY_DYNAMIC, 1, bx, by, r, r);
+        rg_body b = round ? circle_body(w, RG_BODY_DYNAMIC, 1, bx, by, r)
+                          : box_body(w, RG_BODY_DYNAMIC, 1, bx, by, r, r);
         assert_ok(rg_body_set_friction(w, b, 0));
         step_n(w, 30, DT);
         rg_real v0 = (rg_real)speed;
@@ -590,8 +591,8 @@ static void test_fast_bodies_slide_along_tiled_floors_ceilings_and_walls(void **
             if (u > 95) break;
             if (fabs(v - (double)v0) > 1e-4 * (double)v0 || fabs(off) > 0.005) {
                 print_message("scene %d (side %d, %s of %.2f m, tiles %.2f m, %.1f m/s, dt %.4f s), step %d: "
-                              "speed %.9g (%.3g off), %.4f m off the row\n", scene, side, round ? "circle" : "box", r, tw,
-                              speed, dt, i, v, v - (double)v0, off);
+                              "speed %.9g (%.3g off), %.4f m off the row\n", scene, side,
+                              round ? "circle" : "box", r, tw, speed, dt, i, v, v - (double)v0, off);
                 snagged++;
                 break;
             }

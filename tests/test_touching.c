@@ -1,8 +1,9 @@
 /* test_touching.c: what touching means after a step.  A sensor touches where the step leaves
  * the shapes (a wall that stops a body short of a sensor behind it gives no event; a body
- * knocked into a sensor touches it in that step), or that cross it within the step; a pair the solve presses together touches
- * in that step; and in random scenes with every kind of change between steps, the events'
- * ledger, the contact lists and the touching count agree. */
+ * knocked into a sensor touches it in that step), or a body that crosses it within the step;
+ * a pair the solve presses together touches in that step; and in random scenes with every
+ * kind of change between steps, the events' ledger, the contact lists and the touching count
+ * agree. */
 #include "random_scene.h"
 
 #define SLOP 0.005 /* the default contact slop (rg_world_get_contact_tuning) */
@@ -41,8 +42,9 @@ static void test_a_wall_stops_a_ball_short_of_a_sensor_behind_it_and_no_event_co
  * crosses the sensor (the ball's left edge starts it short of the sensor's far face and its
  * right edge ends it past the near face), with the normal along the path, whether or not the
  * ball ends that step inside; the pair touches after it, and it ends in a step that leaves
- * the ball past the sensor (after a crossing, the next).  (Until 2026-12-07 a sensor touched only the shapes where each step left them:
- * from 16 m/s the ball crossed it unseen at some phases.) */
+ * the ball past the sensor (after a crossing, the next).  (Until 2026-12-07 a sensor touched
+ * only the shapes where each step left them: from 16 m/s the ball crossed it unseen at some
+ * phases.) */
 static void test_a_body_crossing_a_thin_sensor_within_a_step_touches_it_for_that_step(void **state)
 {
     (void)state;
