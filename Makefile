@@ -7,6 +7,7 @@
 #                        (CC=clang for clang's; each compiler builds in its own folder)
 #   make fuzz            the libFuzzer harnesses of tests/fuzz, FUZZ_SECONDS each (clang)
 #   make tsan            the threaded tests under ThreadSanitizer (clang)
+#   make test-i386       the C tests built for 32-bit x86, run under qemu-i386
 #   make install PREFIX=/usr/local   (and make uninstall; DESTDIR for staging)
 REAL ?= float
 PREFIX ?= /usr/local
@@ -29,10 +30,17 @@ endif
 B ?= $(DEFAULT_B)
 
 OPT ?= -O2
+# 32-bit x86 compilers do float arithmetic on the x87 by default, keeping excess precision
+# (FLT_EVAL_METHOD 2): other bits than every other machine's, and decisions made on exact
+# comparisons (a graze, a seam) go otherwise.  SSE2 arithmetic rounds each operation as
+# x86-64, aarch64 and the browser do (src/vec2.h refuses a build without it).
+X87 := $(shell $(CC) -dM -E -x c /dev/null 2>/dev/null | grep -q '__i386__' && \
+         ! $(CC) -dM -E -x c /dev/null 2>/dev/null | grep -q '__SSE2_MATH__' && echo yes)
+FPMATH := $(if $(X87),-msse2 -mfpmath=sse)
 WARN := -Wall -Wextra -Wpedantic -Werror -Wshadow -Wundef -Wwrite-strings \
         -Wmissing-prototypes -Wstrict-prototypes -Wdouble-promotion -Wcast-qual \
         -Wpointer-arith -Wvla
-CFLAGS := -std=c99 $(OPT) -ffp-contract=off -fPIC -fvisibility=hidden $(WARN) $(REAL_FLAGS) \
+CFLAGS := -std=c99 $(OPT) $(FPMATH) -ffp-contract=off -fPIC -fvisibility=hidden $(WARN) $(REAL_FLAGS) \
           -Iinclude -Isrc -MMD -MP $(EXTRA_CFLAGS)
 LDFLAGS := $(EXTRA_LDFLAGS)
 LDLIBS := -lm -pthread
@@ -55,7 +63,7 @@ TEST_RUNS := check-c check-ffi check-readme check-exports check-modules check-in
 .DEFAULT_GOAL := all
 include $(sort $(wildcard lua/*.mk tools/*.mk tests/fuzz/*.mk))
 
-.PHONY: all test test-all deps sanitize tsan install uninstall FORCE clean run run-main bench charts \
+.PHONY: all test test-all test-i386 deps sanitize tsan install uninstall FORCE clean run run-main bench charts \
         $(TEST_RUNS)
 all: $(ALL_TARGETS)
 
@@ -88,8 +96,21 @@ $(B)/tests/%: tests/%.c $(wildcard tests/*.h) $(LIB_A)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(TEST_CFLAGS) -Itests $(LDFLAGS) -o $@ $< $(LIB_A) $(CMOCKA_LIBS) $(LDLIBS)
 
+# TEST_RUN: what runs each test program (qemu-i386 for make test-i386's).
 check-c: $(TEST_BINS)
-	@fail=0; for t in $(TEST_BINS); do echo "== $$t"; $$t || fail=1; done; exit $$fail
+	@fail=0; for t in $(TEST_BINS); do echo "== $$t"; $(TEST_RUN) $$t || fail=1; done; exit $$fail
+
+# The C tests built for 32-bit x86 (Debian's i686 cross gcc; SSE2 arithmetic, FPMATH above)
+# and run under qemu-i386 (a 64-bit kernel may not run 32-bit programs itself), pinned hashes
+# included: 32-bit pointers and sizes, and the same bits.  tools/install-deps.sh --i386.
+I386_CC ?= i686-linux-gnu-gcc
+test-i386:
+	@echo "== the C tests on 32-bit x86 (qemu-i386), $(REAL)"
+	@printf '#include "vec2.h"\nint main(void) { return 0; }\n' | $(I386_CC) -std=c99 $(REAL_FLAGS) \
+	   -mfpmath=387 -Iinclude -Isrc -x c -o /dev/null - 2>&1 | grep -q 'excess floating-point precision' \
+	 && echo "  an x87 build (-mfpmath=387) is refused" || { echo "  an x87 build was not refused"; exit 1; }
+	@$(MAKE) --no-print-directory B=$(B)/i386-tests REAL=$(REAL) CC="$(I386_CC)" EXTRA_CFLAGS= \
+	  TEST_RUN=qemu-i386 check-c
 
 check-ffi: $(LIB_SO)
 	@echo "== tests/test_ffi.py"

@@ -27,7 +27,8 @@
  *   rounding to rg_real).  A value outside it, NaN or infinite is RG_ERR_INVALID_ARGUMENT.
  * - No global state: two worlds share nothing, and a world may move to another thread
  *   between calls.  The same calls give bit-identical results on any compiler, optimisation
- *   level and SIMD path.
+ *   level and SIMD path, and on x86-64, aarch64 and 32-bit x86 (built with SSE2 arithmetic:
+ *   the library refuses to build on the x87's excess precision).
  */
 #ifndef RIGID_H
 #define RIGID_H
@@ -416,8 +417,8 @@ RG_API rg_status rg_body_is_grounded(const rg_world *world, rg_body body, int32_
  * sleep_speed for sleep_time seconds stops moving and costs nothing per step.  It wakes
  * when a moving body touches it or comes within that reach, when a force, impulse,
  * velocity or position is given to one of its bodies, or when something it rests on is
- * moved or destroyed.  Changing world gravity does not wake sleeping bodies (call
- * rg_body_wake or toggle sleeping).  Only dynamic bodies with a shape sleep. */
+ * moved or destroyed, and when world gravity or wind changes (rg_world_set_gravity).
+ * Only dynamic bodies with a shape sleep. */
 
 /* enabled 1 (the default) or 0; disabling wakes every sleeping body. */
 RG_API rg_status rg_world_set_sleeping(rg_world *world, int32_t enabled);

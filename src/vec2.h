@@ -2,9 +2,19 @@
 #ifndef RG_VEC2_H
 #define RG_VEC2_H
 
+#include <float.h>
 #include <math.h>
 
 #include "rigid.h"
+
+/* Every operation on rg_real rounds to rg_real, as IEEE 754 and the other machines do: an
+ * x87 build (32-bit x86 without SSE2 arithmetic) keeps excess precision and would give other
+ * results (README: Determinism). */
+#if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD > 0
+#if !defined(RG_ALLOW_EXCESS_PRECISION)
+#error "rigid: this compiler keeps excess floating-point precision (FLT_EVAL_METHOD > 0, the x87 of 32-bit x86), so results would differ from every other machine's; build with -msse2 -mfpmath=sse (the Makefile does), or define RG_ALLOW_EXCESS_PRECISION to accept results of their own"
+#endif
+#endif
 
 #ifdef RG_DOUBLE
 #define rg_sqrt(x)  sqrt(x)

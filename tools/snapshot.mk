@@ -1,7 +1,8 @@
 # Snapshots across builds and machines (tools/snaptool.c): the state hash of one scene from
 # the default build, -O0, -O3, clang and the SSE2-only build (no AVX2 dispatch) must agree,
-# and a snapshot saved on x86-64 must continue on aarch64 (qemu-user) to the same hash and
-# back.  The variants build into $(B)/hv-*/, the aarch64 one into $(B)/aarch64/.
+# and a snapshot saved on x86-64 must continue on aarch64 and on 32-bit x86 (qemu-user) to the
+# same hash and back.  The variants build into $(B)/hv-*/, the other machines' into
+# $(B)/aarch64/ and $(B)/i386/.
 SNAPTOOL := $(B)/snaptool
 ALL_TARGETS += $(SNAPTOOL)
 TEST_RUNS += check-hash-variants check-cross-machine
@@ -27,18 +28,30 @@ check-hash-variants: $(SNAPTOOL)
 
 AARCH64_CC ?= aarch64-linux-gnu-gcc
 QEMU_AARCH64 ?= qemu-aarch64
+I386_CC ?= i686-linux-gnu-gcc
+QEMU_I386 ?= qemu-i386
+# name,compiler,emulator: each machine's snaptool builds into $(B)/NAME/ (static, for qemu-user)
+# (a compiler's spaces written @ inside the list)
+SNAP_EMPTY :=
+SNAP_SPACE := $(SNAP_EMPTY) $(SNAP_EMPTY)
+CROSS_MACHINES := aarch64,$(subst $(SNAP_SPACE),@,$(strip $(AARCH64_CC))),$(QEMU_AARCH64) \
+                  i386,$(subst $(SNAP_SPACE),@,$(strip $(I386_CC))),$(QEMU_I386)
 check-cross-machine: $(SNAPTOOL)
-	@echo "== snapshots across machines: x86-64 and aarch64 (qemu-user), $(REAL)"
-	@if ! command -v $(AARCH64_CC) >/dev/null 2>&1 || ! command -v $(QEMU_AARCH64) >/dev/null 2>&1; then \
-	   echo "  skipped: $(AARCH64_CC) or $(QEMU_AARCH64) is not installed (tools/install-deps.sh --cross)"; exit 0; fi; \
-	 $(MAKE) --no-print-directory -s B=$(B)/aarch64 REAL=$(REAL) CC=$(AARCH64_CC) EXTRA_CFLAGS= \
-	   EXTRA_LDFLAGS=-static $(B)/aarch64/snaptool >/dev/null || exit 1; \
-	 arm="$(QEMU_AARCH64) $(B)/aarch64/snaptool"; fail=0; \
-	 h1=$$($(SNAPTOOL) hash); h2=$$($$arm hash); \
-	 [ "$$h1" = "$$h2" ] || { echo "  the same scene: x86-64 $$h1, aarch64 $$h2"; fail=1; }; \
-	 s1=$$($(SNAPTOOL) save $(B)/snap-x86.bin); r1=$$($$arm restore $(B)/snap-x86.bin); \
-	 [ "$$s1" = "$$r1" ] || { echo "  saved on x86-64, continued on aarch64: $$s1 / $$r1"; fail=1; }; \
-	 s2=$$($$arm save $(B)/snap-arm.bin); r2=$$($(SNAPTOOL) restore $(B)/snap-arm.bin); \
-	 [ "$$s2" = "$$r2" ] || { echo "  saved on aarch64, continued on x86-64: $$s2 / $$r2"; fail=1; }; \
-	 echo "  hash $$h1, saved and continued both ways: $$s1 $$r1 $$s2 $$r2"; \
-	 if [ $$fail -eq 0 ]; then echo "1 passed, 0 failed"; else echo "0 passed, 1 failed"; fi; exit $$fail
+	@echo "== snapshots across machines: x86-64, aarch64 and 32-bit x86 (qemu-user), $(REAL)"
+	@fail=0; ran=0; for m in $(CROSS_MACHINES); do m=$$(echo "$$m" | tr '@' ' '); \
+	   name=$${m%%,*}; rest=$${m#*,}; cc=$${rest%%,*}; emu=$${rest#*,}; \
+	   if ! command -v $${cc%% *} >/dev/null 2>&1 || ! command -v $$emu >/dev/null 2>&1 || \
+	      ! echo 'int main(void){return 0;}' | $$cc -static -x c -o /dev/null - 2>/dev/null; then \
+	     echo "  $$name: skipped, $$cc or $$emu cannot build or run (tools/install-deps.sh --cross)"; continue; fi; \
+	   $(MAKE) --no-print-directory -s B=$(B)/$$name REAL=$(REAL) CC="$$cc" EXTRA_CFLAGS= \
+	     EXTRA_LDFLAGS=-static $(B)/$$name/snaptool >/dev/null || { echo "  $$name: build failed"; fail=1; continue; }; \
+	   other="$$emu $(B)/$$name/snaptool"; ran=$$((ran + 1)); \
+	   h1=$$($(SNAPTOOL) hash); h2=$$($$other hash); \
+	   [ "$$h1" = "$$h2" ] || { echo "  the same scene: x86-64 $$h1, $$name $$h2"; fail=1; }; \
+	   s1=$$($(SNAPTOOL) save $(B)/snap-x86.bin); r1=$$($$other restore $(B)/snap-x86.bin); \
+	   [ "$$s1" = "$$r1" ] || { echo "  saved on x86-64, continued on $$name: $$s1 / $$r1"; fail=1; }; \
+	   s2=$$($$other save $(B)/snap-$$name.bin); r2=$$($(SNAPTOOL) restore $(B)/snap-$$name.bin); \
+	   [ "$$s2" = "$$r2" ] || { echo "  saved on $$name, continued on x86-64: $$s2 / $$r2"; fail=1; }; \
+	   echo "  $$name: hash $$h2, saved and continued both ways: $$s1 $$r1 $$s2 $$r2"; \
+	 done; \
+	 if [ $$fail -eq 0 ]; then echo "$$ran passed, 0 failed"; else echo "0 passed, 1 failed"; fi; exit $$fail
