@@ -8,6 +8,7 @@
 #   make fuzz            the libFuzzer harnesses of tests/fuzz, FUZZ_SECONDS each (clang)
 #   make tsan            the threaded tests under ThreadSanitizer (clang)
 #   make test-i386       the C tests built for 32-bit x86, run under qemu-i386
+#   make test-s390x      the C tests built for s390x (big-endian), run under qemu-s390x
 #   make install PREFIX=/usr/local   (and make uninstall; DESTDIR for staging)
 REAL ?= float
 PREFIX ?= /usr/local
@@ -30,13 +31,18 @@ endif
 B ?= $(DEFAULT_B)
 
 OPT ?= -O2
-# 32-bit x86 compilers do float arithmetic on the x87 by default, keeping excess precision
-# (FLT_EVAL_METHOD 2): other bits than every other machine's, and decisions made on exact
-# comparisons (a graze, a seam) go otherwise.  SSE2 arithmetic rounds each operation as
-# x86-64, aarch64 and the browser do (src/vec2.h refuses a build without it).
+# Every operation on rg_real must round to rg_real (src/vec2.h refuses a build that keeps
+# excess precision, FLT_EVAL_METHOD > 0).  32-bit x86 compilers do float arithmetic on the
+# x87 by default (FLT_EVAL_METHOD 2): other bits than every other machine's, and decisions
+# made on exact comparisons (a graze, a seam) go otherwise; SSE2 arithmetic rounds as
+# x86-64 does.  gcc for s390x evaluates float in double under -std=c99 (FLT_EVAL_METHOD 1)
+# though the machine has float operations, which -fexcess-precision=fast uses.
 X87 := $(shell $(CC) -dM -E -x c /dev/null 2>/dev/null | grep -q '__i386__' && \
          ! $(CC) -dM -E -x c /dev/null 2>/dev/null | grep -q '__SSE2_MATH__' && echo yes)
 FPMATH := $(if $(X87),-msse2 -mfpmath=sse)
+FLT_EVAL := $(shell printf '\043include <float.h>\nFLT_EVAL_METHOD\n' | \
+              $(CC) -std=c99 $(FPMATH) -E -P -x c - 2>/dev/null | tail -n 1)
+FPMATH += $(if $(filter 1 2,$(FLT_EVAL)),-fexcess-precision=fast)
 WARN := -Wall -Wextra -Wpedantic -Werror -Wshadow -Wundef -Wwrite-strings \
         -Wmissing-prototypes -Wstrict-prototypes -Wdouble-promotion -Wcast-qual \
         -Wpointer-arith -Wvla
@@ -61,9 +67,18 @@ TEST_BINS := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_SRC))
 ALL_TARGETS := $(LIB_A) $(LIB_SO)
 TEST_RUNS := check-c check-ffi check-readme check-exports check-modules check-install
 .DEFAULT_GOAL := all
+# Other machines, each a Debian cross gcc and its qemu-user (tools/install-deps.sh --cross):
+# the snapshots across machines (tools/snapshot.mk) and make test-i386 / test-s390x.
+CROSS_MACHINES := aarch64 i386 s390x
+CROSS_CC_aarch64 ?= aarch64-linux-gnu-gcc
+CROSS_RUN_aarch64 ?= qemu-aarch64
+CROSS_CC_i386 ?= i686-linux-gnu-gcc
+CROSS_RUN_i386 ?= qemu-i386
+CROSS_CC_s390x ?= s390x-linux-gnu-gcc
+CROSS_RUN_s390x ?= qemu-s390x
 include $(sort $(wildcard lua/*.mk tools/*.mk tests/fuzz/*.mk))
 
-.PHONY: all test test-all test-i386 deps sanitize tsan install uninstall FORCE clean run run-main bench charts \
+.PHONY: all test test-all test-i386 test-s390x deps sanitize tsan install uninstall FORCE clean run run-main bench charts \
         $(TEST_RUNS)
 all: $(ALL_TARGETS)
 
@@ -96,21 +111,25 @@ $(B)/tests/%: tests/%.c $(wildcard tests/*.h) $(LIB_A)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(TEST_CFLAGS) -Itests $(LDFLAGS) -o $@ $< $(LIB_A) $(CMOCKA_LIBS) $(LDLIBS)
 
-# TEST_RUN: what runs each test program (qemu-i386 for make test-i386's).
+# TEST_RUN: what runs each test program (qemu-user for make test-i386's and test-s390x's).
 check-c: $(TEST_BINS)
 	@fail=0; for t in $(TEST_BINS); do echo "== $$t"; $(TEST_RUN) $$t || fail=1; done; exit $$fail
 
-# The C tests built for 32-bit x86 (Debian's i686 cross gcc; SSE2 arithmetic, FPMATH above)
-# and run under qemu-i386 (a 64-bit kernel may not run 32-bit programs itself), pinned hashes
-# included: 32-bit pointers and sizes, and the same bits.  tools/install-deps.sh --i386.
-I386_CC ?= i686-linux-gnu-gcc
+# The C tests built for another machine with Debian's cross gcc (CROSS_CC_* above) and run
+# under qemu-user, pinned hashes included: on 32-bit x86 (SSE2 arithmetic, FPMATH above;
+# 32-bit pointers and sizes; a 64-bit kernel may not run 32-bit programs itself) and on
+# s390x (big-endian).  tools/install-deps.sh --i386 / --s390x.
 test-i386:
 	@echo "== the C tests on 32-bit x86 (qemu-i386), $(REAL)"
-	@printf '#include "vec2.h"\nint main(void) { return 0; }\n' | $(I386_CC) -std=c99 $(REAL_FLAGS) \
+	@printf '#include "vec2.h"\nint main(void) { return 0; }\n' | $(CROSS_CC_i386) -std=c99 $(REAL_FLAGS) \
 	   -mfpmath=387 -Iinclude -Isrc -x c -o /dev/null - 2>&1 | grep -q 'excess floating-point precision' \
 	 && echo "  an x87 build (-mfpmath=387) is refused" || { echo "  an x87 build was not refused"; exit 1; }
-	@$(MAKE) --no-print-directory B=$(B)/i386-tests REAL=$(REAL) CC="$(I386_CC)" EXTRA_CFLAGS= \
-	  TEST_RUN=qemu-i386 check-c
+	@$(MAKE) --no-print-directory B=$(B)/i386-tests REAL=$(REAL) CC="$(CROSS_CC_i386)" EXTRA_CFLAGS= \
+	  TEST_RUN=$(CROSS_RUN_i386) check-c
+test-s390x:
+	@echo "== the C tests on s390x, big-endian (qemu-s390x), $(REAL)"
+	@$(MAKE) --no-print-directory B=$(B)/s390x-tests REAL=$(REAL) CC="$(CROSS_CC_s390x)" EXTRA_CFLAGS= \
+	  TEST_RUN=$(CROSS_RUN_s390x) check-c
 
 check-ffi: $(LIB_SO)
 	@echo "== tests/test_ffi.py"

@@ -27,8 +27,8 @@
  *   rounding to rg_real).  A value outside it, NaN or infinite is RG_ERR_INVALID_ARGUMENT.
  * - No global state: two worlds share nothing, and a world may move to another thread
  *   between calls.  The same calls give bit-identical results on any compiler, optimisation
- *   level and SIMD path, and on x86-64, aarch64 and 32-bit x86 (built with SSE2 arithmetic:
- *   the library refuses to build on the x87's excess precision).
+ *   level and SIMD path, and on x86-64, aarch64, 32-bit x86 and s390x (big-endian) alike:
+ *   the library refuses to build where float arithmetic keeps excess precision (the x87).
  */
 #ifndef RIGID_H
 #define RIGID_H

@@ -229,7 +229,7 @@ static uint64_t pile_hash(const rg_task_system *tasks, int64_t *banded)
         if (k % 30 == 0) {
             uint64_t whole;
             assert_ok(rg_world_hash(w, &whole));
-            h = fnv(h, &whole, sizeof whole);
+            h = fnv(h, &whole, 1, sizeof whole);
         }
     }
     *banded = w->coll.resolve.banded;

@@ -129,7 +129,7 @@ static int32_t skip_hook(rg_body a, rg_body b, rg_vec2 normal, rg_real separatio
     (void)separation;
     if (l->bodies != NULL) {
         int32_t ab[2] = { index_in(l, a), index_in(l, b) };
-        l->hash = fnv(l->hash, ab, sizeof ab);
+        l->hash = fnv(l->hash, ab, 2, sizeof ab[0]);
     }
     return a != l->skip && b != l->skip;
 }

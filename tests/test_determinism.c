@@ -33,11 +33,11 @@ static uint64_t scene_hash(const scene *s, uint64_t h)
         int32_t who[4] = { index_of(s, ev[k].a), index_of(s, ev[k].b), ev[k].kind, ev[k].sensor };
         rg_real r[6] = { ev[k].normal.x, ev[k].normal.y, ev[k].point.x, ev[k].point.y, ev[k].depth,
                          ev[k].speed };
-        h = fnv(h, who, sizeof who);
-        h = fnv(h, r, sizeof r);
+        h = fnv(h, who, 4, sizeof who[0]);
+        h = fnv(h, r, 6, sizeof r[0]);
     }
     int32_t counts[3] = { n, rg_world_touching_count(s->w), rg_world_awake_body_count(s->w) };
-    return fnv(h, counts, sizeof counts);
+    return fnv(h, counts, 3, sizeof counts[0]);
 }
 
 static rg_body add(scene *s, int32_t type, double m, double x, double y)

@@ -49,16 +49,16 @@ static uint64_t big_hash(const big_scene *s, uint64_t h)
         uint64_t who[2] = { ev[k].a & untagged, ev[k].b & untagged };
         int32_t kind[2] = { ev[k].kind, ev[k].sensor };
         rg_real r[6] = { ev[k].normal.x, ev[k].normal.y, ev[k].point.x, ev[k].point.y, ev[k].depth, ev[k].speed };
-        h = fnv(h, who, sizeof who);
-        h = fnv(h, kind, sizeof kind);
-        h = fnv(h, r, sizeof r);
+        h = fnv(h, who, 2, sizeof who[0]);
+        h = fnv(h, kind, 2, sizeof kind[0]);
+        h = fnv(h, r, 6, sizeof r[0]);
     }
     free(ev);
     int32_t counts[3] = { n, rg_world_touching_count(s->w), rg_world_awake_body_count(s->w) };
-    h = fnv(h, counts, sizeof counts);
+    h = fnv(h, counts, 3, sizeof counts[0]);
     uint64_t whole;
     assert_ok(rg_world_hash(s->w, &whole));
-    return fnv(h, &whole, sizeof whole);
+    return fnv(h, &whole, 1, sizeof whole);
 }
 
 /* plain: without the one-way ledge and with sleeping off, so that no contact is decided in

@@ -254,14 +254,13 @@ static void test_alpha_and_interpolated_position(void **state)
     rg_world_destroy(w);
 }
 
-/* FNV-1a over the bytes of every body's position and velocity. */
+/* FNV-1a over every body's position and velocity (testutil.h's fnv: either byte order). */
 static uint64_t state_hash(rg_world *w, const rg_body *bodies, int n)
 {
     uint64_t h = 1469598103934665603ull;
     for (int i = 0; i < n; i++) {
         rg_vec2 pv[2] = { pos_of(w, bodies[i]), vel_of(w, bodies[i]) };
-        const unsigned char *p = (const unsigned char *)pv;
-        for (size_t k = 0; k < sizeof pv; k++) h = (h ^ p[k]) * 1099511628211ull;
+        h = fnv(h, pv, 4, sizeof pv[0].x);
     }
     return h;
 }

@@ -133,11 +133,24 @@ static inline int32_t get_events(rg_world *w, rg_contact_event *ev, int32_t cap)
     return n;
 }
 
-/* ---- hashing a run: FNV-1a over n bytes, continuing from h */
-static inline uint64_t fnv(uint64_t h, const void *p, size_t n)
+/* ---- hashing a run: FNV-1a over count numbers of size bytes (4 or 8) at p, continuing from
+ * h, each number's bytes taken least significant first: its bytes in memory on a
+ * little-endian machine, and the same on a big-endian one (so a pinned hash holds on both) */
+static inline uint64_t fnv(uint64_t h, const void *p, size_t count, size_t size)
 {
     const unsigned char *c = p;
-    for (size_t k = 0; k < n; k++) h = (h ^ c[k]) * 1099511628211ull;
+    assert_true(size == 4 || size == 8);
+    for (size_t i = 0; i < count; i++, c += size) {
+        uint64_t v;
+        if (size == 4) {
+            uint32_t u;
+            memcpy(&u, c, 4);
+            v = u;
+        } else {
+            memcpy(&v, c, 8);
+        }
+        for (size_t k = 0; k < size; k++) h = (h ^ (unsigned char)(v >> (8 * k))) * 1099511628211ull;
+    }
     return h;
 }
 
@@ -147,14 +160,14 @@ static inline uint64_t hash_bodies(rg_world *w, const rg_body *b, int n, uint64_
 {
     for (int i = 0; i < n; i++) {
         int32_t valid = rg_body_is_valid(w, b[i]);
-        h = fnv(h, &valid, sizeof valid);
+        h = fnv(h, &valid, 1, sizeof valid);
         if (!valid) continue;
         rg_vec2 pv[2] = { pos_of(w, b[i]), vel_of(w, b[i]) };
         int32_t flags[2];
         assert_ok(rg_body_is_grounded(w, b[i], &flags[0]));
         assert_ok(rg_body_is_awake(w, b[i], &flags[1]));
-        h = fnv(h, pv, sizeof pv);
-        h = fnv(h, flags, sizeof flags);
+        h = fnv(h, pv, 4, sizeof pv[0].x);
+        h = fnv(h, flags, 2, sizeof flags[0]);
     }
     return h;
 }

@@ -38,7 +38,7 @@ static rg_status soup_scene(const acc_soup *s, uint32_t seed, acc_soup_result *r
     uint32_t u = seed * 7919u;
     rg_world *w = NULL;
     rg_body b[SOUP_MAX];
-    double m[SOUP_MAX];
+    double m[SOUP_MAX] = { 0 }; /* (set for every body made; gcc for s390x cannot tell) */
     int n = 20 + (int)(soup_uniform(&u) * (SOUP_MAX - 20));
     rg_status st = rg_world_create(&w);
     if (st == RG_OK) st = rg_world_set_sleeping(w, 0);

@@ -3,26 +3,28 @@
 # there.  --bench adds the peers of the side-by-side benchmark (Box2D 2.4, Chipmunk 7);
 # --charts adds gnuplot; --love adds LOVE and a headless X server for the LOVE game's test
 # (make test skips it without them); --browser adds Chromium for the replay viewer's test
-# and bench (make test skips it without); --cross adds aarch64 and 32-bit x86 cross
-# compilers and qemu-user for the snapshot's across-machines check (make test skips a
+# and bench (make test skips it without); --cross adds the aarch64, 32-bit x86 and s390x
+# cross compilers and qemu-user for the snapshot's across-machines check (make test skips a
 # machine without them); --fuzz adds clang's sanitizer and libFuzzer runtimes (make fuzz,
-# make sanitize CC=clang); --i386 adds Debian's i386 architecture, cmocka for it, the 32-bit
-# x86 cross compiler and qemu-user (make test-i386).
+# make sanitize CC=clang); --i386 and --s390x add Debian's architecture of that name,
+# cmocka for it, its cross compiler and qemu-user (make test-i386, make test-s390x).
 # clang is always installed: make test compares the state hash of a clang build with gcc's.
 # Uses sudo when not root.
 set -e
-i386=0
+archs=""
 pkgs="libcmocka-dev liblua5.4-dev lua5.4 luajit luarocks pkg-config python3 zlib1g-dev clang"
 for arg in "$@"; do
     case "$arg" in
     --bench) pkgs="$pkgs libbox2d-dev libchipmunk-dev g++" ;;
     --charts) pkgs="$pkgs gnuplot-nox" ;;
     --love) pkgs="$pkgs love xvfb xauth" ;;
-    --cross) pkgs="$pkgs gcc-aarch64-linux-gnu libc6-dev-arm64-cross gcc-i686-linux-gnu libc6-dev-i386-cross qemu-user" ;;
-    --i386) i386=1; pkgs="$pkgs gcc-i686-linux-gnu libc6-dev-i386-cross qemu-user libcmocka-dev:i386" ;;
+    --cross) pkgs="$pkgs gcc-aarch64-linux-gnu libc6-dev-arm64-cross gcc-i686-linux-gnu libc6-dev-i386-cross"
+        pkgs="$pkgs gcc-s390x-linux-gnu libc6-dev-s390x-cross qemu-user" ;;
+    --i386) archs="$archs i386"; pkgs="$pkgs gcc-i686-linux-gnu libc6-dev-i386-cross qemu-user libcmocka-dev:i386" ;;
+    --s390x) archs="$archs s390x"; pkgs="$pkgs gcc-s390x-linux-gnu libc6-dev-s390x-cross qemu-user libcmocka-dev:s390x" ;;
     --browser) pkgs="$pkgs chromium" ;;
     --fuzz) pkgs="$pkgs libclang-rt-14-dev" ;;
-    *) echo "usage: $0 [--bench] [--charts] [--love] [--browser] [--cross] [--fuzz] [--i386]" >&2; exit 2 ;;
+    *) echo "usage: $0 [--bench] [--charts] [--love] [--browser] [--cross] [--fuzz] [--i386] [--s390x]" >&2; exit 2 ;;
     esac
 done
 missing=""
@@ -36,9 +38,9 @@ echo "install-deps: installing$missing"
 if [ "$(id -u)" -eq 0 ]; then SUDO=""; else SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 # packages of another architecture (libcmocka-dev:i386) come once dpkg knows it
-if [ "$i386" -eq 1 ] && ! dpkg --print-foreign-architectures | grep -qx i386; then
-    $SUDO dpkg --add-architecture i386
-fi
+for a in $archs; do
+    dpkg --print-foreign-architectures | grep -qx "$a" || $SUDO dpkg --add-architecture "$a"
+done
 $SUDO apt-get update -qq
 # shellcheck disable=SC2086
 $SUDO apt-get install -y -qq $missing
