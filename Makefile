@@ -9,6 +9,7 @@
 #   make tsan            the threaded tests under ThreadSanitizer (clang)
 #   make test-i386       the C tests built for 32-bit x86, run under qemu-i386
 #   make test-s390x      the C tests built for s390x (big-endian), run under qemu-s390x
+#   make test-tcc        the library and the C tests built by tcc (tools/tcc.mk)
 #   make install PREFIX=/usr/local   (and make uninstall; DESTDIR for staging)
 REAL ?= float
 PREFIX ?= /usr/local

@@ -7,7 +7,8 @@
 # cross compilers and qemu-user for the snapshot's across-machines check (make test skips a
 # machine without them); --fuzz adds clang's sanitizer and libFuzzer runtimes (make fuzz,
 # make sanitize CC=clang); --i386 and --s390x add Debian's architecture of that name,
-# cmocka for it, its cross compiler and qemu-user (make test-i386, make test-s390x).
+# cmocka for it, its cross compiler and qemu-user (make test-i386, make test-s390x); --tcc
+# adds the Tiny C Compiler (make test-tcc).
 # clang is always installed: make test compares the state hash of a clang build with gcc's.
 # Uses sudo when not root.
 set -e
@@ -22,9 +23,10 @@ for arg in "$@"; do
         pkgs="$pkgs gcc-s390x-linux-gnu libc6-dev-s390x-cross qemu-user" ;;
     --i386) archs="$archs i386"; pkgs="$pkgs gcc-i686-linux-gnu libc6-dev-i386-cross qemu-user libcmocka-dev:i386" ;;
     --s390x) archs="$archs s390x"; pkgs="$pkgs gcc-s390x-linux-gnu libc6-dev-s390x-cross qemu-user libcmocka-dev:s390x" ;;
+    --tcc) pkgs="$pkgs tcc" ;;
     --browser) pkgs="$pkgs chromium" ;;
     --fuzz) pkgs="$pkgs libclang-rt-14-dev" ;;
-    *) echo "usage: $0 [--bench] [--charts] [--love] [--browser] [--cross] [--fuzz] [--i386] [--s390x]" >&2; exit 2 ;;
+    *) echo "usage: $0 [--bench] [--charts] [--love] [--browser] [--cross] [--fuzz] [--i386] [--s390x] [--tcc]" >&2; exit 2 ;;
     esac
 done
 missing=""
