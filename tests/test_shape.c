@@ -89,7 +89,7 @@ static void test_bad_shape_sizes_are_rejected_and_change_nothing(void **state)
     rg_body b = make_body(w, 1, 0, 0);
     assert_ok(rg_body_set_circle(w, b, 0.5f));
     body_snapshot before = snap(w, b);
-    static const double bad[] = {0, -1, (double)NAN, (double)INFINITY, -(double)INFINITY, 1e8};
+    const double bad[] = {0, -1, (double)NAN, (double)INFINITY, -(double)INFINITY, 1e8};
     for (int i = 0; i < 6; i++) {
         rg_real v = (rg_real)bad[i];
         assert_status(rg_body_set_circle(w, b, v), RG_ERR_INVALID_ARGUMENT);
@@ -188,9 +188,9 @@ static void test_bad_materials_flags_and_settings_are_rejected_and_change_nothin
     rg_body b = make_body(w, 1, 0, 0);
     assert_ok(rg_body_set_circle(w, b, 1));
     body_snapshot before = snap(w, b);
-    static const double bad_e[] = {-0.1, 1.1, (double)NAN, (double)INFINITY};
+    const double bad_e[] = {-0.1, 1.1, (double)NAN, (double)INFINITY};
     for (int i = 0; i < 4; i++) assert_status(rg_body_set_restitution(w, b, (rg_real)bad_e[i]), RG_ERR_INVALID_ARGUMENT);
-    static const double bad_mu[] = {-0.1, (double)NAN, (double)INFINITY};
+    const double bad_mu[] = {-0.1, (double)NAN, (double)INFINITY};
     for (int i = 0; i < 3; i++) assert_status(rg_body_set_friction(w, b, (rg_real)bad_mu[i]), RG_ERR_INVALID_ARGUMENT);
     assert_status(rg_body_set_sensor(w, b, 2), RG_ERR_INVALID_ARGUMENT);
     assert_status(rg_body_set_sensor(w, b, -1), RG_ERR_INVALID_ARGUMENT);

@@ -3,11 +3,11 @@
 # bands off for want of atomics, the process clock for a world's seed) is compiled and run,
 # and the pinned hashes must hold for a third compiler.  thread_pool.c needs GCC's atomics:
 # it comes from $(CC)'s build of this tree (the same calling convention).  Left out: the
-# tests that use GCC's atomics themselves (test_bands, test_threads) and test_shape (tcc
-# does not take NAN for a constant in a static initialiser).  make test-tcc [REAL=double].
+# tests that use GCC's atomics themselves (test_bands, test_threads).  make test-tcc
+# [REAL=double].
 TCC ?= tcc
 TCC_B := $(B)/tcc
-TCC_SKIP := test_bands test_threads test_shape
+TCC_SKIP := test_bands test_threads
 TCC_TESTS := $(filter-out $(TCC_SKIP),$(patsubst tests/%.c,%,$(TEST_SRC)))
 .PHONY: test-tcc
 test-tcc: $(B)/obj/thread_pool.o
