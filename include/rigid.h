@@ -522,7 +522,8 @@ typedef struct rg_ray_hit {
     rg_vec2 point;      /* m */
     rg_vec2 normal;     /* unit, the surface normal at point, facing the ray */
     rg_real fraction;   /* of the translation, in [0, 1] */
-    int32_t pad;
+    int32_t pad;        /* 0, as every padding byte of the records the library writes (this
+                           one, rg_contact): equal results are equal bytes */
 } rg_ray_hit;
 
 /* The closest shape along origin + t * translation, t in [0, 1], among bodies with

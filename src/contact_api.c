@@ -1,5 +1,7 @@
 /* contact_api.c: the public calls on pairs: a body's contacts, passing through, and the
  * pre-solve hook. */
+#include <string.h>
+
 #include "arg.h"
 #include "body.h"
 #include "collision.h"
@@ -74,6 +76,9 @@ RG_API int32_t rg_body_get_contacts(const rg_world *world, rg_body body, rg_cont
         coll_manifold m;
         contact_manifold_now(world, i, j, &m);
         rg_contact r;
+        memset(&r, 0, sizeof r); /* its padding too (the double build's last 4 bytes): no stack
+                                  * bytes reach the caller's memory, and equal contacts are
+                                  * equal bytes */
         r.other = pool_handle(&world->body_pool, t);
         r.normal = m.normal;
         r.point = m.point;

@@ -1,5 +1,7 @@
 /* query.c: raycasts, shape casts, box and point queries over the broadphase, as bodies are
  * now. */
+#include <string.h>
+
 #include "arg.h"
 #include "collision.h"
 #include "query.h"
@@ -230,6 +232,7 @@ static rg_real ray_all_visit(void *p, int32_t slot, rg_real max_t)
     if (coll_ray_rounded_box(rg_v2(b->x[i], b->y[i]), core, circle ? b->hx[i] : 0, q->o, q->d, &t, &n) != 1)
         return max_t;
     rg_ray_hit h;
+    memset(&h, 0, sizeof h); /* its padding too (as rg_body_get_contacts' records) */
     h.body = pool_handle(&q->w->body_pool, slot);
     h.point = rg_v2(q->o.x + q->d.x * t, q->o.y + q->d.y * t);
     h.normal = n;
@@ -317,6 +320,7 @@ static rg_real cast_visit(void *p, int32_t slot, rg_real max_t)
     rg_body h = pool_handle(&q->w->body_pool, slot);
     if (q->hit && (t > q->best.fraction || (t == q->best.fraction && h > q->best.body))) return max_t;
     q->hit = 1;
+    memset(&q->best, 0, sizeof q->best); /* its padding too (as rg_body_get_contacts' records) */
     q->best.body = h;
     q->best.point = m.point;
     q->best.normal = m.normal;
