@@ -7,8 +7,8 @@
 #                        (CC=clang for clang's; each compiler builds in its own folder)
 #   make fuzz            the libFuzzer harnesses of tests/fuzz, FUZZ_SECONDS each (clang)
 #   make tsan            the threaded tests under ThreadSanitizer (clang)
-#   make test-i386       the C tests built for 32-bit x86, run under qemu-i386
-#   make test-s390x      the C tests built for s390x (big-endian), run under qemu-s390x
+#   make test-aarch64, test-i386, test-s390x   the C tests built for that machine, run
+#                        under qemu-user (32-bit x86; s390x is big-endian)
 #   make test-tcc        the library and the C tests built by tcc (tools/tcc.mk)
 #   make install PREFIX=/usr/local   (and make uninstall; DESTDIR for staging)
 REAL ?= float
@@ -69,8 +69,9 @@ ALL_TARGETS := $(LIB_A) $(LIB_SO)
 TEST_RUNS := check-c check-ffi check-readme check-exports check-modules check-install
 .DEFAULT_GOAL := all
 # Other machines, each a Debian cross gcc and its qemu-user (tools/install-deps.sh --cross):
-# the snapshots across machines (tools/snapshot.mk) and make test-i386 / test-s390x.
+# the snapshots across machines (tools/snapshot.mk) and make test-aarch64 / i386 / s390x.
 CROSS_MACHINES := aarch64 i386 s390x
+CROSS_TESTS := $(patsubst %,test-%,$(CROSS_MACHINES))
 CROSS_CC_aarch64 ?= aarch64-linux-gnu-gcc
 CROSS_RUN_aarch64 ?= qemu-aarch64
 CROSS_CC_i386 ?= i686-linux-gnu-gcc
@@ -79,7 +80,7 @@ CROSS_CC_s390x ?= s390x-linux-gnu-gcc
 CROSS_RUN_s390x ?= qemu-s390x
 include $(sort $(wildcard lua/*.mk tools/*.mk tests/fuzz/*.mk))
 
-.PHONY: all test test-all test-i386 test-s390x deps sanitize tsan install uninstall FORCE clean run run-main bench charts \
+.PHONY: all test test-all $(CROSS_TESTS) deps sanitize tsan install uninstall FORCE clean run run-main bench charts \
         $(TEST_RUNS)
 all: $(ALL_TARGETS)
 
@@ -117,20 +118,18 @@ check-c: $(TEST_BINS)
 	@fail=0; for t in $(TEST_BINS); do echo "== $$t"; $(TEST_RUN) $$t || fail=1; done; exit $$fail
 
 # The C tests built for another machine with Debian's cross gcc (CROSS_CC_* above) and run
-# under qemu-user, pinned hashes included: on 32-bit x86 (SSE2 arithmetic, FPMATH above;
-# 32-bit pointers and sizes; a 64-bit kernel may not run 32-bit programs itself) and on
-# s390x (big-endian).  tools/install-deps.sh --i386 / --s390x.
-test-i386:
-	@echo "== the C tests on 32-bit x86 (qemu-i386), $(REAL)"
-	@printf '#include "vec2.h"\nint main(void) { return 0; }\n' | $(CROSS_CC_i386) -std=c99 $(REAL_FLAGS) \
-	   -mfpmath=387 -Iinclude -Isrc -x c -o /dev/null - 2>&1 | grep -q 'excess floating-point precision' \
-	 && echo "  an x87 build (-mfpmath=387) is refused" || { echo "  an x87 build was not refused"; exit 1; }
-	@$(MAKE) --no-print-directory B=$(B)/i386-tests REAL=$(REAL) CC="$(CROSS_CC_i386)" EXTRA_CFLAGS= \
-	  TEST_RUN=$(CROSS_RUN_i386) check-c
-test-s390x:
-	@echo "== the C tests on s390x, big-endian (qemu-s390x), $(REAL)"
-	@$(MAKE) --no-print-directory B=$(B)/s390x-tests REAL=$(REAL) CC="$(CROSS_CC_s390x)" EXTRA_CFLAGS= \
-	  TEST_RUN=$(CROSS_RUN_s390x) check-c
+# under qemu-user, pinned hashes included: make test-aarch64, test-i386 (SSE2 arithmetic,
+# FPMATH above; 32-bit pointers and sizes; a 64-bit kernel may not run 32-bit programs
+# itself; an x87 build is refused first), test-s390x (big-endian).  tools/install-deps.sh
+# --aarch64 / --i386 / --s390x.
+$(CROSS_TESTS): test-%:
+	@echo "== the C tests on $* (under $(CROSS_RUN_$*)), $(REAL)"
+	@if [ $* = i386 ]; then printf '#include "vec2.h"\nint main(void) { return 0; }\n' | \
+	   $(CROSS_CC_$*) -std=c99 $(REAL_FLAGS) -mfpmath=387 -Iinclude -Isrc -x c -o /dev/null - 2>&1 | \
+	   grep -q 'excess floating-point precision' && echo "  an x87 build (-mfpmath=387) is refused" || \
+	   { echo "  an x87 build was not refused"; exit 1; }; fi
+	@$(MAKE) --no-print-directory B=$(B)/$*-tests REAL=$(REAL) CC="$(CROSS_CC_$*)" EXTRA_CFLAGS= \
+	  TEST_RUN=$(CROSS_RUN_$*) check-c
 
 check-ffi: $(LIB_SO)
 	@echo "== tests/test_ffi.py"
