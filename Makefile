@@ -113,7 +113,7 @@ $(B)/tests/%: tests/%.c $(wildcard tests/*.h) $(LIB_A)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(TEST_CFLAGS) -Itests $(LDFLAGS) -o $@ $< $(LIB_A) $(CMOCKA_LIBS) $(LDLIBS)
 
-# TEST_RUN: what runs each test program (qemu-user for make test-i386's and test-s390x's).
+# TEST_RUN: what runs each test program (qemu-user for make test-aarch64's and the others).
 check-c: $(TEST_BINS)
 	@fail=0; for t in $(TEST_BINS); do echo "== $$t"; $(TEST_RUN) $$t || fail=1; done; exit $$fail
 

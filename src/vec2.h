@@ -7,12 +7,12 @@
 
 #include "rigid.h"
 
-/* Every operation on rg_real rounds to rg_real, as IEEE 754 and the other machines do: an
- * x87 build (32-bit x86 without SSE2 arithmetic) keeps excess precision and would give other
- * results (README: Determinism). */
+/* Every operation on rg_real rounds to rg_real, as IEEE 754 and the other machines do: a
+ * build that keeps excess precision (the x87 of 32-bit x86; gcc for s390x under -std=c99)
+ * would give other results (README: Determinism; the Makefile's FPMATH). */
 #if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD > 0
 #if !defined(RG_ALLOW_EXCESS_PRECISION)
-#error "rigid: this compiler keeps excess floating-point precision (FLT_EVAL_METHOD > 0, the x87 of 32-bit x86), so results would differ from every other machine's; build with -msse2 -mfpmath=sse (the Makefile does), or define RG_ALLOW_EXCESS_PRECISION to accept results of their own"
+#error "rigid: this compiler keeps excess floating-point precision (FLT_EVAL_METHOD > 0), so results would differ from every other machine's; build with -msse2 -mfpmath=sse on 32-bit x86, -fexcess-precision=fast where the machine has float operations (the Makefile does either), or define RG_ALLOW_EXCESS_PRECISION to accept results of their own"
 #endif
 #endif
 
