@@ -576,11 +576,10 @@ RG_API rg_status rg_body_pass_through(rg_world *world, rg_body body, rg_body oth
    other (a body an impact sends into a shape it has no pair with, outside the reach of its
    step's free motion, meets that shape in the sweep unasked).  The calls come in a fixed
    order (the order of the awake contacts, which the same history always gives), a < b as
-   in events, separation
-   at the start of the step (< 0 when overlapping).  rg_world_destroy from inside is a
-   no-op.  Pairs of sleeping bodies are not stepped, so not asked: after installing a hook,
-   or where its answer for a pair changes with the game's own state, wake one of the pair's
-   bodies (rg_body_wake) for it to be asked.  Installing, replacing or removing the hook
+   in events, separation at the start of the step (< 0 when overlapping).  rg_world_destroy
+   from inside is a no-op.  Pairs of sleeping bodies are not stepped, so not asked: after
+   installing a hook, or where its answer for a pair changes with the game's own state, wake
+   one of the pair's bodies (rg_body_wake) for it to be asked.  Installing, replacing or removing the hook
    changes no state (nothing wakes), so a world restored from a snapshot and then given its
    hook steps as the saving world did. */
 typedef int32_t rg_pre_solve_fn(rg_body a, rg_body b, rg_vec2 normal, rg_real separation,

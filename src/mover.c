@@ -1,7 +1,5 @@
 /* mover.c: the character mover, rg_body_move: a body's shape swept toward a target against
  * the shapes around it, sliding along what it meets (or stopping, or crossing). */
-#include <string.h>
-
 #include "arg.h"
 #include "body.h"
 #include "collision.h"
@@ -111,12 +109,7 @@ static rg_real mover_visit(void *p, int32_t slot, rg_real max_t)
     rg_real into = q->r.x * n.x + q->r.y * n.y, len = rg_v2_len(q->r);
     if (!(into < -COLL_INTO * len)) return max_t; /* along or away from it */
     rg_ray_hit h;
-    memset(&h, 0, sizeof h); /* its padding too (as rg_body_get_contacts' records) */
-    h.body = pool_handle(&q->w->body_pool, slot);
-    h.point = m.point;
-    h.normal = n;
-    h.fraction = t;
-    h.pad = 0;
+    query_hit(&h, pool_handle(&q->w->body_pool, slot), m.point, n, t);
     if (q->response == RG_MOVE_CROSS) {
         mover_keep(q, &h);
         return max_t;

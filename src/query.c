@@ -59,11 +59,7 @@ RG_API int32_t rg_world_raycast(const rg_world *world, rg_vec2 origin, rg_vec2 t
     q.body = 0;
     broadphase_raycast(&world->coll.bp, origin, translation, ray_visit, &q);
     if (!q.hit) return 0;
-    out_hit->body = q.body;
-    out_hit->point = rg_v2(origin.x + translation.x * q.t, origin.y + translation.y * q.t);
-    out_hit->normal = q.n;
-    out_hit->fraction = q.t;
-    out_hit->pad = 0;
+    query_hit(out_hit, q.body, rg_v2(origin.x + translation.x * q.t, origin.y + translation.y * q.t), q.n, q.t);
     return 1;
 }
 
@@ -98,6 +94,15 @@ static void box_visit(void *p, int32_t slot)
           b->y[i] - b->hy[i] <= q->uy && q->ly <= b->y[i] + b->hy[i]))
         return;
     query_keep(&q->hs, pool_handle(&q->w->body_pool, slot));
+}
+
+void query_hit(rg_ray_hit *h, rg_body body, rg_vec2 point, rg_vec2 normal, rg_real fraction)
+{
+    memset(h, 0, sizeof *h);
+    h->body = body;
+    h->point = point;
+    h->normal = normal;
+    h->fraction = fraction;
 }
 
 void query_keep(query_handles *q, rg_body h)
@@ -232,12 +237,7 @@ static rg_real ray_all_visit(void *p, int32_t slot, rg_real max_t)
     if (coll_ray_rounded_box(rg_v2(b->x[i], b->y[i]), core, circle ? b->hx[i] : 0, q->o, q->d, &t, &n) != 1)
         return max_t;
     rg_ray_hit h;
-    memset(&h, 0, sizeof h); /* its padding too (as rg_body_get_contacts' records) */
-    h.body = pool_handle(&q->w->body_pool, slot);
-    h.point = rg_v2(q->o.x + q->d.x * t, q->o.y + q->d.y * t);
-    h.normal = n;
-    h.fraction = t;
-    h.pad = 0;
+    query_hit(&h, pool_handle(&q->w->body_pool, slot), rg_v2(q->o.x + q->d.x * t, q->o.y + q->d.y * t), n, t);
     int32_t k = q->count < q->cap ? q->count : q->cap;
     q->count++;
     if (q->cap == 0) return max_t;
@@ -320,12 +320,7 @@ static rg_real cast_visit(void *p, int32_t slot, rg_real max_t)
     rg_body h = pool_handle(&q->w->body_pool, slot);
     if (q->hit && (t > q->best.fraction || (t == q->best.fraction && h > q->best.body))) return max_t;
     q->hit = 1;
-    memset(&q->best, 0, sizeof q->best); /* its padding too (as rg_body_get_contacts' records) */
-    q->best.body = h;
-    q->best.point = m.point;
-    q->best.normal = m.normal;
-    q->best.fraction = t;
-    q->best.pad = 0;
+    query_hit(&q->best, h, m.point, m.normal, t);
     return t;
 }
 

@@ -19,6 +19,10 @@ void query_keep(query_handles *q, rg_body h);
 /* The kept handles in ascending order; returns the count. */
 int32_t query_sorted(query_handles *q);
 
+/* Sets *h to a hit, every byte of it: its pad and the padding after it (the double build's)
+ * 0, so that no stack byte reaches the caller and equal hits are equal bytes. */
+void query_hit(rg_ray_hit *h, rg_body body, rg_vec2 point, rg_vec2 normal, rg_real fraction);
+
 /* The time of impact of shape b moving by r against shape a, as coll_sweep, except that
  * shapes that touch at the start (depth >= 0, their boundaries meeting included) count as
  * overlapping: *t = 0 and the manifold at the start. */

@@ -6,17 +6,25 @@
 
 /* ---------------------------------------------------------------- contacts */
 
+/* A 2 kg unit box on a floor, sleeping off, after `steps` steps. */
+static rg_world *box_on_floor(rg_body *floor, rg_body *box, int steps)
+{
+    rg_world *w = gravity_world(-G);
+    *floor = floor_of(w);
+    *box = box_body(w, RG_BODY_DYNAMIC, 2, 0, 0.5, 0.5, 0.5);
+    assert_ok(rg_world_set_sleeping(w, 0));
+    step_n(w, steps, DT);
+    return w;
+}
+
 /* At rest on the floor the solve gives the impulse that cancels what gravity adds in a step:
  * J = m g dt along the normal, no friction.  The solver converges on one row exactly up to
  * rounding (warm start and 8 sweeps), so the tolerance is a few ulps of J. */
 static void test_a_resting_body_has_one_contact_carrying_m_g_dt(void **state)
 {
     (void)state;
-    rg_world *w = gravity_world(-G);
-    rg_body floor = floor_of(w);
-    rg_body b = box_body(w, RG_BODY_DYNAMIC, 2, 0, 0.5, 0.5, 0.5);
-    assert_ok(rg_world_set_sleeping(w, 0));
-    step_n(w, 120, DT);
+    rg_body floor, b;
+    rg_world *w = box_on_floor(&floor, &b, 120);
     rg_contact c[4];
     assert_int_equal(rg_body_get_contacts(w, b, c, 4), 1);
     assert_true(c[0].other == floor);
@@ -96,6 +104,45 @@ static void test_contacts_are_sorted_by_handle_with_sensors_and_capacity(void **
     /* a body in the air has none */
     rg_body air = circle_body(w, RG_BODY_DYNAMIC, 1, 20, 20, 0.5);
     assert_int_equal(rg_body_get_contacts(w, air, c, 3), 0);
+    rg_world_destroy(w);
+}
+
+/* Whether the bytes of p from `from` to `size` (a record's padding after its last field)
+ * are all 0. */
+static int zero_after(const void *p, size_t from, size_t size)
+{
+    const unsigned char *c = p;
+    for (size_t k = from; k < size; k++)
+        if (c[k] != 0) return 0;
+    return 1;
+}
+
+/* The records the library writes into the caller's memory carry no byte of its own stack:
+ * into buffers filled with 0xAA, every contact's padding after its last field (4 bytes in
+ * the double build) and every hit's pad and padding (4 more in the double build) end 0, from
+ * each call that writes them.  (Until 2026-12-07 the double build's padding held stack bytes,
+ * which changed from call to call on s390x.) */
+static void test_contacts_and_hits_come_with_their_padding_zeroed(void **state)
+{
+    (void)state;
+    rg_body floor, b;
+    rg_world *w = box_on_floor(&floor, &b, 60);
+    const size_t contact_end = offsetof(rg_contact, sensor) + sizeof(int32_t);
+    const size_t hit_end = offsetof(rg_ray_hit, pad);
+    rg_contact c[2];
+    memset(c, 0xAA, sizeof c);
+    assert_int_equal(rg_body_get_contacts(w, b, c, 2), 1);
+    assert_true(c[0].other == floor && zero_after(&c[0], contact_end, sizeof c[0]));
+    rg_ray_hit h[4];
+    memset(h, 0xAA, sizeof h);
+    assert_int_equal(rg_world_raycast(w, v2(3, 5), v2(0, -10), 0xFFFFFFFFu, &h[0]), 1);
+    assert_int_equal(rg_world_raycast_all(w, v2(0, 5), v2(0, -10), 0xFFFFFFFFu, &h[1], 1), 2);
+    assert_int_equal(rg_world_cast_shape(w, RG_SHAPE_CIRCLE, v2(0.25, 0.25), v2(3, 5), v2(0, -10), 0xFFFFFFFFu,
+                                         &h[2]), 1);
+    int32_t n = 0;
+    assert_ok(rg_body_move(w, b, v2(0, -2), 0xFFFFFFFFu, RG_MOVE_TOUCH, NULL, &h[3], 1, &n));
+    assert_int_equal(n, 1);
+    for (int k = 0; k < 4; k++) assert_true(zero_after(&h[k], hit_end, sizeof h[k]));
     rg_world_destroy(w);
 }
 
@@ -335,6 +382,7 @@ int main(void)
         cmocka_unit_test(test_a_resting_body_has_one_contact_carrying_m_g_dt),
         cmocka_unit_test(test_a_box_pushed_along_the_floor_shows_the_friction_impulse),
         cmocka_unit_test(test_contacts_are_sorted_by_handle_with_sensors_and_capacity),
+        cmocka_unit_test(test_contacts_and_hits_come_with_their_padding_zeroed),
         cmocka_unit_test(test_returning_zero_lets_a_pair_pass),
         cmocka_unit_test(test_a_pair_the_hook_skips_is_not_stopped_by_the_sweep),
         cmocka_unit_test(test_a_sleeping_pair_is_asked_once_a_body_of_it_is_woken),

@@ -26,12 +26,14 @@ check-hash-variants: $(SNAPTOOL)
 	 done; \
 	 if [ $$fail -eq 0 ]; then echo "1 passed, 0 failed"; else echo "0 passed, 1 failed"; fi; exit $$fail
 
+# each machine as name,compiler,emulator (a compiler's spaces written @ inside the list)
+SNAP_EMPTY :=
+SNAP_SPACE := $(SNAP_EMPTY) $(SNAP_EMPTY)
+SNAP_MACHINES := $(foreach m,$(CROSS_MACHINES),$(m),$(subst $(SNAP_SPACE),@,$(strip $(CROSS_CC_$(m)))),$(CROSS_RUN_$(m)))
 check-cross-machine: $(SNAPTOOL)
 	@echo "== snapshots across machines: x86-64 and $(CROSS_MACHINES) (qemu-user), $(REAL)"
-	@fail=0; ran=0; for name in $(CROSS_MACHINES); do \
-	   case $$name in aarch64) cc="$(CROSS_CC_aarch64)"; emu="$(CROSS_RUN_aarch64)";; \
-	     i386) cc="$(CROSS_CC_i386)"; emu="$(CROSS_RUN_i386)";; \
-	     s390x) cc="$(CROSS_CC_s390x)"; emu="$(CROSS_RUN_s390x)";; esac; \
+	@fail=0; ran=0; for m in $(SNAP_MACHINES); do \
+	   name=$${m%%,*}; rest=$${m#*,}; cc=$$(echo "$${rest%%,*}" | tr '@' ' '); emu=$${rest#*,}; \
 	   if ! command -v $${cc%% *} >/dev/null 2>&1 || ! command -v $$emu >/dev/null 2>&1 || \
 	      ! echo 'int main(void){return 0;}' | $$cc -static -x c -o /dev/null - 2>/dev/null; then \
 	     echo "  $$name: skipped, $$cc or $$emu cannot build or run (tools/install-deps.sh --cross)"; continue; fi; \
