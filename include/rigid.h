@@ -82,7 +82,10 @@ enum {
     RG_ERR_OUT_OF_MEMORY    = -3,
     RG_ERR_CAPACITY         = -4,  /* more bodies or springs than a world can hold */
     RG_ERR_LOCKED           = -5   /* not allowed at this moment: a call that would change
-                                      the world, made from a callback inside its step */
+                                      the world, made from one of its callbacks (the
+                                      pre-solve hook, the task system or the allocator
+                                      inside a step or restore, the allocator inside any
+                                      call, a draw's callbacks) */
 };
 
 enum {
@@ -130,7 +133,10 @@ RG_API int32_t rg_real_size(void);
 /* Allocator in the style of lua_Alloc: new_size == 0 frees ptr and returns NULL; otherwise
  * it returns a block of new_size bytes holding the first min(old_size, new_size) bytes of
  * ptr (ptr is NULL and old_size 0 for a fresh block), or NULL when it cannot, in which case
- * ptr stays valid.  Blocks must be aligned for any type, as malloc's are. */
+ * ptr stays valid.  Blocks must be aligned for any type, as malloc's are.  While it runs,
+ * the world it serves is locked: a call on that world that would change it returns
+ * RG_ERR_LOCKED and rg_world_destroy does nothing (getters work, and see the call in
+ * progress). */
 typedef void *(*rg_alloc_fn)(void *user, void *ptr, size_t old_size, size_t new_size);
 
 /* Creates an empty world: gravity (0, 0), no wind, semi-implicit Euler, fixed step 1/60 s
@@ -639,7 +645,8 @@ RG_API int32_t rg_world_cast_shape(const rg_world *world, int32_t shape, rg_vec2
    when it was met, normal the surface's, facing the body.  The body ends flush against what
    stopped it (within rounding; never overlapping it by more than the slop), and a box or
    circle sliding over a row of flush boxes (a tile floor) does not catch on their seams;
-   SLIDE takes at most 8 legs.  *out_count (may be NULL) gets the number of hits, of which
+   SLIDE takes at most 8 legs; one that would carry the body's centre past +-RG_MAX_COORD
+   stops at that edge and goes on along it, as along a wall that reports no hit.  *out_count (may be NULL) gets the number of hits, of which
    min(count, capacity) are copied.  target is a position (each component within
    +-RG_MAX_COORD).  The body must have a shape (else RG_ERR_INVALID_ARGUMENT); it is woken,
    and rendering interpolates from where it was at the last step (the previous position is
@@ -766,7 +773,9 @@ typedef struct rg_debug_draw {
     void *user;
 } rg_debug_draw;
 
-/* RG_ERR_INVALID_ARGUMENT for a NULL world or draw, or a flag outside RG_DRAW_*. */
+/* RG_ERR_INVALID_ARGUMENT for a NULL world or draw, or a flag outside RG_DRAW_*.  While the
+   callbacks run, the world is locked: calls that would change it return RG_ERR_LOCKED and
+   rg_world_destroy does nothing. */
 RG_API rg_status rg_world_draw(const rg_world *world, const rg_debug_draw *draw);
 
 /* ---------------------------------------------------------------- threads */
@@ -786,7 +795,9 @@ RG_API rg_status rg_world_draw(const rg_world *world, const rg_debug_draw *draw)
    what enqueue returned has run (it is not called for NULL).  The world calls enqueue and
    finish only from the thread inside its rg_world_step, rg_world_advance, rg_world_restore or
    rg_world_restore_slot (a restore's checks and load run on the task system too), and
-   finishes each task before the next.  workers must be in [1, RG_MAX_WORKERS]; enqueue and
+   finishes each task before the next; while they run, the world is locked (calls that
+   would change it return RG_ERR_LOCKED, rg_world_destroy does nothing; getters see the step
+   in progress).  workers must be in [1, RG_MAX_WORKERS]; enqueue and
    finish must not be NULL.  NULL tasks: one thread, the default.  A world keeps a copy of
    *tasks. */
 #define RG_MAX_WORKERS 64

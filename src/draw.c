@@ -96,12 +96,19 @@ RG_API rg_status rg_world_draw(const rg_world *world, const rg_debug_draw *draw)
     if (draw->flags & ~all)
         return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "draw->flags 0x%x has bits outside RG_DRAW_* (0x%x)",
                        (unsigned)draw->flags, (unsigned)all);
+    /* The callbacks may call on the world: a change while the walk is on it is refused (the
+     * world is locked; its `const` is the caller's promise, not the object's, which
+     * rg_world_create made).  A draw from inside a step's callback leaves the step's lock. */
+    rg_world *lock = (rg_world *)(uintptr_t)world;
+    int32_t was = lock->locked;
+    lock->locked = 1;
     /* layers bottom-up: shapes, fat boxes, springs, velocities, contacts */
     if (draw->flags & RG_DRAW_SHAPES) draw_bodies(world, draw, RG_DRAW_SHAPES);
     if (draw->flags & RG_DRAW_BOUNDS) draw_bodies(world, draw, RG_DRAW_BOUNDS);
     if (draw->flags & RG_DRAW_SPRINGS) draw_springs(world, draw);
     if (draw->flags & RG_DRAW_VELOCITIES) draw_bodies(world, draw, RG_DRAW_VELOCITIES);
     if (draw->flags & RG_DRAW_CONTACTS) draw_contacts(world, draw);
+    lock->locked = was;
     ERROR_CLEAR(world); /* the callbacks' own calls on the world are not this call's */
     return RG_OK;
 }

@@ -3,20 +3,35 @@
 #define RG_MEM_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "rigid.h"
 
 typedef struct rg_mem {
     rg_alloc_fn fn;
     void *user;
+    int32_t *locked; /* the world's lock (state.h), held while the allocator runs; NULL: none */
+    char *err;       /* the world's last error, which the allocator's own calls leave alone */
 } rg_mem;
 
+/* The allocator, with the world's lock taken and its last error kept (world.c). */
+void *mem_call_locked(const rg_mem *m, void *p, size_t old_size, size_t new_size);
+
+/* The allocator called with the world locked, so that a call it makes on the world that
+ * would change it returns RG_ERR_LOCKED.  Inside a step or a restore the world is locked
+ * already (and tasks may allocate on workers): the lock is then only read. */
+static inline void *mem_call(const rg_mem *m, void *p, size_t old_size, size_t new_size)
+{
+    if (m->locked == NULL || *m->locked) return m->fn(m->user, p, old_size, new_size);
+    return mem_call_locked(m, p, old_size, new_size);
+}
+
 /* A fresh block of size bytes (> 0), or NULL. */
-static inline void *mem_alloc(const rg_mem *m, size_t size) { return m->fn(m->user, NULL, 0, size); }
+static inline void *mem_alloc(const rg_mem *m, size_t size) { return mem_call(m, NULL, 0, size); }
 /* Frees a block of size bytes; NULL is a no-op. */
 static inline void mem_free(const rg_mem *m, void *p, size_t size)
 {
-    if (p != NULL) (void)m->fn(m->user, p, size, 0);
+    if (p != NULL) (void)mem_call(m, p, size, 0);
 }
 
 /* count * size, or 0 when it would overflow SIZE_MAX (callers treat 0 as out of memory). */

@@ -103,10 +103,9 @@ static int narrow_skip(rg_world *w, contact *c, int32_t ia, int32_t ib, const cb
         }
     }
     if (w->pre_solve != NULL && !(c->flags & CT_SENSOR)) {
-        w->locked = 1;
+        /* the step holds the world's lock (step.c) */
         int32_t keep = w->pre_solve(pool_handle(&w->body_pool, c->sa), pool_handle(&w->body_pool, c->sb),
                                     rg_v2(c->nx, c->ny), s0, w->pre_solve_user);
-        w->locked = 0;
         if (!keep) {
             c->flags |= CT_SKIPPED; /* the sweep lets it pass too */
             return 1;

@@ -576,10 +576,21 @@ rg_status restore_kept(rg_world *w, const void *data, size_t size)
     return restore_state(w, "rg_world_restore_slot", &in, RESTORE_KEPT);
 }
 
+static rg_status restore_locked(rg_world *world, const void *data, size_t size);
+
 RG_API rg_status rg_world_restore(rg_world *world, const void *data, size_t size)
 {
     WORLD_WRITABLE(world);
     if (data == NULL) return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "data is NULL");
+    WORLD_LOCK(world); /* the allocator and the task system may call on it */
+    rg_status st = restore_locked(world, data, size);
+    WORLD_UNLOCK(world);
+    if (st == RG_OK) ERROR_CLEAR(world); /* a callback's failed call is not this call's */
+    return st;
+}
+
+static rg_status restore_locked(rg_world *world, const void *data, size_t size)
+{
     snap_in in;
     memset(&in, 0, sizeof in);
     if (!restore_check_header(world, &in, data, size, 1)) return RG_ERR_INVALID_ARGUMENT;

@@ -40,7 +40,11 @@ RG_API rg_status rg_world_restore_slot(rg_world *world, int32_t slot)
     WORLD_WRITABLE(world);
     SLOT_VALID(world, slot);
     if (world->kept[slot].size == 0) return RG_FAIL(world, RG_ERR_INVALID_ARGUMENT, "slot %ld is empty", (long)slot);
-    return restore_kept(world, world->kept[slot].p, world->kept[slot].size);
+    WORLD_LOCK(world); /* the allocator and the task system may call on it */
+    rg_status st = restore_kept(world, world->kept[slot].p, world->kept[slot].size);
+    WORLD_UNLOCK(world);
+    if (st == RG_OK) ERROR_CLEAR(world); /* a callback's failed call is not this call's */
+    return st;
 }
 
 RG_API rg_status rg_world_drop_slot(rg_world *world, int32_t slot)

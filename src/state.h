@@ -340,8 +340,10 @@ struct rg_world {
     /* Collision: broadphase, contacts, events, islands, settings. */
     collide_world coll;
 
-    /* The pre-solve hook (narrow.c), and whether the world is locked: a callback inside its
-     * step is running, and calls that would change the world return RG_ERR_LOCKED. */
+    /* The pre-solve hook (narrow.c), and whether the world is locked: set through a step, an
+     * advance, a restore and a draw, and while its allocator runs (mem.h), whose callbacks
+     * (the hook, the task system, the allocator, the draw) may call on the world; calls that
+     * would change it return RG_ERR_LOCKED and rg_world_destroy does nothing. */
     rg_pre_solve_fn *pre_solve;
     void *pre_solve_user;
     int32_t locked;
@@ -363,6 +365,11 @@ struct rg_world {
 #define WORLD_WRITABLE(world) \
     ERROR_BEGIN(world);       \
     if ((world)->locked) return RG_FAIL((world), RG_ERR_LOCKED, "locked: called from inside a step's callback")
+
+/* A call that runs the world's callbacks holds its lock from here to its return; `locked`
+ * is 0 at both ends (WORLD_WRITABLE refused the call otherwise). */
+#define WORLD_LOCK(world) ((world)->locked = 1)
+#define WORLD_UNLOCK(world) ((world)->locked = 0)
 
 /* Partition (BODY_PART_*) of dense index i. */
 static inline int body_partition(const struct rg_world *w, int32_t i)

@@ -103,12 +103,17 @@ RG_API rg_status rg_world_step(rg_world *world, rg_real dt)
 {
     WORLD_WRITABLE(world);
     ARG_ABOVE(world, dt, 0, RG_MAX_DT);
+    WORLD_LOCK(world); /* the allocator, the task system and the hook may call on it */
     rg_status st = step_prepare(world, __func__);
-    if (st != RG_OK) return st;
+    if (st != RG_OK) {
+        WORLD_UNLOCK(world);
+        return st;
+    }
     events_clear(&world->coll.events);
     bounds_begin(world);
     step_run(world, dt);
     world->prev_valid = 0;
+    WORLD_UNLOCK(world);
     ERROR_CLEAR(world); /* a callback's failed call inside the step is not this call's */
     return RG_OK;
 }
@@ -117,8 +122,12 @@ RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *
 {
     WORLD_WRITABLE(world);
     ARG_IN(world, frame_time, 0, HUGE_VAL);
+    WORLD_LOCK(world); /* the allocator, the task system and the hook may call on it */
     rg_status st = step_prepare(world, __func__);
-    if (st != RG_OK) return st;
+    if (st != RG_OK) {
+        WORLD_UNLOCK(world);
+        return st;
+    }
     body_store *b = &world->b;
     rg_real dt = (rg_real)world->fixed_dt;
     int32_t steps = 0;
@@ -149,6 +158,7 @@ RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *
         world->accumulator = fmod(world->accumulator, world->fixed_dt);
     if (steps > 0) world->prev_valid = 1;
     if (out_steps != NULL) *out_steps = steps;
+    WORLD_UNLOCK(world);
     ERROR_CLEAR(world); /* a callback's failed call inside a step is not this call's */
     return RG_OK;
 }

@@ -22,6 +22,22 @@ void *mem_default_alloc(void *user, void *ptr, size_t old_size, size_t new_size)
     return realloc(ptr, new_size);
 }
 
+void *mem_call_locked(const rg_mem *m, void *p, size_t old_size, size_t new_size)
+{
+    char kept[ERROR_SIZE];
+    int had = m->err[0] != '\0';
+    if (had) memcpy(kept, m->err, ERROR_SIZE);
+    *m->locked = 1;
+    void *r = m->fn(m->user, p, old_size, new_size);
+    *m->locked = 0;
+    /* a call the allocator made on the world and that was refused is not the caller's */
+    if (had)
+        memcpy(m->err, kept, ERROR_SIZE);
+    else
+        m->err[0] = '\0';
+    return r;
+}
+
 RG_API const char *rg_status_string(rg_status s)
 {
     switch (s) {
@@ -91,6 +107,8 @@ RG_API rg_status rg_world_create_with_allocator(rg_alloc_fn alloc, void *user, r
     w->own = (own_saves *)(void *)(w->err + ERROR_SIZE);
     w->mem.fn = alloc;
     w->mem.user = user;
+    w->mem.locked = &w->locked;
+    w->mem.err = w->err;
     uint32_t tag = world_tag(w);
     pool_init(&w->body_pool, tag, 0, RG_MAX_BODIES);
     /* Springs carry another tag so that a body handle is never taken for a spring. */
@@ -111,11 +129,13 @@ RG_API rg_status rg_world_create(rg_world **out_world)
 
 RG_API void rg_world_destroy(rg_world *world)
 {
-    if (world == NULL || world->locked) return; /* not from inside its own step */
+    if (world == NULL || world->locked) return; /* not from inside its own step or callbacks */
+    world->locked = 1; /* the allocator's calls on it, while it frees, are refused */
     spring_release(world);
     collide_release(world);
     body_store_release(world);
     rg_mem mem = world->mem;
+    mem.locked = NULL; /* the last free takes the lock with it */
     for (int k = 0; k < RG_MAX_SLOTS; k++) /* the kept states (slots.c) */
         if (world->kept[k].p != NULL) mem_free(&mem, world->kept[k].p, world->kept[k].cap);
     mem_free(&mem, world, WORLD_BLOCK);

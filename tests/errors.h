@@ -27,11 +27,12 @@ typedef struct scene {
     rg_body bad[4];    /* 0, destroyed, another world's, a spring handle */
 } scene;
 
-static inline int scene_setup(void **state)
+/* The scene on an allocator that passes its calls on to test_alloc_fn(&s->ta, ...). */
+static inline int scene_setup_on(void **state, rg_alloc_fn alloc)
 {
     scene *s = calloc(1, sizeof *s);
     assert_non_null(s);
-    assert_ok(rg_world_create_with_allocator(test_alloc_fn, &s->ta, &s->w));
+    assert_ok(rg_world_create_with_allocator(alloc, &s->ta, &s->w));
     assert_ok(rg_world_create(&s->other));
     rg_world *w = s->w;
     assert_ok(rg_world_set_gravity(w, v2(0, -10)));
@@ -52,6 +53,8 @@ static inline int scene_setup(void **state)
     *state = s;
     return 0;
 }
+
+static inline int scene_setup(void **state) { return scene_setup_on(state, test_alloc_fn); }
 
 static inline int scene_teardown(void **state)
 {

@@ -81,6 +81,8 @@ static rg_mem test_mem(test_alloc *ta)
     rg_mem m;
     m.fn = test_alloc_fn;
     m.user = ta;
+    m.locked = NULL; /* no world */
+    m.err = NULL;
     return m;
 }
 
@@ -127,7 +129,7 @@ static void test_queries_find_exactly_what_brute_force_finds(void **state)
 static void test_boxes_at_a_point_and_far_beyond_the_clamp_are_found(void **state)
 {
     (void)state;
-    rg_mem m = {mem_default_alloc, NULL};
+    rg_mem m = {mem_default_alloc, NULL, NULL, NULL};
     broadphase bp;
     memset(&bp, 0, sizeof bp);
     static box boxes[NB];
@@ -160,7 +162,7 @@ static void test_boxes_at_a_point_and_far_beyond_the_clamp_are_found(void **stat
 static void test_located_boxes_have_the_level_and_key_an_insert_gives(void **state)
 {
     (void)state;
-    rg_mem m = {mem_default_alloc, NULL};
+    rg_mem m = {mem_default_alloc, NULL, NULL, NULL};
     broadphase bp;
     memset(&bp, 0, sizeof bp);
     static rg_real boxes[4 * LOCATE_N];
@@ -231,7 +233,7 @@ static void test_located_boxes_have_the_level_and_key_an_insert_gives(void **sta
 static void test_non_finite_boxes_go_to_the_huge_list_and_match_nothing(void **state)
 {
     (void)state;
-    rg_mem m = {mem_default_alloc, NULL};
+    rg_mem m = {mem_default_alloc, NULL, NULL, NULL};
     broadphase bp;
     memset(&bp, 0, sizeof bp);
     assert_ok(broadphase_reserve(&bp, &m, 3, 3));
@@ -289,7 +291,7 @@ static int segment_hits(const box *b, rg_vec2 o, rg_vec2 d)
 static void test_raycast_visits_every_box_the_segment_meets(void **state)
 {
     (void)state;
-    rg_mem m = {mem_default_alloc, NULL};
+    rg_mem m = {mem_default_alloc, NULL, NULL, NULL};
     broadphase bp;
     memset(&bp, 0, sizeof bp);
     static box boxes[NB];

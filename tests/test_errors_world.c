@@ -321,17 +321,24 @@ static void test_a_null_world_is_refused_everywhere(void **state)
 typedef struct locked_run {
     scene *s;
     int calls;
+    unsigned char snap[4096]; /* a save of the scene, for a restore the lock refuses */
+    size_t snap_size;
 } locked_run;
 
 #define LOCKED(s, call) FAILS((s), RG_ERR_LOCKED, "locked", call)
 
-/* Inside the step every call that changes the world is refused, names itself and "locked",
- * and changes nothing; getters and queries work and leave "". */
-static int32_t locked_hook(rg_body a, rg_body b, rg_vec2 normal, rg_real separation, void *user)
+static void locked_run_init(locked_run *l, scene *s)
 {
-    (void)a, (void)b, (void)normal, (void)separation;
-    locked_run *l = user;
-    if (l->calls++ > 0) return 1;
+    l->s = s;
+    l->calls = 0;
+    assert_ok(rg_world_save(s->w, l->snap, sizeof l->snap, &l->snap_size));
+}
+
+/* Inside a callback of the world (the pre-solve hook, the task system's enqueue in a step or
+ * a restore, the allocator, a draw's callback) every call that changes the world is refused,
+ * names itself and "locked", and changes nothing; getters and queries work and leave "". */
+static void locked_calls(locked_run *l)
+{
     scene *s = l->s;
     rg_world *w = s->w;
     rg_body d = s->dyn, nb;
@@ -378,18 +385,28 @@ static int32_t locked_hook(rg_body a, rg_body b, rg_vec2 normal, rg_real separat
     LOCKED(s, rg_world_save_slot(w, 0));
     LOCKED(s, rg_world_restore_slot(w, 0));
     LOCKED(s, rg_world_drop_slot(w, 0));
+    LOCKED(s, rg_world_restore(w, l->snap, l->snap_size));
+    LOCKED(s, rg_world_set_task_system(w, NULL));
     rg_world_destroy(w); /* a no-op from inside */
     assert_true(rg_body_is_valid(w, d));
     SUCCEEDS(s, rg_body_get_position(w, d, &v));
     SUCCEEDS(s, rg_world_query_point(w, v2(0, 0.5), ALL, NULL, 0));
-    assert_status(rg_world_set_gravity(w, v2(0, 1)), RG_ERR_LOCKED); /* the step must clear it */
+    assert_status(rg_world_set_gravity(w, v2(0, 1)), RG_ERR_LOCKED); /* the call must clear it */
+}
+
+static int32_t locked_hook(rg_body a, rg_body b, rg_vec2 normal, rg_real separation, void *user)
+{
+    (void)a, (void)b, (void)normal, (void)separation;
+    locked_run *l = user;
+    if (l->calls++ == 0) locked_calls(l);
     return 1;
 }
 
 static void test_calls_from_inside_a_step_are_locked_and_say_so(void **state)
 {
     scene *s = *state;
-    locked_run l = { s, 0 };
+    static locked_run l;
+    locked_run_init(&l, s);
     assert_ok(rg_world_set_pre_solve(s->w, locked_hook, &l));
     SUCCEEDS(s, rg_world_step(s->w, (rg_real)DT));
     assert_true(l.calls > 0);
@@ -397,6 +414,116 @@ static void test_calls_from_inside_a_step_are_locked_and_say_so(void **state)
     int32_t steps = 0;
     SUCCEEDS(s, rg_world_advance(s->w, (rg_real)DT, &steps));
     assert_true(steps == 1 && l.calls > 0);
+}
+
+/* A task system that runs each task at once, after the calls of locked_calls on its first. */
+static void *locked_enqueue(rg_task_fn *fn, int32_t count, int32_t min_range, void *context, void *user)
+{
+    (void)min_range;
+    locked_run *l = user;
+    if (l->calls++ == 0) locked_calls(l);
+    fn(0, count, 0, context);
+    return NULL;
+}
+
+static void locked_finish(void *task, void *user) { (void)task, (void)user; }
+
+/* The task system is called inside steps and restores (this scene's snapshot from outside
+ * is checked on it; a kept one is too small to spread): a game's job system that calls on the
+ * world from there (to destroy a body, step again, destroy the world) is refused, and the
+ * step or restore goes on unharmed. */
+static void test_calls_from_the_task_system_are_locked_and_say_so(void **state)
+{
+    scene *s = *state;
+    static locked_run l;
+    locked_run_init(&l, s);
+    rg_task_system tasks = { 2, locked_enqueue, locked_finish, &l };
+    assert_ok(rg_world_set_task_system(s->w, &tasks));
+    SUCCEEDS(s, rg_world_step(s->w, (rg_real)DT));
+    assert_true(l.calls > 0);
+    l.calls = 0;
+    SUCCEEDS(s, rg_world_restore(s->w, l.snap, l.snap_size));
+    assert_true(l.calls > 0);
+    assert_ok(rg_world_set_task_system(s->w, NULL));
+    SUCCEEDS(s, rg_world_set_gravity(s->w, v2(0, -9)));
+}
+
+/* The allocator: the scene's counting allocator, which runs locked_calls once when armed. */
+static locked_run *alloc_run;
+
+static void *locked_alloc_fn(void *user, void *ptr, size_t old_size, size_t new_size)
+{
+    locked_run *l = alloc_run;
+    if (l != NULL && new_size > 0) {
+        alloc_run = NULL;
+        l->calls++;
+        locked_calls(l);
+    }
+    return test_alloc_fn(user, ptr, old_size, new_size);
+}
+
+static int locked_alloc_setup(void **state) { return scene_setup_on(state, locked_alloc_fn); }
+
+/* Armed, the allocator's next allocation runs locked_calls; `call` must make one and
+ * succeed with "" (the refused calls' errors are not its own). */
+#define ALLOC_LOCKED(s, l, call)                                 \
+    do {                                                         \
+        (l)->calls = 0;                                          \
+        alloc_run = (l);                                         \
+        SUCCEEDS((s), call);                                     \
+        assert_true((l)->calls == 1 && alloc_run == NULL);       \
+    } while (0)
+
+/* The allocator is called from inside the calls that grow the world (a body, a step's
+ * scratch, a slot): what it calls on the world that would change it is refused. */
+static void test_calls_from_the_allocator_are_locked_and_say_so(void **state)
+{
+    scene *s = *state;
+    static locked_run l;
+    locked_run_init(&l, s);
+    rg_body nb = 0;
+    /* bodies until one grows the body storage */
+    long before = s->ta.calls;
+    for (int k = 0; k < 1000 && s->ta.calls == before; k++) {
+        alloc_run = &l;
+        l.calls = 0;
+        SUCCEEDS(s, rg_body_create(s->w, RG_BODY_DYNAMIC, 1, v2(40 + k, 40), &nb));
+    }
+    assert_true(s->ta.calls > before && l.calls == 1 && alloc_run == NULL);
+    for (int k = 0; k < 600; k++) make_body(s->w, 1, 100 + 3 * (k / 2), 50);
+    ALLOC_LOCKED(s, &l, rg_world_step(s->w, (rg_real)DT)); /* the integrator's scratch grows */
+    ALLOC_LOCKED(s, &l, rg_world_save_slot(s->w, 2));
+    SUCCEEDS(s, rg_world_set_gravity(s->w, v2(0, -9)));
+}
+
+/* A draw's callbacks: a change of the world in the middle of the walk is refused. */
+static void locked_draw_box(rg_body body, rg_vec2 lower, rg_vec2 upper, uint32_t rgba, void *user)
+{
+    (void)body, (void)lower, (void)upper, (void)rgba;
+    locked_run *l = user;
+    if (l->calls++ == 0) locked_calls(l);
+}
+
+static void locked_draw_circle(rg_body body, rg_vec2 center, rg_real radius, uint32_t rgba, void *user)
+{
+    (void)center, (void)radius;
+    locked_draw_box(body, center, center, rgba, user);
+}
+
+static void test_calls_from_a_draw_are_locked_and_say_so(void **state)
+{
+    scene *s = *state;
+    static locked_run l;
+    locked_run_init(&l, s);
+    rg_debug_draw d;
+    memset(&d, 0, sizeof d);
+    d.circle = locked_draw_circle;
+    d.box = locked_draw_box;
+    d.flags = RG_DRAW_SHAPES;
+    d.user = &l;
+    SUCCEEDS(s, rg_world_draw(s->w, &d));
+    assert_true(l.calls > 0);
+    SUCCEEDS(s, rg_world_set_gravity(s->w, v2(0, -9)));
 }
 
 /* ---------------------------------------------------------------- out of memory */
@@ -466,6 +593,10 @@ int main(void)
         T(test_queries_events_draw_and_counts_fail_and_say_why),
         T(test_a_null_world_is_refused_everywhere),
         T(test_calls_from_inside_a_step_are_locked_and_say_so),
+        T(test_calls_from_the_task_system_are_locked_and_say_so),
+        cmocka_unit_test_setup_teardown(test_calls_from_the_allocator_are_locked_and_say_so, locked_alloc_setup,
+                                        scene_teardown),
+        T(test_calls_from_a_draw_are_locked_and_say_so),
         T(test_out_of_memory_says_what_could_not_grow),
         T(test_out_of_memory_in_the_collision_scratch),
     };

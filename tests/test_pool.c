@@ -8,6 +8,8 @@ static rg_mem heap(void)
     rg_mem m;
     m.fn = mem_default_alloc;
     m.user = NULL;
+    m.locked = NULL; /* no world */
+    m.err = NULL;
     return m;
 }
 
