@@ -646,12 +646,13 @@ RG_API int32_t rg_world_cast_shape(const rg_world *world, int32_t shape, rg_vec2
    stopped it (within rounding; never overlapping it by more than the slop), and a box or
    circle sliding over a row of flush boxes (a tile floor) does not catch on their seams;
    SLIDE takes at most 8 legs; one that would carry the body's centre past +-RG_MAX_COORD
-   stops at that edge and goes on along it, as along a wall that reports no hit.  *out_count (may be NULL) gets the number of hits, of which
-   min(count, capacity) are copied.  target is a position (each component within
-   +-RG_MAX_COORD).  The body must have a shape (else RG_ERR_INVALID_ARGUMENT); it is woken,
-   and rendering interpolates from where it was at the last step (the previous position is
-   kept) until the next step; a static body, which takes no step, is drawn where it ends at
-   once, as after rg_body_set_position. */
+   stops at that edge and goes on along it, as along a wall that reports no hit.
+   *out_count (may be NULL) gets the number of hits, of which min(count, capacity) are
+   copied.  target is a position (each component within +-RG_MAX_COORD).  The body must
+   have a shape (else RG_ERR_INVALID_ARGUMENT); it is woken, and rendering interpolates from
+   where it was at the last step (the previous position is kept) until the next step; a
+   static body, which takes no step, is drawn where it ends at once, as after
+   rg_body_set_position. */
 RG_API rg_status rg_body_move(rg_world *world, rg_body body, rg_vec2 target, uint32_t mask,
                               int32_t response, rg_vec2 *out_position, rg_ray_hit *out_hits,
                               int32_t capacity, int32_t *out_count);

@@ -122,6 +122,32 @@ static rg_real mover_visit(void *p, int32_t slot, rg_real max_t)
     return t;
 }
 
+/* Where a leg p + r * t, t in [0, 1], takes the body's centre past +-RG_MAX_COORD (the range
+ * of every position, as bounds.c keeps it): the t at which it reaches the edge, and in
+ * *axes the edges it meets there (1 x, 2 y); 1 and 0 when the leg ends in range.  p is in
+ * range, so r's component toward an edge it crosses is not 0. */
+static rg_real mover_edge(rg_vec2 p, rg_vec2 r, int *axes)
+{
+    const rg_real c = (rg_real)RG_MAX_COORD;
+    rg_vec2 e = rg_v2_add(p, r); /* as the leg's end is computed */
+    rg_real tx = 1, ty = 1;
+    *axes = 0;
+    if (rg_fabs(e.x) <= c && rg_fabs(e.y) <= c) return 1;
+    if (rg_fabs(e.x) > c) tx = rg_clamp(((r.x > 0 ? c : -c) - p.x) / r.x, 0, 1);
+    if (rg_fabs(e.y) > c) ty = rg_clamp(((r.y > 0 ? c : -c) - p.y) / r.y, 0, 1);
+    rg_real t = rg_min(tx, ty);
+    *axes = (rg_fabs(e.x) > c && tx == t ? 1 : 0) | (rg_fabs(e.y) > c && ty == t ? 2 : 0);
+    return t;
+}
+
+/* p with each component within +-RG_MAX_COORD: p itself when it is in range, as every
+ * position is but where rounding takes a leg that ends on the edge past it. */
+static rg_vec2 mover_clamp(rg_vec2 p)
+{
+    const rg_real c = (rg_real)RG_MAX_COORD;
+    return rg_v2(rg_clamp(p.x, -c, c), rg_clamp(p.y, -c, c));
+}
+
 RG_API rg_status rg_body_move(rg_world *world, rg_body body, rg_vec2 target, uint32_t mask,
                               int32_t response, rg_vec2 *out_position, rg_ray_hit *out_hits,
                               int32_t capacity, int32_t *out_count)
@@ -159,17 +185,33 @@ RG_API rg_status rg_body_move(rg_world *world, rg_body body, rg_vec2 target, uin
         rg_vec2 rem = total;
         rg_real travelled = 0;
         for (int leg = 0; leg < MOVER_LEGS && (rem.x != 0 || rem.y != 0); leg++) {
+            int axes;
+            rg_real edge = mover_edge(pos, rem, &axes);
             q.p = pos;
             q.r = rem;
             q.hit = 0;
             broadphase_sweep(&world->coll.bp, pos, rem, q.h.x, q.h.y, 0, mover_visit, &q);
             rg_real len = rg_v2_len(rem);
-            if (!q.hit) {
+            if (!q.hit && axes == 0) {
                 pos = rg_v2_add(pos, rem);
                 break;
             }
+            if (!q.hit || q.t > edge) {
+                /* the centre meets the range's edge first: it stops on it and goes on along
+                 * it, as along a wall that reports no hit (the target is in range: only a
+                 * turn of the slide, or rounding, takes a leg past the edge) */
+                const rg_real c = (rg_real)RG_MAX_COORD;
+                pos = mover_clamp(rg_v2(pos.x + rem.x * edge, pos.y + rem.y * edge));
+                if (axes & 1) pos.x = rem.x > 0 ? c : -c;
+                if (axes & 2) pos.y = rem.y > 0 ? c : -c;
+                travelled += len * edge;
+                rem = rg_v2_scale(rem, 1 - edge);
+                if (axes & 1) rem.x = 0;
+                if (axes & 2) rem.y = 0;
+                continue;
+            }
             /* stop where it meets the surface; what is left goes on along it (slide) */
-            pos = rg_v2(pos.x + rem.x * q.t, pos.y + rem.y * q.t);
+            pos = mover_clamp(rg_v2(pos.x + rem.x * q.t, pos.y + rem.y * q.t));
             travelled += len * q.t;
             q.best.fraction = length > 0 ? rg_min(travelled / length, 1) : 0;
             if (q.count < q.cap) out_hits[q.count] = q.best;

@@ -1,6 +1,6 @@
 /* test_mover.c: the character mover: sliding into a corner ends flush at any speed, tile
  * seams do not snag, touch stops, cross reports, one-way shapes, bad input, and moves among
- * random shapes never end inside one. */
+ * random shapes never end inside one, and a slide near the edge of the range stops on it. */
 #include "testutil.h"
 
 #define SLOP 0.005
@@ -284,6 +284,63 @@ static void test_a_static_body_the_mover_carries_is_drawn_where_it_ends(void **s
     rg_world_destroy(w);
 }
 
+/* The edge k of the range (0 top, 1 bottom, 2 left, 3 right): its outward normal e, and
+ * the direction d of the moves along it. */
+static const double edge_e[4][2] = { { 0, 1 }, { 0, -1 }, { -1, 0 }, { 1, 0 } };
+static const double edge_d[4][2] = { { 1, 0 }, { -1, 0 }, { 0, -1 }, { 0, 1 } };
+
+/* The point u along the edge k (along d) and h toward it (along e). */
+static rg_vec2 edge_point(int k, double u, double h)
+{
+    return v2((rg_real)(edge_d[k][0] * u + edge_e[k][0] * h), (rg_real)(edge_d[k][1] * u + edge_e[k][1] * h));
+}
+
+/* 1000 m short of an edge of the range (+-RG_MAX_COORD, 1e9 m), a circle or a box of
+ * 1000 m moves 1e6 m along the edge and meets the upper side of a round post, which turns
+ * the slide toward the edge: the slide stops on the edge and goes on along it, at each of
+ * the four edges, for a dynamic and a static body.  The end is in range
+ * (rg_body_set_position takes it back, and a step stops nothing), on the edge, and 2e5 m
+ * and more on along it; the post is the only hit (the edge reports none).  (Before, the
+ * slide went on 4e5 to 5e5 m past the edge, where rg_body_set_position refused the body's
+ * own position, the next step's range guard stopped a dynamic body, and a static one stayed
+ * out of range for good.) */
+static void test_a_slide_near_the_edge_of_the_range_stops_at_the_edge(void **state)
+{
+    (void)state;
+    const double c = RG_MAX_COORD, h = c - 1000;
+    for (int k = 0; k < 4; k++) {
+        for (int shape = 0; shape < 2; shape++) {
+            for (int type = 0; type < 2; type++) {
+                rg_world *w = gravity_world(0);
+                rg_vec2 at = edge_point(k, 3000, h - 1500);
+                rg_body post = circle_body(w, RG_BODY_STATIC, 0, at.x, at.y, 1000);
+                int32_t t = type ? RG_BODY_STATIC : RG_BODY_DYNAMIC;
+                at = edge_point(k, 0, h);
+                rg_body b = shape ? circle_body(w, t, 1, at.x, at.y, 1000) : box_body(w, t, 1, at.x, at.y, 1000, 1000);
+                rg_vec2 end;
+                rg_ray_hit hits[8];
+                int32_t n = -1;
+                assert_ok(rg_body_move(w, b, edge_point(k, 1e6, h), ALL, RG_MOVE_SLIDE, &end, hits, 8, &n));
+                rg_vec2 p = pos_of(w, b);
+                assert_true(p.x == end.x && p.y == end.y);
+                if (!(fabs((double)p.x) <= c && fabs((double)p.y) <= c))
+                    fail_msg("edge %d, shape %d, type %d: ends at (%.9g, %.9g), out of range", k, shape, type,
+                             (double)p.x, (double)p.y);
+                /* on the edge, and gone on along it */
+                assert_true(edge_e[k][0] * (double)p.x + edge_e[k][1] * (double)p.y == c);
+                assert_true(edge_d[k][0] * (double)p.x + edge_d[k][1] * (double)p.y > 2e5);
+                assert_int_equal(n, 1);
+                assert_true(hits[0].body == post);
+                assert_true(surface_gap(w, b, post) > -SLOP - gap_rounding(w, b, post));
+                assert_ok(rg_body_set_position(w, b, p));
+                assert_ok(rg_world_step(w, (rg_real)DT));
+                assert_int_equal(rg_world_get_stopped(w, NULL, 0), 0);
+                rg_world_destroy(w);
+            }
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -295,6 +352,7 @@ int main(void)
         cmocka_unit_test(test_bad_input_is_rejected_and_changes_nothing),
         cmocka_unit_test(test_moves_among_random_shapes_never_end_inside_one),
         cmocka_unit_test(test_a_static_body_the_mover_carries_is_drawn_where_it_ends),
+        cmocka_unit_test(test_a_slide_near_the_edge_of_the_range_stops_at_the_edge),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
