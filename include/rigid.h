@@ -175,7 +175,13 @@ RG_API rg_status rg_world_get_integrator(const rg_world *world, int32_t *out_int
  * forces -> integrate -> range guard -> collide -> speed limits -> sleep -> range guard ->
  * events -> clear applied forces (collide, sleep and the second guard when the world has
  * shapes).  The range guard (see rg_world_get_stopped) keeps every body's state finite and
- * ends every step in range. */
+ * ends every step in range.  What a step needs is allocated before it changes anything:
+ * RG_ERR_OUT_OF_MEMORY changes nothing.  The one exception is the contacts of new pairs,
+ * which come to light in the middle of the step: a step that cannot store them all runs
+ * without those it could not store (they are neither solved nor touching in it, and are
+ * looked for again in the next step), and the next step first grows the contact storage,
+ * and fails (RG_ERR_OUT_OF_MEMORY, nothing changed) while it cannot: no body goes on
+ * through what it meets while memory is short. */
 RG_API rg_status rg_world_step(rg_world *world, rg_real dt);
 
 /* The step rg_world_advance takes (0 < dt <= RG_MAX_DT) and the most steps one advance may
@@ -189,10 +195,12 @@ RG_API rg_status rg_world_get_fixed_step(const rg_world *world, rg_real *out_dt,
  * The state after k fixed steps is bit-identical whatever frame times fed the accumulator.
  * The contact events read after it (rg_world_get_contact_events) are those of every step it
  * took, in step order; none when it took no step.  Their buffer grows as needed and then
- * stays (no allocation in steady state); if it cannot grow for a later step, the advance
- * stops after the steps whose events it holds and still returns RG_OK: *out_steps tells how
- * many, the time of the others stays in the accumulator (rg_world_get_alpha may read 1 or
- * more) and the next advance takes them.  No event is lost and the simulation is the same. */
+ * stays (no allocation in steady state); if it cannot grow for a later step, or a step
+ * could not store its new contacts (rg_world_step) and the storage cannot grow for the
+ * next, the advance stops after the steps it took and still returns RG_OK: *out_steps
+ * tells how many, the time of the others stays in the accumulator (rg_world_get_alpha may
+ * read 1 or more) and the next advance takes them (or fails, changing nothing, as a step
+ * does).  No event is lost and the simulation is the same. */
 RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *out_steps);
 /* accumulator / fixed dt after the last advance: the blend factor for rendering, in [0, 1)
  * (1 or more only after an advance that stopped early for lack of memory; see above). */

@@ -37,17 +37,15 @@ void contact_release(rg_world *w)
     cs->cap = 0;
 }
 
-/* Doubles contact storage (contacts, awake list) with what is sized by it (solver rows,
+/* Grows contact storage (contacts, awake list) to cap with what is sized by it (solver rows,
  * event buffer); all-or-nothing.  The event buffer keeps the events held and room for the
  * current step at the new capacity. */
-static rg_status contact_grow(rg_world *w)
+static rg_status contact_grow_to(rg_world *w, int32_t cap)
 {
     collide_world *cw = &w->coll;
     contact_store *cs = &cw->contacts;
     const rg_mem *m = &w->mem;
     int32_t old = cs->cap;
-    if (old > INT32_MAX / 8) return RG_ERR_CAPACITY;
-    int32_t cap = old < 256 ? 256 : old * 2;
     event_store ev;
     rg_status st = events_alloc(&ev, &cw->events, m, cap);
     if (st != RG_OK) return st;
@@ -84,6 +82,21 @@ static rg_status contact_grow(rg_world *w)
     }
     return RG_OK;
 }
+
+/* Doubles contact storage, or where that is more memory than there is, grows it by a
+ * quarter, then by a sixteenth (the new ids come lowest first whatever the size). */
+static rg_status contact_grow(rg_world *w)
+{
+    int32_t old = w->coll.contacts.cap;
+    if (old > INT32_MAX / 8) return RG_ERR_CAPACITY;
+    if (old < 256) return contact_grow_to(w, 256);
+    rg_status st = contact_grow_to(w, old * 2);
+    if (st == RG_ERR_OUT_OF_MEMORY) st = contact_grow_to(w, old + old / 4);
+    if (st == RG_ERR_OUT_OF_MEMORY) st = contact_grow_to(w, old + old / 16);
+    return st;
+}
+
+rg_status contact_reserve(rg_world *w) { return contact_grow(w); }
 
 void contact_awake_add(contact_store *cs, int32_t id)
 {

@@ -21,6 +21,9 @@ void contact_release(struct rg_world *w);
 /* A new contact between body slots s and t (materials mixed, linked, awake when either body
  * is), or -1 when memory runs out. */
 int32_t contact_create(struct rg_world *w, int32_t s, int32_t t);
+/* Grows the storage (as contact_create does when it is full): RG_OK, RG_ERR_OUT_OF_MEMORY or
+ * RG_ERR_CAPACITY, changing nothing. */
+rg_status contact_reserve(struct rg_world *w);
 /* Unlinks and frees contact id; a touching one reports its end (events.h). */
 void contact_destroy(struct rg_world *w, int32_t id);
 /* Mixes the materials of the contacts of body slot s again. */

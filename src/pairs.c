@@ -218,6 +218,7 @@ int pairs_find(rg_world *w)
             broadphase_query(bp, e->lx, e->ly, e->ux, e->uy, pairs_visit, &q);
         }
         woke |= q.woke;
+        cw->pairs_short |= q.failed;
         if (q.failed)
             bp->e[s].moved = 2; /* out of memory: search again next step */
         else

@@ -264,6 +264,9 @@ typedef struct collide_world {
     void *scratch;
     size_t scratch_size;
     int32_t scap;
+    /* A pair search ran out of contact storage (pairs.c): its bodies search again in the
+     * next step, which first grows the storage, or fails changing nothing (step.c). */
+    int32_t pairs_short;
 
     /* what the scene uses */
     int32_t shape_count;

@@ -5,6 +5,7 @@
 #include "arg.h"
 #include "bounds.h"
 #include "collide.h"
+#include "contact.h"
 #include "continuous.h"
 #include "events.h"
 #include "force.h"
@@ -88,6 +89,16 @@ static void step_run(rg_world *w, rg_real dt)
     w->step_count++;
 }
 
+/* The contact storage a pair search ran out of (pairs.c: its bodies search again in this
+ * step), grown before the step changes anything. */
+static rg_status step_contacts_owed(rg_world *w)
+{
+    if (!w->coll.pairs_short) return RG_OK;
+    rg_status st = contact_reserve(w);
+    if (st == RG_OK) w->coll.pairs_short = 0;
+    return st;
+}
+
 /* What a step allocates, before anything changes, so that a failing step changes nothing;
  * `func` is the entry point that steps. */
 static rg_status step_prepare(rg_world *w, const char *func)
@@ -96,6 +107,8 @@ static rg_status step_prepare(rg_world *w, const char *func)
     if (st != RG_OK) return error_alloc(w, func, st, "integrator scratch", "RG_MAX_BODIES");
     st = collide_prepare(w);
     if (st != RG_OK) return error_alloc(w, func, st, "collision scratch", "RG_MAX_BODIES");
+    st = step_contacts_owed(w);
+    if (st != RG_OK) return error_alloc(w, func, st, "contact storage", "2^28 contacts");
     return RG_OK;
 }
 
@@ -138,10 +151,11 @@ RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *
     world->accumulator += (double)frame_time;
     while (world->accumulator >= world->fixed_dt && steps < world->max_steps) {
         /* The first step's events always fit (their room comes with the contact storage);
-         * a later one needs room after the events held.  Without it the advance stops here
-         * and the steps not taken wait in the accumulator for the next advance: no event
-         * is lost and the simulation is the same, only later. */
-        if (steps > 0 && events_reserve(world) != RG_OK) {
+         * a later one needs room after the events held, and the contacts the step before
+         * could not store.  Without it the advance stops here and the steps not taken
+         * wait in the accumulator for the next advance: no event is lost and the
+         * simulation is the same, only later. */
+        if (steps > 0 && (events_reserve(world) != RG_OK || step_contacts_owed(world) != RG_OK)) {
             cut = 1;
             break;
         }

@@ -756,8 +756,10 @@ static void *capped_allocf(void *user, void *ptr, size_t old_size, size_t new_si
  * remembered for the rest of the search.  Unlike tests/test_contact.c, where every
  * allocation of the step fails, the cap here lets the first grows succeed (2,048 contacts
  * are stored) and refuses the one that crosses it, in the middle of the search.  The bound:
- * a step that cannot grow learns it once, so it is refused at most the blocks of one grow:
- * contact_grow asks for 5 (events 2, solver rows 1, contacts and their awake list 2).
+ * a step that cannot grow learns it once, so it is refused at most the blocks of one grow
+ * at each of its three sizes: contact_grow asks for 5 a size (events 2, solver rows 1,
+ * contacts and their awake list 2).  A step after one that ran short grows the storage
+ * before it changes anything, and fails (RG_ERR_OUT_OF_MEMORY) when it cannot.
  * Once the cap is lifted the next step stores every pair again: all 300 * 299 / 2 overlap,
  * as the centres lie within 3 m of each other, far less than the 20 m two circles of radius
  * 10 need to part. */
@@ -774,8 +776,10 @@ static void test_a_step_out_of_memory_gives_up_growing_at_once(void **state)
     }
     for (int k = 0; k < 3; k++) {
         cap.refused = 0;
-        assert_ok(rg_world_step(w, (rg_real)(1.0 / 60)));
-        if (cap.refused > 5) fail_msg("step %d had %ld allocations refused", k + 1, cap.refused);
+        rg_status st = rg_world_step(w, (rg_real)(1.0 / 60));
+        /* the first runs short; a later one grows (by a smaller size) and runs, or fails */
+        assert_true(st == RG_OK || (k > 0 && st == RG_ERR_OUT_OF_MEMORY));
+        if (cap.refused > 15) fail_msg("step %d had %ld allocations refused", k + 1, cap.refused);
         assert_true(cap.refused > 0);   /* the fixture: the cap does bite */
         int32_t touching = rg_world_touching_count(w);
         assert_true(touching > 0 && touching < N * (N - 1) / 2);
