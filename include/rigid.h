@@ -185,7 +185,9 @@ RG_API rg_status rg_world_get_integrator(const rg_world *world, int32_t *out_int
 RG_API rg_status rg_world_step(rg_world *world, rg_real dt);
 
 /* The step rg_world_advance takes (0 < dt <= RG_MAX_DT) and the most steps one advance may
- * take (>= 1).  Changing them keeps the accumulated time. */
+ * take (>= 1).  Changing them keeps the accumulated time: after a shorter step than the time
+ * held, the next advance takes the steps it owes, and rg_world_get_alpha reads 1 or more
+ * until then. */
 RG_API rg_status rg_world_set_fixed_step(rg_world *world, rg_real dt, int32_t max_steps_per_advance);
 RG_API rg_status rg_world_get_fixed_step(const rg_world *world, rg_real *out_dt,
                                          int32_t *out_max_steps);
@@ -203,11 +205,12 @@ RG_API rg_status rg_world_get_fixed_step(const rg_world *world, rg_real *out_dt,
  * does).  No event is lost and the simulation is the same. */
 RG_API rg_status rg_world_advance(rg_world *world, rg_real frame_time, int32_t *out_steps);
 /* accumulator / fixed dt after the last advance: the blend factor for rendering, in [0, 1)
- * (1 or more only after an advance that stopped early for lack of memory; see above). */
+ * (1 or more only while the next advance owes steps: after an advance that stopped early
+ * for lack of memory, see above, or a shorter fixed step than the time held). */
 RG_API rg_status rg_world_get_alpha(const rg_world *world, rg_real *out_alpha);
 /* prev + alpha * (current - prev), where prev is the position before the last step taken
- * by rg_world_advance.  After a direct rg_world_step, or a set_position, it is the current
- * position. */
+ * by rg_world_advance, with alpha at most 1 (never ahead of the current position).  After a
+ * direct rg_world_step, or a set_position, it is the current position. */
 RG_API rg_status rg_body_get_interpolated_position(const rg_world *world, rg_body body,
                                                    rg_vec2 *out);
 /* The bodies the last rg_world_step, or the steps of the last rg_world_advance, stopped at

@@ -136,7 +136,9 @@ RG_API rg_status rg_body_get_interpolated_position(const rg_world *world, rg_bod
         out->y = b->y[i];
         return RG_OK;
     }
-    rg_real alpha = (rg_real)(world->accumulator / world->fixed_dt);
+    /* at most 1: where the next advance owes steps (memory, a shorter fixed step), the
+     * current position, never one ahead of it */
+    rg_real alpha = (rg_real)rg_min(world->accumulator / world->fixed_dt, 1.0);
     out->x = b->px[i] + alpha * (b->x[i] - b->px[i]);
     out->y = b->py[i] + alpha * (b->y[i] - b->py[i]);
     return RG_OK;

@@ -224,7 +224,8 @@ static void test_cap_on_steps_stops_a_spiral_of_death(void **state)
 }
 
 /* alpha = leftover / dt, and the interpolated position blends the positions before and
- * after the last step; a teleport or a direct step shows the current position. */
+ * after the last step; a teleport or a direct step shows the current position, and so does
+ * a state that owes steps (alpha >= 1). */
 static void test_alpha_and_interpolated_position(void **state)
 {
     (void)state;
@@ -244,6 +245,17 @@ static void test_alpha_and_interpolated_position(void **state)
     /* before the last step x = 0.25, after it x = 0.5: halfway is 0.375 */
     assert_near(ip.x, 0.375, 8 * REAL_EPS);
     assert_near(ip.y, -0.75, 8 * REAL_EPS);
+    /* a shorter fixed step keeps the time held: 0.125 s is 12.5 steps of 0.01 owed, alpha
+     * says so, and the position drawn is the current one, not 12.5 steps ahead of it */
+    assert_ok(rg_world_set_fixed_step(w, (rg_real)0.01, 8));
+    assert_ok(rg_world_get_alpha(w, &alpha));
+    assert_near(alpha, 12.5, 32 * REAL_EPS);
+    assert_ok(rg_body_get_interpolated_position(w, b, &ip));
+    rg_vec2 now = pos_of(w, b);
+    assert_true(ip.x == now.x && ip.y == now.y);
+    assert_ok(rg_world_advance(w, 0, &steps)); /* the owed steps, 8 at most */
+    assert_int_equal(steps, 8);
+    assert_ok(rg_world_set_fixed_step(w, (rg_real)0.25, 8));
     assert_ok(rg_body_set_position(w, b, v2(10, 10)));
     assert_ok(rg_body_get_interpolated_position(w, b, &ip));
     assert_true(ip.x == 10 && ip.y == 10);
