@@ -1,5 +1,6 @@
 -- bench_sandbox.lua: what the work the sandbox charges by size costs, the figures its
--- charges and its time limit are set from (lua/lcount.c, lua/lsandbox.c).
+-- charges and its time limit are set from (lua/lcount.c, lua/lsandbox.c, and the snapshots'
+-- in lua/lsnapshot.c).
 --   build/rigid lua/bench_sandbox.lua --budget 0       (make bench-lua)
 -- Each figure the best of 5 runs; CPU time from os.clock.
 local RUNS = 5
@@ -57,6 +58,37 @@ local function forward(...)
   for _ = 1, 100 do sink(...) end
 end
 line("f(...) of 200,000 values", best(function() forward(table.unpack(one)) end), 100 * N, "per value passed")
+one, sparse, chain = nil, nil, nil
+collectgarbage()
+
+-- Snapshots (lua/lsnapshot.c): a world of 10,000 circles in a pile.
+local rigid = require "rigid"
+local w = rigid.world{}
+w:body{ type = "static", x = 0, y = -5, aabb = { 1000, 5 } }
+for i = 1, 10000 do
+  w:body{ x = (i % 200) * 2, y = (i // 200) * 2, vx = i % 7 - 3, circle = 0.5 + (i % 5) / 10 }
+end
+for _ = 1, 10 do w:step(1 / 60) end
+local snap = w:save()
+local clone = rigid.world{}
+clone:restore(snap)
+line(("world:save, %.1f MiB"):format(#snap / 2 ^ 20), best(function() w:save() end), #snap, "per byte")
+line("world:restore into a clone", best(function() clone:restore(snap) end), #snap, "per byte")
+line("world:save_slot", best(function() w:save_slot(0) end), #snap, "per byte")
+line("world:restore_slot", best(function() w:restore_slot(0) end), #snap, "per byte")
+line("world:hash", best(function() w:hash() end), #snap, "per byte")
+local bad = "rgluasn1" .. string.pack("<I4", #snap) .. string.rep("\0", #snap + 8)
+line("world:restore of a corrupted body list", best(function() pcall(w.restore, w, bad) end), #bad, "per byte")
+bad = nil
+local held = {}
+local d = rigid.world{}
+for i = 1, 10000 do held[i] = d:body{ x = 3 * i, circle = 1 } end
+for i = 1, 10000 do held[i]:destroy() end
+local empty = d:save()
+line("world:restore, a destroyed body's value held", best(function() d:restore(empty) end), #held, "per value")
+held, w, clone, d = nil, nil, nil, nil
+collectgarbage()
+
 local n = 0
 line("a VM instruction (n = n + i)", best(function()
   for i = 1, 10000000 do n = n + i end

@@ -245,8 +245,8 @@ static int scene_step(host *h, double dt)
     }
     /* frame_time equals the fixed step exactly (both rg_real), so each advance takes one. */
     if (rg_world_advance(w, (rg_real)dt, &taken) != RG_OK) {
+        fprintf(stderr, "rigid: %s\n", rg_world_last_error(w));
         lua_pop(L, 1);
-        fprintf(stderr, "rigid: advance failed\n");
         return 0;
     }
     h->steps_taken += taken;
@@ -437,7 +437,7 @@ int main(int argc, char **argv)
             lsvg_free(h.rec);
             return 1;
         }
-        lhtml_capture_print(L, h.replay);
+        lhtml_capture_print(L, h.replay, lsandbox_meter(h.sb));
     }
     h.hooks.charge = host_charge;
     h.hooks.after_step = host_after_step;

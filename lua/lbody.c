@@ -513,7 +513,7 @@ static int lbody_user_data(lua_State *L)
 static int lbody_set_user_data(lua_State *L)
 {
     lbody *b = lbody_check(L, 1);
-    lua_Integer u = luaL_checkinteger(L, 2);
+    lua_Integer u = lcheck_integer(L, 2);
     rg_world *w = lbody_world_of(L, b);
     LCHECK(L, w, rg_body_set_user_data(w, b->h, (uint64_t)u), "set_user_data");
     return 0;

@@ -81,9 +81,18 @@ uint32_t lcheck_optmask(lua_State *L, int i)
     return lua_isnoneornil(L, i) ? 0xFFFFFFFFu : lcheck_mask(L, i);
 }
 
+/* luaL_checkinteger takes a string of digits too ("3"), and reads all of it in C: one a
+ * script made may be megabytes long, so it is charged first, a unit a byte (as tonumber is,
+ * lua/lcount.c; 0.9 ns a byte). */
+lua_Integer lcheck_integer(lua_State *L, int i)
+{
+    if (lua_type(L, i) == LUA_TSTRING) lworld_charge(L, (double)lua_rawlen(L, i));
+    return luaL_checkinteger(L, i);
+}
+
 int32_t lcheck_int32(lua_State *L, int i, int32_t lo, int32_t hi, const char *msg)
 {
-    lua_Integer v = luaL_checkinteger(L, i);
+    lua_Integer v = lcheck_integer(L, i);
     luaL_argcheck(L, v >= lo && v <= hi, i, msg);
     return (int32_t)v;
 }

@@ -211,11 +211,19 @@ static void log_text(lhtml *r, const char *s, size_t n)
     if (!r->log.failed) r->lines[r->nlines - 1].len += (uint32_t)n;
 }
 
-/* print, as Lua's own (luaB_print), that also logs. */
+/* print, as Lua's own (luaB_print), that also logs; charged as the sandbox's is (upvalue 2,
+ * the meter, or nil): its strings' bytes, before anything is written. */
 static int lhtml_print(lua_State *L)
 {
     lhtml *r = (lhtml *)lua_touserdata(L, lua_upvalueindex(1));
+    const lpattern_meter *m = (const lpattern_meter *)lua_touserdata(L, lua_upvalueindex(2));
     int n = lua_gettop(L), i;
+    if (m != NULL) {
+        size_t bytes = 0;
+        for (i = 1; i <= n; i++)
+            if (lua_type(L, i) == LUA_TSTRING) bytes += lua_rawlen(L, i);
+        if (bytes > 0) m->charge(L, m->ud, bytes);
+    }
     log_begin(r);
     for (i = 1; i <= n; i++) {
         size_t len;
@@ -234,10 +242,14 @@ static int lhtml_print(lua_State *L)
     return 0;
 }
 
-void lhtml_capture_print(lua_State *L, lhtml *r)
+void lhtml_capture_print(lua_State *L, lhtml *r, const lpattern_meter *meter)
 {
+    union { const lpattern_meter *c; void *p; } u;   /* stored, never written through */
+    u.c = meter;
     lua_pushlightuserdata(L, r);
-    lua_pushcclosure(L, lhtml_print, 1);
+    if (meter != NULL) lua_pushlightuserdata(L, u.p);
+    else lua_pushnil(L);
+    lua_pushcclosure(L, lhtml_print, 2);
     lua_setglobal(L, "print");
 }
 

@@ -6,6 +6,8 @@
 
 #include <lua.h>
 
+#include "lpattern.h"
+
 typedef struct lhtml lhtml;
 
 /* NULL when out of memory.  Uses malloc, not the script's allocator, and bounds what it
@@ -19,8 +21,10 @@ void lhtml_free(lhtml *r);
 void lhtml_restart(lhtml *r);
 
 /* Replaces the global `print` of L with one that prints as Lua's does and also logs the
- * line, stamped with the frame the script sees (the last recorded).  r must outlive L. */
-void lhtml_capture_print(lua_State *L, lhtml *r);
+ * line, stamped with the frame the script sees (the last recorded), and that charges meter
+ * (NULL: none) a unit per byte of its string arguments before it writes, as the sandbox's
+ * print does (lcount.c).  r and meter must outlive L. */
+void lhtml_capture_print(lua_State *L, lhtml *r, const lpattern_meter *meter);
 
 /* Records one frame of the world value at world_idx, at simulated time t (s). */
 void lhtml_record(lhtml *r, lua_State *L, int world_idx, double t);

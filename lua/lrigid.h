@@ -39,8 +39,9 @@ typedef struct lrigid_body_info {
 
 typedef struct lrigid_hooks {
     /* Cost of work done in C on the script's behalf (a world:step by the touching pairs,
-     * awake bodies and springs it leaves; bodies visited by a query), in units comparable
-     * to VM instructions.  Must not raise. */
+     * awake bodies and springs it leaves; bodies visited by a query; a snapshot saved,
+     * restored or hashed by its bytes), in units comparable to VM instructions.  Must not
+     * raise. */
     void (*charge)(lua_State *L, void *ud, double units);
     /* Called after world:step or world:advance took `steps` (> 0) steps; the world is at
      * stack index world_index.  May raise a Lua error, which reaches the script. */

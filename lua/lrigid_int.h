@@ -38,6 +38,8 @@ rg_vec2 lcheck_vec2(lua_State *L, int i);        /* arguments i and i + 1 */
 /* An integer in [0, 0xFFFFFFFF] (categories and masks); the optional one defaults to all. */
 uint32_t lcheck_mask(lua_State *L, int i);
 uint32_t lcheck_optmask(lua_State *L, int i);
+/* luaL_checkinteger, a string of digits charged to the host by its length first. */
+lua_Integer lcheck_integer(lua_State *L, int i);
 /* An integer in [lo, hi]; msg says what is wrong when it is outside. */
 int32_t lcheck_int32(lua_State *L, int i, int32_t lo, int32_t hi, const char *msg);
 int lcheck_boolean(lua_State *L, int i);

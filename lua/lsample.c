@@ -119,7 +119,10 @@ static int32_t track_of(lsample *s, const rg_world *w, rg_body body)
 
 static void name_track(lsample *s, lsample_track *tr, const lrigid_body_info *info)
 {
-    size_t n = info->name != NULL ? strlen(info->name) : 0;
+    size_t n = 0;
+    /* Only what is kept is read: a script's name may be megabytes long, given to any number
+     * of bodies, and strlen would read it whole for each, where no budget sees it. */
+    while (info->name != NULL && n <= NAME_MAX && info->name[n] != '\0') n++;
     tr->named = 1;
     tr->serial = (long long)info->serial;
     tr->type = info->type;

@@ -249,6 +249,11 @@ static void meter_charge(lua_State *L, void *ud, size_t units)
     charge_now(L, (lsandbox *)ud, (double)units);
 }
 
+const lpattern_meter *lsandbox_meter(const lsandbox *sb)
+{
+    return &sb->meter;
+}
+
 /* ---------------------------------------------------------------- safe library functions */
 
 /* The reader of a load(function): the script's reader (upvalue 1), its pieces charged to

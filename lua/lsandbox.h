@@ -7,6 +7,8 @@
 
 #include <lua.h>
 
+#include "lpattern.h"
+
 typedef struct lsandbox lsandbox;
 
 /* A new state whose allocations stop at memory_limit bytes (0: no cap) and whose every entry
@@ -57,6 +59,9 @@ void lsandbox_set_time_limit(lsandbox *sb, double seconds);
 /* Adds units of work done in C on the script's behalf.  Never raises: when the budget runs
  * out the script stops at its next instruction. */
 void lsandbox_charge(lua_State *L, lsandbox *sb, double units);
+/* The meter the sandbox's own library functions charge (raising once the budget is spent),
+ * for a host's replacement of one of them; it lives as long as sb. */
+const lpattern_meter *lsandbox_meter(const lsandbox *sb);
 
 /* "file:line" where the count hook last saw the script in the current (or last) entry, or
  * "": the best position there is for a memory error, which Lua raises without a handler. */

@@ -5,8 +5,12 @@
  * A snapshot string holds the library's snapshot and the binding's list of the live bodies
  * (handle, creation serial, name), which the library does not keep.  Restoring it puts every
  * body value where the restored world says it is: a value of a body alive in the snapshot is
- * live again (the same value when still held, else a new one with the saved name), every
- * other value is a destroyed body's.  Nothing changes unless all of it succeeds.
+ * live again (the same value when the world still holds it for that handle, else a new one
+ * with the saved name), every other value is a destroyed body's.  A handle the world gave
+ * again after a restore went back before its body's creation (the same handle, as a replay
+ * makes the same bodies) holds the new value from then on, and a snapshot of the abandoned
+ * timeline brings the body back as that value.  Nothing changes unless all of it
+ * succeeds.
  *
  * Format (little-endian, the same in the LuaJIT binding, lua/rigid_jit/snapshot.lua):
  *    0   8  "rgluasn1"
@@ -24,6 +28,19 @@ static const char lsnap_magic[8] = { 'r', 'g', 'l', 'u', 'a', 's', 'n', '1' };
 #define LSNAP_HEAD    12            /* magic and n */
 #define LSNAP_ENTRY   20            /* an entry without its name */
 #define LSNAP_NONAME  0xFFFFFFFFu
+
+/* Snapshots are charged to the host by their size, before the work wherever that size is
+ * known first (a string may be any length a script made, a body's name too, and a restore
+ * that fails has read it all the same): LSNAP_BYTE_UNITS a byte of a snapshot read or
+ * written -- the body list hashed, checked or copied here, the library's part saved,
+ * checked or loaded, the copy of the world a restore keeps -- which takes 0.7-1.7 ns, an
+ * instruction 1.1-1.4; a unit per LSNAP_HASH_BYTES of the state world:hash reads (0.06-0.1
+ * ns a byte); and LSNAP_VALUE_UNITS per body value a restore looks over, the values of
+ * destroyed bodies the script still holds included, any number of them (50-126 ns each).
+ * lua/bench_sandbox.lua times them. */
+#define LSNAP_BYTE_UNITS  1
+#define LSNAP_HASH_BYTES  8
+#define LSNAP_VALUE_UNITS 64
 
 /* ---------------------------------------------------------------- bytes */
 
@@ -47,6 +64,19 @@ static uint64_t lsnap_fnv(const unsigned char *p, size_t n)
     size_t i;
     for (i = 0; i < n; i++) h = (h ^ p[i]) * 0x100000001b3ULL;
     return h;
+}
+
+static void lsnap_charge_bytes(lua_State *L, size_t bytes)
+{
+    lworld_charge(L, (double)bytes * LSNAP_BYTE_UNITS);
+}
+
+/* The size of the world's snapshot now: what keeping, loading or hashing its state goes
+ * through (the library answers for any world that is not NULL). */
+static size_t lsnap_size(const rg_world *w)
+{
+    size_t size = 0;
+    return rg_world_save(w, NULL, 0, &size) == RG_OK ? size : 0;
 }
 
 /* ---------------------------------------------------------------- save */
@@ -101,6 +131,7 @@ static void lsnap_push(lua_State *L, rg_world *w, const lworld *lw, int with_wor
     lworld_charge(L, cap);
 
     total = LSNAP_HEAD + list + 8 + csize;
+    lsnap_charge_bytes(L, total);   /* the names copied and hashed, the world written */
     p = (unsigned char *)luaL_buffinitsize(L, &buf, total);
     memcpy(p, lsnap_magic, sizeof lsnap_magic);
     lsnap_put(p + 8, list, 4);
@@ -170,6 +201,7 @@ static size_t lsnap_read(lua_State *L, const unsigned char *s, size_t len, lsnap
     if (n > len - LSNAP_HEAD || len - LSNAP_HEAD - n < 8)
         luaL_error(L, "restore: truncated (%I bytes; its body list alone needs %I)",
                    (lua_Integer)len, (lua_Integer)(LSNAP_HEAD + n + 8));
+    lsnap_charge_bytes(L, LSNAP_HEAD + n + 8);   /* hashed, then walked */
     if (lsnap_get(s + LSNAP_HEAD + n, 8) != lsnap_fnv(s, LSNAP_HEAD + n))
         luaL_error(L, "restore: checksum mismatch (the snapshot's body list is corrupted)");
     at = s + LSNAP_HEAD;
@@ -242,8 +274,10 @@ static void lsnap_prepare(lua_State *L, const lsnap_list *list)
         else lua_pushboolean(L, 0);
         lua_rawseti(L, 6, i + 1);
     }
-    /* Every other value is a destroyed body's. */
+    /* Every other value is a destroyed body's.  The values the script holds may be any
+     * number: charged by the count. */
     for (i = 7; i <= 8; i++) {
+        double values = 0;
         lua_pushnil(L);
         while (lua_next(L, i) != 0) {
             lua_pushvalue(L, -2);
@@ -253,7 +287,9 @@ static void lsnap_prepare(lua_State *L, const lsnap_list *list)
                 lua_rawset(L, 4);
             }
             lua_pop(L, 2);
+            values++;
         }
+        lworld_charge(L, values * LSNAP_VALUE_UNITS);
     }
     lua_settop(L, 6);
 }
@@ -323,12 +359,14 @@ static int lsnap_restore(lua_State *L)
     /* The library checks its snapshot; whether the list names the bodies it holds shows only
      * once it is loaded, so the world's state is kept to put back. */
     LCHECK(L, w, rg_world_save(w, NULL, 0, &bsize), "restore");
+    lsnap_charge_bytes(L, bsize + (len - at));   /* the backup written, the library's part read */
     backup = lua_newuserdatauv(L, bsize, 0);
     LCHECK(L, w, rg_world_save(w, backup, bsize, &bsize), "restore");
     lworld_charge(L, (double)rg_world_body_count(w) + list.count);
     LCHECK(L, w, rg_world_restore(w, s + at, len - at), "restore");
     if (!lsnap_matches(w, &list)) {
         int32_t n = rg_world_body_count(w);
+        lsnap_charge_bytes(L, bsize);
         st = rg_world_restore(w, backup, bsize);
         if (st != RG_OK) return lcheck_status(L, w, st, "restore (putting the world back)");
         return luaL_error(L, "restore: the snapshot's body list does not match its world "
@@ -357,6 +395,7 @@ static int lsnap_save_slot(lua_State *L)
     int32_t slot = lsnap_slot(L);
     lua_settop(L, 1);
     lsnap_push(L, w, (const lworld *)lua_touserdata(L, 1), 0, "save_slot");   /* the list */
+    lsnap_charge_bytes(L, lsnap_size(w));
     LCHECK(L, w, rg_world_save_slot(w, slot), "save_slot");
     lua_getiuservalue(L, 1, LWORLD_UV_KEPT);
     lua_pushvalue(L, -2);
@@ -384,6 +423,8 @@ static int lsnap_restore_slot(lua_State *L)
     if (!lsnap_matches(w, &list))   /* they were kept together: never */
         return luaL_error(L, "restore_slot: slot %d's state does not match its body list", (int)slot);
     lsnap_commit(L, lw, &list);
+    /* the kept state loaded, its size known only now (a charge never raises) */
+    lsnap_charge_bytes(L, lsnap_size(w));
     return 0;
 }
 
@@ -404,6 +445,7 @@ static int lsnap_hash(lua_State *L)
 {
     rg_world *w = lworld_checkopen(L, 1);
     uint64_t h = 0;
+    lworld_charge(L, (double)(lsnap_size(w) / LSNAP_HASH_BYTES));
     LCHECK(L, w, rg_world_hash(w, &h), "hash");
     lua_pushinteger(L, (lua_Integer)h);   /* the 64 bits, as lbody.c keys handles */
     return 1;
