@@ -14,7 +14,7 @@ typedef struct rg_mem {
     char *err;       /* the world's last error, which the allocator's own calls leave alone */
 } rg_mem;
 
-/* The allocator, with the world's lock taken and its last error kept (world.c). */
+/* The allocator, with the world's lock taken and its last error kept (mem.c). */
 void *mem_call_locked(const rg_mem *m, void *p, size_t old_size, size_t new_size);
 
 /* The allocator called with the world locked, so that a call it makes on the world that
