@@ -41,6 +41,8 @@ void resolve_layout(mem_layout *l, resolve_state *s, int32_t n)
     s->sv = mem_take(l, (size_t)n, 2 * sizeof(rg_real));
     s->spv = mem_take(l, (size_t)n, 2 * sizeof(rg_real));
     s->stoi = mem_take(l, (size_t)n, sizeof(rg_real));
+    s->spush = mem_take(l, (size_t)n, sizeof(uint8_t));
+    s->spn = mem_take(l, (size_t)n, 2 * sizeof(rg_real));
     s->sstamp = mem_take(l, (size_t)n, sizeof(uint32_t));
     s->cmask = mem_take(l, (size_t)n, sizeof(uint32_t));
     s->sbody = mem_take(l, (size_t)n, sizeof(int32_t));
@@ -103,6 +105,7 @@ typedef struct resolve_task {
     rg_real *v, *pv;
     int32_t r0;
     int what, timed;
+    int placed;     /* the integrator is not semi-implicit Euler (resolve_body) */
     int listed;     /* the body passes walk the list of the bodies the rows meet (solver_rows_few) */
     int32_t nbody;  /* listed: how many (rs->sbody) */
     int32_t bands;  /* the colour passes run in bands (bands.h) when above 1 */
@@ -144,6 +147,23 @@ static FORCE_INLINE void resolve_body(const resolve_task *t, int what, int32_t q
             b->vy[i] = v[2 * q + 1];
             v[2 * q] = fx + dvx * after;
             v[2 * q + 1] = fy + dvy * after;
+        } else if (t->placed && rs->spush[q]) {
+            /* The rows hold semi-implicit Euler's positions, x0 + v dt.  Another integrator's
+             * free motion (dx: views_build) ends a term o = dx - v_free dt off it (a*dt^2 for
+             * explicit Euler, a*dt^2 / 2 for Verlet and RK4) that the rows never saw: a body
+             * the rows push moves from where the step began, x0 + v dt, along their normal
+             * (so a body resting on the ground stays where it is, at rest), and keeps o
+             * across it (a force pushing it along the ground keeps the integrator's order).
+             * Pushed along several normals, it moves by x0 + v dt alone.  A timed body keeps
+             * o (its impact is timed on the same motion, and an elastic bounce keeps the
+             * integrator's energy), and a body no row pushes keeps its own motion. */
+            rg_real ox = b->dx[i] - b->vx[i] * dt, oy = b->dy[i] - b->vy[i] * dt;
+            rg_real nx = rs->spn[2 * q], ny = rs->spn[2 * q + 1];
+            rg_real across = rs->spush[q] == 1 ? nx * oy - ny * ox : 0; /* o along (-ny, nx) */
+            b->x[i] = (b->x[i] - b->dx[i]) + v[2 * q] * dt - across * ny;
+            b->y[i] = (b->y[i] - b->dy[i]) + v[2 * q + 1] * dt + across * nx;
+            b->vx[i] = v[2 * q];
+            b->vy[i] = v[2 * q + 1];
         } else {
             b->x[i] += dvx * dt;
             b->y[i] += dvy * dt;
@@ -235,7 +255,7 @@ static FORCE_INLINE void resolve_bodies_as(const resolve_task *t, int what, int3
     }
     int32_t q = k0;
 #if RG_AVX2_PATHS
-    if (__builtin_cpu_supports("avx2")) {
+    if (__builtin_cpu_supports("avx2") && !(what == RESOLVE_MOVE && t->placed)) {
         for (; k1 - q >= 8; q += 8) {
             if (resolve_met8(rs, q)) {
                 resolve_eight(t, what, q);
@@ -566,6 +586,29 @@ static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void 
     }
 }
 
+/* Where the rows push each movable body they meet (rs->spush, spn): under the integrators
+ * other than semi-implicit Euler, for resolve_body's move. */
+static void resolve_pushed(resolve_state *rs, const solver_constraint *con, int32_t nc)
+{
+    for (int32_t k = 0; k < nc; k++) rs->spush[con[k].a] = rs->spush[con[k].b] = 0;
+    for (int32_t k = 0; k < nc; k++) {
+        if (!(con[k].pn > 0)) continue;
+        int32_t ab[2] = {con[k].ima > 0 ? con[k].a : 0, con[k].imb > 0 ? con[k].b : 0};
+        for (int e = 0; e < 2; e++) {
+            int32_t q = ab[e];
+            if (q == 0) continue; /* the ground, or a kinematic body: the rows never move it */
+            rg_real *n = rs->spn + 2 * q;
+            if (rs->spush[q] == 0) {
+                n[0] = con[k].nx;
+                n[1] = con[k].ny;
+                rs->spush[q] = 1;
+            } else if (rg_fabs(n[0] * con[k].ny - n[1] * con[k].nx) > RG_R(1e-3)) {
+                rs->spush[q] = 2; /* another direction (parallel ones, opposite too, are one) */
+            }
+        }
+    }
+}
+
 void resolve_run(rg_world *w, collide_step *x)
 {
     collide_world *cw = &w->coll;
@@ -591,6 +634,7 @@ void resolve_run(rg_world *w, collide_step *x)
     t.v = v;
     t.pv = rs->spv;
     t.timed = continuous_time_impacts(w, x);
+    t.placed = w->integrator != RG_INTEGRATOR_SEMI_IMPLICIT_EULER;
     resolve_head h;
     h.t = &t;
     task_for(w, resolve_head_range, 2, 1, &h);
@@ -625,6 +669,7 @@ void resolve_run(rg_world *w, collide_step *x)
     solver_fixed_rows(con, rows->fixed, h.nfixed, v, 0);
     /* positions move with the solved velocities, then by the pseudo-velocities of the
      * position pass, which leave the velocities alone */
+    if (t.placed) resolve_pushed(rs, con, nc);
     /* the body passes: the list of the bodies the rows meet, or every awake body */
     int32_t first = t.listed ? 0 : 1, bodies = t.listed ? t.nbody : ns;
     resolve_pass(&t, RESOLVE_MOVE, first, bodies);

@@ -234,6 +234,11 @@ typedef struct resolve_state {
     rg_real *sv;              /* q: solver velocities, pairs */
     rg_real *spv;             /* q: pseudo-velocities of the position pass, pairs */
     rg_real *stoi;            /* q: fraction of the step at which its velocity changes */
+    uint8_t *spush;           /* q: the rows that push it (pn > 0) in this solve: 0 none, 1
+                                 along one normal (spn), 2 along several; written for the
+                                 bodies the rows meet, under the integrators other than
+                                 semi-implicit Euler only (resolve.c) */
+    rg_real *spn;             /* q: that normal, pairs */
     int32_t pv_valid;         /* spv holds this step's position pass */
     uint32_t *cmask;          /* q: colouring, the colours each body is in */
     int32_t *sbody;           /* the solver bodies the rows meet, each once (stamping order),

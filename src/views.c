@@ -48,6 +48,7 @@ void views_record_start(rg_world *w)
 typedef struct views_task {
     rg_world *w;
     collide_step *x;
+    int vdt; /* the narrowphase sees the free motion as v dt (views_build) */
 } views_task;
 
 /* The fat box of a body at (x1, y1) with half extents (hx, hy) that moved by (mx, my) this
@@ -99,6 +100,11 @@ AVX2_FN static void views_eight(const views_task *t, int32_t k, int32_t i)
     _mm256_storeu_si256(cf, _mm256_andnot_si256(_mm256_set1_epi32((int)CF_GROUNDED), _mm256_loadu_si256(cf)));
     /* the records: sx sy dx dy vx vy hx hy, then gs im kind pad */
     __m256 r[8] = { sx, sy, mx, my, _mm256_loadu_ps(ns->svx0 + k), _mm256_loadu_ps(ns->svy0 + k), h0, h1 };
+    if (t->vdt) {
+        __m256 dt = _mm256_set1_ps(t->x->p.dt);
+        r[2] = _mm256_mul_ps(_mm256_loadu_ps(b->vx + i), dt);
+        r[3] = _mm256_mul_ps(_mm256_loadu_ps(b->vy + i), dt);
+    }
     avx2_transpose8(r);
     __m256i type = _mm256_loadu_si256((const __m256i *)(const void *)(b->type + i));
     __m256 dyn = _mm256_castsi256_ps(_mm256_cmpeq_epi32(type, _mm256_set1_epi32(RG_BODY_DYNAMIC)));
@@ -181,8 +187,8 @@ static void views_range(int32_t begin, int32_t end, int32_t worker, void *contex
             cbody v;
             v.sx = sx0[k];
             v.sy = sy0[k];
-            v.dx = mx;
-            v.dy = my;
+            v.dx = t->vdt ? b->vx[i] * t->x->p.dt : mx;
+            v.dy = t->vdt ? b->vy[i] * t->x->p.dt : my;
             v.vx = svx0[k];
             v.vy = svy0[k];
             v.hx = h0;
@@ -203,7 +209,12 @@ static void views_range(int32_t begin, int32_t end, int32_t worker, void *contex
 
 void views_build(rg_world *w, collide_step *x, rg_real dt)
 {
-    views_task t = { w, x };
+    /* The narrowphase sees each body move by v dt, its velocity after integration: the
+     * motion the solver's rows hold (x0 + v dt), semi-implicit Euler's.  Another integrator's
+     * own motion (b->dx, mx above) ends an a*dt^2 term off it; with it the narrowphase would
+     * find a pair apart at the end of the step that the rows stop at the surface (landing
+     * with no impact, its velocity into the surface, to bounce off it in the next step). */
+    views_task t = { w, x, w->integrator != RG_INTEGRATOR_SEMI_IMPLICIT_EULER };
     views_state *ns = &w->coll.views;
     const body_store *b = &w->b;
     task_for(w, views_range, x->na, VIEWS_RANGE, &t);
