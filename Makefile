@@ -7,8 +7,9 @@
 #                        (CC=clang for clang's; each compiler builds in its own folder)
 #   make fuzz            the libFuzzer harnesses of tests/fuzz, FUZZ_SECONDS each (clang)
 #   make tsan            the threaded tests under ThreadSanitizer (clang)
-#   make test-aarch64, test-i386, test-s390x   the C tests built for that machine, run
-#                        under qemu-user (32-bit x86; s390x is big-endian)
+#   make test-aarch64, test-armhf, test-i386, test-s390x   the C tests built for that
+#                        machine, run under qemu-user (32-bit ARM and x86; s390x is
+#                        big-endian)
 #   make test-tcc        the library and the C tests built by tcc (tools/tcc.mk)
 #   make install PREFIX=/usr/local   (and make uninstall; DESTDIR for staging)
 REAL ?= float
@@ -68,11 +69,14 @@ ALL_TARGETS := $(LIB_A) $(LIB_SO)
 TEST_RUNS := check-c check-ffi check-readme check-exports check-modules check-install
 .DEFAULT_GOAL := all
 # Other machines, each a Debian cross gcc and its qemu-user (tools/install-deps.sh --cross):
-# the snapshots across machines (tools/snapshot.mk) and make test-aarch64 / i386 / s390x.
-CROSS_MACHINES := aarch64 i386 s390x
+# the snapshots across machines (tools/snapshot.mk) and make test-aarch64 / armhf / i386 /
+# s390x.
+CROSS_MACHINES := aarch64 armhf i386 s390x
 CROSS_TESTS := $(patsubst %,test-%,$(CROSS_MACHINES))
 CROSS_CC_aarch64 ?= aarch64-linux-gnu-gcc
 CROSS_RUN_aarch64 ?= qemu-aarch64
+CROSS_CC_armhf ?= arm-linux-gnueabihf-gcc
+CROSS_RUN_armhf ?= qemu-arm
 CROSS_CC_i386 ?= i686-linux-gnu-gcc
 CROSS_RUN_i386 ?= qemu-i386
 CROSS_CC_s390x ?= s390x-linux-gnu-gcc
@@ -117,10 +121,10 @@ check-c: $(TEST_BINS)
 	@fail=0; for t in $(TEST_BINS); do echo "== $$t"; $(TEST_RUN) $$t || fail=1; done; exit $$fail
 
 # The C tests built for another machine with Debian's cross gcc (CROSS_CC_* above) and run
-# under qemu-user, pinned hashes included: make test-aarch64, test-i386 (SSE2 arithmetic,
-# FPMATH above; 32-bit pointers and sizes; a 64-bit kernel may not run 32-bit programs
-# itself; an x87 build is refused first), test-s390x (big-endian).  tools/install-deps.sh
-# --aarch64 / --i386 / --s390x.
+# under qemu-user, pinned hashes included: make test-aarch64, test-armhf (32-bit ARM, hard
+# float), test-i386 (SSE2 arithmetic, FPMATH above; 32-bit pointers and sizes; a 64-bit
+# kernel may not run 32-bit programs itself; an x87 build is refused first), test-s390x
+# (big-endian).  tools/install-deps.sh --aarch64 / --armhf / --i386 / --s390x.
 $(CROSS_TESTS): test-%:
 	@echo "== the C tests on $* (under $(CROSS_RUN_$*)), $(REAL)"
 	@$(MAKE) --no-print-directory B=$(B)/$*-tests REAL=$(REAL) CC="$(CROSS_CC_$*)" EXTRA_CFLAGS= \

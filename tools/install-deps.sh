@@ -3,12 +3,13 @@
 # there.  --bench adds the peers of the side-by-side benchmark (Box2D 2.4, Chipmunk 7);
 # --charts adds gnuplot; --love adds LOVE and a headless X server for the LOVE game's test
 # (make test skips it without them); --browser adds Chromium for the replay viewer's test
-# and bench (make test skips it without); --cross adds the aarch64, 32-bit x86 and s390x
-# cross compilers and qemu-user for the snapshot's across-machines check (make test skips a
-# machine without them); --fuzz adds clang's sanitizer and libFuzzer runtimes (make fuzz,
-# make sanitize CC=clang); --aarch64, --i386 and --s390x add Debian's architecture of that
-# name (arm64 for aarch64), cmocka for it, its cross compiler and qemu-user (make
-# test-aarch64, test-i386, test-s390x); --tcc adds the Tiny C Compiler (make test-tcc).
+# and bench (make test skips it without); --cross adds the aarch64, 32-bit ARM, 32-bit x86
+# and s390x cross compilers and qemu-user for the snapshot's across-machines check (make
+# test skips a machine without them); --fuzz adds clang's sanitizer and libFuzzer runtimes
+# (make fuzz, make sanitize CC=clang); --aarch64, --armhf, --i386 and --s390x add Debian's
+# architecture of that name (arm64 for aarch64), cmocka for it, its cross compiler and
+# qemu-user (make test-aarch64, test-armhf, test-i386, test-s390x); --tcc adds the Tiny C
+# Compiler (make test-tcc).
 # clang is always installed: make test compares the state hash of a clang build with gcc's.
 # Uses sudo when not root.
 set -e
@@ -20,14 +21,15 @@ for arg in "$@"; do
     --charts) pkgs="$pkgs gnuplot-nox" ;;
     --love) pkgs="$pkgs love xvfb xauth" ;;
     --cross) pkgs="$pkgs gcc-aarch64-linux-gnu libc6-dev-arm64-cross gcc-i686-linux-gnu libc6-dev-i386-cross"
-        pkgs="$pkgs gcc-s390x-linux-gnu libc6-dev-s390x-cross qemu-user" ;;
+        pkgs="$pkgs gcc-arm-linux-gnueabihf libc6-dev-armhf-cross gcc-s390x-linux-gnu libc6-dev-s390x-cross qemu-user" ;;
     --aarch64) archs="$archs arm64"; pkgs="$pkgs gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user libcmocka-dev:arm64" ;;
+    --armhf) archs="$archs armhf"; pkgs="$pkgs gcc-arm-linux-gnueabihf libc6-dev-armhf-cross qemu-user libcmocka-dev:armhf" ;;
     --i386) archs="$archs i386"; pkgs="$pkgs gcc-i686-linux-gnu libc6-dev-i386-cross qemu-user libcmocka-dev:i386" ;;
     --s390x) archs="$archs s390x"; pkgs="$pkgs gcc-s390x-linux-gnu libc6-dev-s390x-cross qemu-user libcmocka-dev:s390x" ;;
     --tcc) pkgs="$pkgs tcc" ;;
     --browser) pkgs="$pkgs chromium" ;;
     --fuzz) pkgs="$pkgs libclang-rt-14-dev" ;;
-    *) echo "usage: $0 [--bench] [--charts] [--love] [--browser] [--cross] [--fuzz] [--aarch64] [--i386] [--s390x] [--tcc]" >&2; exit 2 ;;
+    *) echo "usage: $0 [--bench] [--charts] [--love] [--browser] [--cross] [--fuzz] [--aarch64] [--armhf] [--i386] [--s390x] [--tcc]" >&2; exit 2 ;;
     esac
 done
 missing=""

@@ -1,8 +1,8 @@
 # Snapshots across builds and machines (tools/snaptool.c): the state hash of one scene from
 # the default build, -O0, -O3, clang and the SSE2-only build (no AVX2 dispatch) must agree,
-# and a snapshot saved on x86-64 must continue on aarch64, 32-bit x86 and s390x (big-endian),
-# under qemu-user, to the same hash and back (CROSS_MACHINES, Makefile).  The variants build
-# into $(B)/hv-*/, the other machines' into $(B)/aarch64/, $(B)/i386/ and $(B)/s390x/.
+# and a snapshot saved on x86-64 must continue on aarch64, 32-bit ARM, 32-bit x86 and s390x
+# (big-endian), under qemu-user, to the same hash and back (CROSS_MACHINES, Makefile).  The
+# variants build into $(B)/hv-*/, the other machines' into $(B)/<machine>/.
 SNAPTOOL := $(B)/snaptool
 ALL_TARGETS += $(SNAPTOOL)
 TEST_RUNS += check-hash-variants check-cross-machine
