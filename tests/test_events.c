@@ -1,5 +1,6 @@
 /* test_events.c: contact events: one begin and one end per touch, their order, ends reported between
  * steps, the events of an advance, and their buffer's memory. */
+#include "mem.h" /* mem_default_alloc: malloc and free, as a world's allocator */
 #include "testutil.h"
 
 /* A ball (r 0.1) at 6 m/s, 0.1 m per 1/60 s step, toward a sensor 4 cm thick whose near face
@@ -17,16 +18,6 @@ static rg_world *sensor_gate(rg_alloc_fn alloc, void *user, rg_body *gate, rg_bo
     return w;
 }
 
-static void *plain_alloc(void *user, void *ptr, size_t old_size, size_t new_size)
-{
-    (void)user;
-    (void)old_size;
-    if (new_size == 0) {
-        free(ptr);
-        return NULL;
-    }
-    return realloc(ptr, new_size);
-}
 
 static void assert_gate_event(const rg_contact_event *e, int32_t kind, rg_body gate, rg_body ball)
 {
@@ -197,7 +188,7 @@ static void test_an_advance_reports_the_events_of_every_step_it_took(void **stat
 {
     (void)state;
     rg_body gate, ball;
-    rg_world *w = sensor_gate(plain_alloc, NULL, &gate, &ball);
+    rg_world *w = sensor_gate(mem_default_alloc, NULL, &gate, &ball);
     int32_t steps = 0;
     assert_ok(rg_world_advance(w, (rg_real)(4.5 * DT), &steps));
     assert_int_equal(steps, 4);
@@ -207,7 +198,7 @@ static void test_an_advance_reports_the_events_of_every_step_it_took(void **stat
     assert_gate_event(&ev[1], RG_CONTACT_END, gate, ball);
     /* the same through single steps, one event in the first and one in the fourth */
     rg_body gate2, ball2;
-    rg_world *w2 = sensor_gate(plain_alloc, NULL, &gate2, &ball2);
+    rg_world *w2 = sensor_gate(mem_default_alloc, NULL, &gate2, &ball2);
     int32_t per_step[4];
     for (int i = 0; i < 4; i++) {
         assert_ok(rg_world_step(w2, (rg_real)DT));
@@ -291,7 +282,7 @@ static void test_an_advance_out_of_memory_for_events_stops_early_and_loses_nothi
     assert_gate_event(&ev[0], RG_CONTACT_END, gate, ball);
     /* the same four steps as a fresh world's */
     rg_body gate2, ball2;
-    rg_world *w2 = sensor_gate(plain_alloc, NULL, &gate2, &ball2);
+    rg_world *w2 = sensor_gate(mem_default_alloc, NULL, &gate2, &ball2);
     for (int i = 0; i < 4; i++) assert_ok(rg_world_step(w2, (rg_real)DT));
     assert_true(pos_of(w, ball).x == pos_of(w2, ball2).x);
     rg_world_destroy(w2);
