@@ -111,7 +111,7 @@ RG_API const char *rg_status_string(rg_status s);
  *   "rg_body_set_velocity: body 0x1000001 is stale (destroyed, forged or of another world)"
  *   "rg_world_step: dt -1 is not > 0"      "rg_body_set_velocity: velocity.x is NaN"
  *   "rg_world_step: out of memory (integrator scratch)"
- *   "rg_world_set_gravity: locked: called from inside a step's callback"
+ *   "rg_world_set_gravity: locked: called from inside one of the world's callbacks"
  * and "" when that call succeeded.  Every call that takes a world sets or clears it,
  * getters, queries and counts too (a call that succeeds writes it only when it was set, so
  * successful calls only read it).  The text lives in the world, at most 199 bytes, until
@@ -698,9 +698,9 @@ RG_API rg_status rg_world_save(const rg_world *world, void *out, size_t capacity
    forged snapshot, or one from a build with another rg_real, is RG_ERR_INVALID_ARGUMENT and
    changes nothing. The pre-solve hook and allocator are the world's own, not saved.
    RG_ERR_OUT_OF_MEMORY when the world cannot grow to hold it (nothing changed either);
-   RG_ERR_LOCKED from inside a step's callback.  Every structural invariant of the state is
-   checked before anything is changed, so no snapshot, however forged, can make a later call
-   misbehave.  With a task system (rg_world_set_task_system) the checks and the load of the
+   RG_ERR_LOCKED from inside one of the world's callbacks.  Every structural invariant of
+   the state is checked before anything is changed, so no snapshot, however forged, can
+   make a later call misbehave.  With a task system (rg_world_set_task_system) the checks and the load of the
    contacts and the broadphase run on its workers, and the checksum beside the other checks;
    what is refused, and why, and what is loaded are the same as on one thread.
    A world knows its own snapshots again: once it has restored one (of any origin), it tags
@@ -740,12 +740,12 @@ enum { RG_MAX_SLOTS = 64 };
 
 /* Keeps the world's state in slot (0 <= slot < RG_MAX_SLOTS), replacing what the slot held.
    RG_ERR_OUT_OF_MEMORY when the slot's block cannot grow (the slot keeps what it held);
-   RG_ERR_LOCKED from inside a step's callback. */
+   RG_ERR_LOCKED from inside one of the world's callbacks. */
 RG_API rg_status rg_world_save_slot(rg_world *world, int32_t slot);
 
 /* Brings back the state kept in slot.  RG_ERR_INVALID_ARGUMENT for a slot out of range or
    empty, RG_ERR_OUT_OF_MEMORY when the world cannot grow to hold it, both changing nothing;
-   RG_ERR_LOCKED from inside a step's callback.  The slot keeps its state. */
+   RG_ERR_LOCKED from inside one of the world's callbacks.  The slot keeps its state. */
 RG_API rg_status rg_world_restore_slot(rg_world *world, int32_t slot);
 
 /* Frees what slot holds (an empty slot is no error); RG_ERR_INVALID_ARGUMENT out of range. */

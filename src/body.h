@@ -29,7 +29,7 @@ int32_t body_lookup(const struct rg_world *w, rg_body body);
     ERROR_BEGIN(world);          \
     BODY_LOOKUP(world, body, i)
 
-/* BODY_GET for a call that changes the world: RG_ERR_LOCKED inside a step's callback. */
+/* BODY_GET for a call that changes the world: RG_ERR_LOCKED inside one of its callbacks. */
 #define BODY_SET(world, body, i) \
     WORLD_WRITABLE(world);       \
     BODY_LOOKUP(world, body, i)

@@ -368,11 +368,12 @@ struct rg_world {
     } kept[RG_MAX_SLOTS];
 };
 
-/* At the top of every call that changes the world: ERROR_BEGIN, and RG_ERR_LOCKED inside a
- * step's callback. */
+/* At the top of every call that changes the world: ERROR_BEGIN, and RG_ERR_LOCKED inside one
+ * of the world's callbacks. */
 #define WORLD_WRITABLE(world) \
     ERROR_BEGIN(world);       \
-    if ((world)->locked) return RG_FAIL((world), RG_ERR_LOCKED, "locked: called from inside a step's callback")
+    if ((world)->locked)      \
+        return RG_FAIL((world), RG_ERR_LOCKED, "locked: called from inside one of the world's callbacks")
 
 /* A call that runs the world's callbacks holds its lock from here to its return; `locked`
  * is 0 at both ends (WORLD_WRITABLE refused the call otherwise). */
