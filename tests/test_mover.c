@@ -313,10 +313,11 @@ static void test_a_slide_near_the_edge_of_the_range_stops_at_the_edge(void **sta
             for (int type = 0; type < 2; type++) {
                 rg_world *w = gravity_world(0);
                 rg_vec2 at = edge_point(k, 3000, h - 1500);
-                rg_body post = circle_body(w, RG_BODY_STATIC, 0, at.x, at.y, 1000);
+                rg_body post = circle_body(w, RG_BODY_STATIC, 0, (double)at.x, (double)at.y, 1000);
                 int32_t t = type ? RG_BODY_STATIC : RG_BODY_DYNAMIC;
                 at = edge_point(k, 0, h);
-                rg_body b = shape ? circle_body(w, t, 1, at.x, at.y, 1000) : box_body(w, t, 1, at.x, at.y, 1000, 1000);
+                rg_body b = shape ? circle_body(w, t, 1, (double)at.x, (double)at.y, 1000)
+                                  : box_body(w, t, 1, (double)at.x, (double)at.y, 1000, 1000);
                 rg_vec2 end;
                 rg_ray_hit hits[8];
                 int32_t n = -1;
