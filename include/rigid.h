@@ -373,10 +373,10 @@ RG_API int32_t rg_spring_is_valid(const rg_world *world, uint64_t spring);
  * g*dt^2/8, and an elastic bounce (restitution 1) neither gains nor loses energy.  A landing
  * without a bounce ends its step on the surface with no velocity into it (and grounded).
  * Explicit Euler, Verlet and RK4 move a*dt^2 (or a*dt^2/2) off the x0 + v*dt the contacts
- * hold: a landing ends its step that far above the surface, at rest, and on it from the
- * next; a body whose acceleration points away from the surface it approaches (a jump into
- * a ceiling) may end a step that far inside it; a bounce with restitution below 1 may rise
- * that much above e^2 h (README, Known limits).
+ * hold: a pair is checked on both motions and an impact timed on the integrator's own, and
+ * a body the contacts stop, land or hold keeps only the part of that term that brings it to
+ * the surface, so the above holds under every integrator (README: accuracy --contacts);
+ * only a slide under friction keeps semi-implicit Euler's first-order error.
  * A body that meets two surfaces at different moments of one step, that is hit while it
  * touches something, or that lands with another movable body near it (a tower falling as
  * one) is stopped at the surface from where the step began instead: it ends the step

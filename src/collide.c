@@ -117,6 +117,9 @@ void collide_step_begin(rg_world *w, collide_step *x, rg_real dt)
     x->p.stagger = w->integrator == RG_INTEGRATOR_SEMI_IMPLICIT_EULER ? RG_R(0.5)
                  : w->integrator == RG_INTEGRATOR_EXPLICIT_EULER     ? RG_R(-0.5)
                                                                      : 0;
+    cw->offk = RG_R(0.5) - x->p.stagger;
+    if (w->integrator == RG_INTEGRATOR_SEMI_IMPLICIT_EULER) cw->offk = 0;
+    cw->offdt = dt;
     /* the direction the staging measures the rows' heights along (resolve.c orders them) */
     rg_real gx = w->gravity.x, gy = w->gravity.y, gl = rg_sqrt(gx * gx + gy * gy);
     x->down = gl > 0 && rg_finite(gl);

@@ -47,11 +47,12 @@ static inline uint32_t narrow_grounded(const rg_world *w, const contact *c, cons
  * when s0 - reach < SPECULATIVE * slop with reach <= |dA| + |dB| (1-norms bound both), and
  * finds touching only when s0 <= |r|.  The margin covers the rounding of the exact tests:
  * slop, and a few ulps of the coordinates. */
-static inline int narrow_far_apart(const cbody *A, const cbody *B, int32_t ka, int32_t kb, rg_real slop)
+static inline int narrow_far_apart(const cbody *A, const cbody *B, int32_t ka, int32_t kb, rg_real slop,
+                                    rg_real more)
 {
     rg_real gx = rg_fabs(B->sx - A->sx) - (A->hx + B->hx);
     rg_real gy = rg_fabs(B->sy - A->sy) - (A->hy + B->hy);
-    rg_real reach = rg_fabs(A->dx) + rg_fabs(A->dy) + rg_fabs(B->dx) + rg_fabs(B->dy);
+    rg_real reach = rg_fabs(A->dx) + rg_fabs(A->dy) + rg_fabs(B->dx) + rg_fabs(B->dy) + more;
     rg_real ulps = (rg_fabs(A->sx) + rg_fabs(A->sy) + rg_fabs(B->sx) + rg_fabs(B->sy) + reach +
                     A->hx + A->hy + B->hx + B->hy) * (64 * RG_EPSILON);
     rg_real need = reach + (SPECULATIVE + 1) * slop + ulps;
@@ -126,12 +127,27 @@ typedef struct narrow_task {
     int32_t sensed[RG_MAX_WORKERS];   /* the worker met a sensor pair */
 } narrow_task;
 
+/* The integrator's term o of view A's motion (collide_world's offk): the body's own motion is
+ * v dt + o, its view's v dt (views_build).  0 under semi-implicit Euler, and for a view at
+ * rest or a body with no acceleration. */
+static inline rg_vec2 narrow_off(const collide_world *cw, const cbody *A)
+{
+    rg_real k = cw->offk, dt = cw->offdt;
+    return rg_v2(-k * (A->dx - A->vx * dt), -k * (A->dy - A->vy * dt));
+}
+
 /* Whether contact c (views A, B) is skipped as far apart (narrow_far_apart): only a pair that
  * is not touching, with continuous collision.  Both the measurement and the decision take it. */
 static inline int narrow_far(const rg_world *w, const contact *c, const cbody *A, const cbody *B)
 {
     const collide_world *cw = &w->coll;
-    return cw->continuous && !(c->flags & CT_TOUCHING) && narrow_far_apart(A, B, A->kind, B->kind, cw->slop);
+    rg_real more = 0;
+    if (cw->offk > 0) {
+        /* the integrator's own motion, v dt + o, reaches as far as v dt and o together */
+        rg_vec2 oa = narrow_off(cw, A), ob = narrow_off(cw, B);
+        more = rg_fabs(oa.x) + rg_fabs(oa.y) + rg_fabs(ob.x) + rg_fabs(ob.y);
+    }
+    return cw->continuous && !(c->flags & CT_TOUCHING) && narrow_far_apart(A, B, A->kind, B->kind, cw->slop, more);
 }
 
 /* The measurement and the decision are inlined into the two walks that use them (the
@@ -258,6 +274,29 @@ static FORCE_INLINE uint32_t narrow_decide(rg_world *w, contact *c, int32_t ia, 
         rg_real nx = c->nx, ny = c->ny;
         rg_real vn0 = (B->vx - A->vx) * nx + (B->vy - A->vy) * ny;
         rg_real d = s0 + r.x * nx + r.y * ny; /* predicted separation */
+        rg_real reach_o = 0, d_o = 0, d_v = d;
+        if (cw->offk > 0) {
+            /* Explicit Euler, Verlet, RK4: the views hold v dt, the motion the rows hold; the
+             * integrator's own ends o off it, which a body the rows leave alone keeps
+             * (resolve.c).  The pair closes, touches and is solved when either motion
+             * does (d_o: the integrator's), and an impact is timed on the integrator's
+             * motion (below). */
+            rg_vec2 oa = narrow_off(cw, A), ob = narrow_off(cw, B);
+            rg_real on = (ob.x - oa.x) * nx + (ob.y - oa.y) * ny;
+            d_o = d + on;
+            if (d < 0 && !(d_o < 0) && s0 > 0 && !was) {
+                /* only v dt closes the gap (o takes the body away from the other, as
+                 * gravity over a floor): its own motion does not reach the surface in this
+                 * step, so the pair is apart, and its row holds that motion (its gap at the
+                 * start taken as s0 + o along n: vmin = -(s0 + o n) / dt, staging), for the
+                 * impact to be timed in the next step */
+                s0 += on;
+                c->s0 = s0;
+                d = d_o;
+            }
+            d = rg_min(d, d_o);
+            reach_o = rg_fabs(oa.x * nx + oa.y * ny) + rg_fabs(ob.x * nx + ob.y * ny);
+        }
         /* touching: the step ends with the pair in contact (the free motion closes the gap,
          * which the solver then holds); a slop of hysteresis keeps resting pairs steady */
         if (d <= 0 || (was && d < cw->slop)) now = CT_TOUCHING;
@@ -266,7 +305,7 @@ static FORCE_INLINE uint32_t narrow_decide(rg_world *w, contact *c, int32_t ia, 
         /* solved when the pair could close within the step: not only by the free motion
          * (d), but also when the solver stops either body (an impact below it) while the
          * other moves on, so each body's own motion toward the other counts */
-        rg_real reach = rg_fabs(A->dx * nx + A->dy * ny) + rg_fabs(B->dx * nx + B->dy * ny);
+        rg_real reach = rg_fabs(A->dx * nx + A->dy * ny) + rg_fabs(B->dx * nx + B->dy * ny) + reach_o;
         int solve = !(c->flags & CT_SENSOR) && s0 - reach < SPECULATIVE * cw->slop && rg_finite(s0) &&
                     rg_finite(vn0);
         /* one-way shapes, pass-through and the pre-solve hook may skip the pair this step */
@@ -290,6 +329,16 @@ static FORCE_INLINE uint32_t narrow_decide(rg_world *w, contact *c, int32_t ia, 
              * free motion does not close has toi -1. */
             rg_real toi = was || s0 <= 0 ? 0 : -1;
             if (d < 0) toi = s0 > 0 && !was ? s0 / (s0 - d) : 0;
+            if (d_o < 0 && toi > 0) {
+                /* timed on the integrator's own motion, which closes the gap: s0 + vn0 dt u
+                 * + q u^2 at the fraction u of the step, q = -(2 - 2 offk) o n (explicit
+                 * Euler moves by v0 dt: q 0; Verlet and RK4 by v0 dt + a dt^2 / 2: q = -o n);
+                 * its one root in (0, 1), as 2 s0 / (-b + sqrt(b^2 - 4 q s0)) */
+                rg_real bq = vn0 * cw->offdt, qq = -(2 - 2 * cw->offk) * (d_o - d_v);
+                rg_real disc = bq * bq - 4 * qq * s0, den = disc >= 0 ? -bq + rg_sqrt(disc) : 0;
+                rg_real u = den > 0 ? 2 * s0 / den : s0 / (s0 - d_o);
+                toi = u > 0 && u < 1 ? u : s0 / (s0 - d_o);
+            }
             c->toi = toi;
             if (moves) bits |= ND_STAGE;
         }
@@ -689,7 +738,8 @@ void narrow_run(rg_world *w, collide_step *x)
     narrow_task t;
     t.w = w;
     t.x = x;
-    t.wide = RG_AVX2_PATHS && narrow_wide_ready(w);
+    /* the wide code knows v dt only (narrow_decide's integrator term) */
+    t.wide = RG_AVX2_PATHS && narrow_wide_ready(w) && !(w->coll.offk > 0);
     int32_t measured = cs->n_awake, workers = task_workers(w), in_order = 0;
     /* One thread and no body asleep (so nothing wakes, and no commit changes what a later
      * decision reads): the contacts are measured, decided and committed in the one walk

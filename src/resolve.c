@@ -105,7 +105,8 @@ typedef struct resolve_task {
     rg_real *v, *pv;
     int32_t r0;
     int what, timed;
-    int placed;     /* the integrator is not semi-implicit Euler (resolve_body) */
+    int placed;     /* the integrator is not semi-implicit Euler (resolve_body): 1 explicit Euler,
+                     * 2 Verlet or RK4 */
     int listed;     /* the body passes walk the list of the bodies the rows meet (solver_rows_few) */
     int32_t nbody;  /* listed: how many (rs->sbody) */
     int32_t bands;  /* the colour passes run in bands (bands.h) when above 1 */
@@ -141,27 +142,49 @@ static FORCE_INLINE void resolve_body(const resolve_task *t, int what, int32_t q
         rg_real ti = t->timed ? rs->stoi[q] : 0;
         if (ti > 0) {
             rg_real after = 1 - ti, fx = b->vx[i], fy = b->vy[i];
+            if (t->placed) {
+                /* Explicit Euler, Verlet, RK4: the impact is timed on the integrator's own
+                 * motion (narrow_decide), and the body ends where that motion, from the
+                 * surface at t on, takes it: x0 + v dt + (v_solved - v) (1 - t) dt plus the
+                 * integrator's term o = dx - v dt (Verlet, RK4: exact under a constant
+                 * force; explicit Euler: keeps its invariant v^2/2 - a y - a dt v / 2 with
+                 * solver_vout's stagger, as semi-implicit Euler keeps its own, the impact
+                 * timed on its motion v0 dt).  Landing without a bounce (resolve_pushed's
+                 * 8), or where o takes it toward what it meets (4: a jump into a ceiling),
+                 * only the part that brings it to the surface: (2 t - t^2) o, or t o. */
+                int four = (rs->spush[q] & 12) != 0, euler = t->placed == 1;
+                rg_real keep = four ? (euler ? ti : ti * (2 - ti)) : 1;
+                rg_real drop = 1 - keep;
+                b->x[i] -= drop * (b->dx[i] - fx * dt);
+                b->y[i] -= drop * (b->dy[i] - fy * dt);
+            }
             b->x[i] += dvx * after * dt;
             b->y[i] += dvy * after * dt;
             b->vx[i] = v[2 * q];
             b->vy[i] = v[2 * q + 1];
             v[2 * q] = fx + dvx * after;
             v[2 * q + 1] = fy + dvy * after;
-        } else if (t->placed && rs->spush[q]) {
+        } else if (t->placed && (rs->spush[q] & 3)) {
             /* The rows hold semi-implicit Euler's positions, x0 + v dt.  Another integrator's
              * free motion (dx: views_build) ends a term o = dx - v_free dt off it (a*dt^2 for
              * explicit Euler, a*dt^2 / 2 for Verlet and RK4) that the rows never saw: a body
              * the rows push moves from where the step began, x0 + v dt, along their normal
              * (so a body resting on the ground stays where it is, at rest), and keeps o
              * across it (a force pushing it along the ground keeps the integrator's order).
-             * Pushed along several normals, it moves by x0 + v dt alone.  A timed body keeps
-             * o (its impact is timed on the same motion, and an elastic bounce keeps the
-             * integrator's energy), and a body no row pushes keeps its own motion. */
+             * Pushed along several normals, or held by friction (o across would creep), it
+             * moves by x0 + v dt alone; a row that does not push drops o along its normal
+             * where o takes the body toward the other one (a jump into a ceiling, which the
+             * row held only x0 + v dt away from).  A body no row pushes keeps its own motion;
+             * a timed body: above. */
             rg_real ox = b->dx[i] - b->vx[i] * dt, oy = b->dy[i] - b->vy[i] * dt;
-            rg_real nx = rs->spn[2 * q], ny = rs->spn[2 * q + 1];
-            rg_real across = rs->spush[q] == 1 ? nx * oy - ny * ox : 0; /* o along (-ny, nx) */
-            b->x[i] = (b->x[i] - b->dx[i]) + v[2 * q] * dt - across * ny;
-            b->y[i] = (b->y[i] - b->dy[i]) + v[2 * q + 1] * dt + across * nx;
+            rg_real kx = 0, ky = 0; /* o along (-ny, nx); spn is written only along one normal */
+            if ((rs->spush[q] & 3) == 1) {
+                rg_real nx = rs->spn[2 * q], ny = rs->spn[2 * q + 1], across = nx * oy - ny * ox;
+                kx = -(across * ny);
+                ky = across * nx;
+            }
+            b->x[i] = (b->x[i] - b->dx[i]) + v[2 * q] * dt + kx;
+            b->y[i] = (b->y[i] - b->dy[i]) + v[2 * q + 1] * dt + ky;
             b->vx[i] = v[2 * q];
             b->vy[i] = v[2 * q + 1];
         } else {
@@ -588,22 +611,49 @@ static void resolve_head_range(int32_t begin, int32_t end, int32_t worker, void 
 
 /* Where the rows push each movable body they meet (rs->spush, spn): under the integrators
  * other than semi-implicit Euler, for resolve_body's move. */
-static void resolve_pushed(resolve_state *rs, const solver_constraint *con, int32_t nc)
+static void resolve_pushed(resolve_state *rs, const body_store *b, const rg_real *v, rg_real dt,
+                           rg_real slop, const solver_constraint *con, int32_t nc)
 {
     for (int32_t k = 0; k < nc; k++) rs->spush[con[k].a] = rs->spush[con[k].b] = 0;
     for (int32_t k = 0; k < nc; k++) {
-        if (!(con[k].pn > 0)) continue;
+        int pushes = con[k].pn > 0;
+        if (con[k].toi > 0 && !(con[k].vmin > 0)) {
+            /* an impact that leaves no bounce (solver_vout 0): a timed body ends on the
+             * surface (bit 8, resolve_body) */
+            rs->spush[con[k].a] |= 8;
+            rs->spush[con[k].b] |= 8;
+        }
+        /* friction holds the pair (its impulse within the cone, and the pair no longer
+         * slides along it: of two rows of one sliding body, across a seam, one may end within
+         * its cone): the bodies it pushes move by x0 + v dt outright, which the friction row
+         * stopped (o across would creep) */
+        int held = 0;
+        if (pushes && rg_fabs(con[k].pt) < con[k].mu * con[k].pn) {
+            const rg_real *va = v + 2 * con[k].a, *vb = v + 2 * con[k].b;
+            rg_real vt = (vb[1] - va[1]) * con[k].nx - (vb[0] - va[0]) * con[k].ny;
+            held = rg_fabs(vt) * dt <= RG_R(1e-3) * slop;
+        }
         int32_t ab[2] = {con[k].ima > 0 ? con[k].a : 0, con[k].imb > 0 ? con[k].b : 0};
         for (int e = 0; e < 2; e++) {
             int32_t q = ab[e];
             if (q == 0) continue; /* the ground, or a kinematic body: the rows never move it */
+            /* o takes the body toward the other one (bit 4): the row held only x0 + v dt
+             * apart (a jump into a ceiling) */
+            int32_t i = q - 1;
+            rg_real on = (b->dx[i] - b->vx[i] * dt) * con[k].nx + (b->dy[i] - b->vy[i] * dt) * con[k].ny;
+            int closes = e == 0 ? on > 0 : on < 0;
+            if (!pushes && !closes) continue; /* a row that does not push: the body keeps o */
+            if (closes) rs->spush[q] |= 4;
             rg_real *n = rs->spn + 2 * q;
-            if (rs->spush[q] == 0) {
+            if (held) {
+                rs->spush[q] = (uint8_t)((rs->spush[q] & 12) | 2);
+            } else if ((rs->spush[q] & 3) == 0) {
                 n[0] = con[k].nx;
                 n[1] = con[k].ny;
-                rs->spush[q] = 1;
+                rs->spush[q] |= 1;
             } else if (rg_fabs(n[0] * con[k].ny - n[1] * con[k].nx) > RG_R(1e-3)) {
-                rs->spush[q] = 2; /* another direction (parallel ones, opposite too, are one) */
+                /* another direction (parallel ones, opposite too, are one) */
+                rs->spush[q] = (uint8_t)((rs->spush[q] & 12) | 2);
             }
         }
     }
@@ -634,7 +684,9 @@ void resolve_run(rg_world *w, collide_step *x)
     t.v = v;
     t.pv = rs->spv;
     t.timed = continuous_time_impacts(w, x);
-    t.placed = w->integrator != RG_INTEGRATOR_SEMI_IMPLICIT_EULER;
+    t.placed = w->integrator == RG_INTEGRATOR_EXPLICIT_EULER        ? 1
+             : w->integrator != RG_INTEGRATOR_SEMI_IMPLICIT_EULER ? 2
+                                                                  : 0;
     resolve_head h;
     h.t = &t;
     task_for(w, resolve_head_range, 2, 1, &h);
@@ -669,7 +721,7 @@ void resolve_run(rg_world *w, collide_step *x)
     solver_fixed_rows(con, rows->fixed, h.nfixed, v, 0);
     /* positions move with the solved velocities, then by the pseudo-velocities of the
      * position pass, which leave the velocities alone */
-    if (t.placed) resolve_pushed(rs, con, nc);
+    if (t.placed) resolve_pushed(rs, &w->b, v, x->p.dt, x->p.slop, con, nc);
     /* the body passes: the list of the bodies the rows meet, or every awake body */
     int32_t first = t.listed ? 0 : 1, bodies = t.listed ? t.nbody : ns;
     resolve_pass(&t, RESOLVE_MOVE, first, bodies);

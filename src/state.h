@@ -234,10 +234,13 @@ typedef struct resolve_state {
     rg_real *sv;              /* q: solver velocities, pairs */
     rg_real *spv;             /* q: pseudo-velocities of the position pass, pairs */
     rg_real *stoi;            /* q: fraction of the step at which its velocity changes */
-    uint8_t *spush;           /* q: the rows that push it (pn > 0) in this solve: 0 none, 1
-                                 along one normal (spn), 2 along several; written for the
-                                 bodies the rows meet, under the integrators other than
-                                 semi-implicit Euler only (resolve.c) */
+    uint8_t *spush;           /* q: the rows that push it (pn > 0) in this solve, or whose
+                                 normal the integrator's term o goes along into the other
+                                 body: (& 3) 0 none, 1 along one normal (spn), 2 along
+                                 several or held by friction; 4: o goes into one; 8: an
+                                 impact row without a bounce (vmin 0) meets it; written
+                                 for the bodies the rows meet, under the integrators other
+                                 than semi-implicit Euler only (resolve.c) */
     rg_real *spn;             /* q: that normal, pairs */
     int32_t pv_valid;         /* spv holds this step's position pass */
     uint32_t *cmask;          /* q: colouring, the colours each body is in */
@@ -282,6 +285,10 @@ typedef struct collide_world {
     rg_real sleep_speed, sleep_time;
     int32_t continuous;
     rg_real slop, bias_rate, max_push, restitution_threshold;
+    /* this step's integrator term (narrow.c): a body's own motion ends o = -offk (D - v0 dt)
+     * off the v dt = D its view holds (v0 its velocity at the step's start); offk 1 under
+     * explicit Euler, 1/2 under Verlet and RK4, 0 under semi-implicit Euler */
+    rg_real offk, offdt;
 } collide_world;
 
 /* What one step's collide stage hands from module to module: solver rows staged by the

@@ -386,6 +386,84 @@ static void test_a_box_set_on_the_floor_rests_on_it_under_every_integrator(void 
     }
 }
 
+/* Explicit Euler, Verlet and RK4 move a*dt^2 (or a*dt^2 / 2) off the x0 + v dt the contacts
+ * hold.  Until 2026-12-07 (a probe of 4a16703): a box jumping into a ceiling under gravity
+ * ended steps inside it by up to g dt^2 with no contact (30 Hz: 10.9 mm), a ball with
+ * restitution 0.5 rose up to 1.7 mm (60 Hz) above e^2 h + g dt^2 / 8, and a box static
+ * friction held against a wind crept against it by that term every step (0.25 m in 5 s).
+ * Now: no ceiling overlap beyond the slop; no rebound above e^2 h + g dt^2 / 8 (Verlet and
+ * RK4, exact in flight, leave with E = e^2 E0 to rounding); the held box does not move
+ * (build/accuracy --contacts measures these and more). */
+static void test_other_integrators_meet_ceilings_bounce_and_hold_as_they_move(void **state)
+{
+    (void)state;
+    static const int32_t integrators[] = {RG_INTEGRATOR_EXPLICIT_EULER, RG_INTEGRATOR_VELOCITY_VERLET,
+                                          RG_INTEGRATOR_RK4};
+    for (int m = 0; m < 3; m++) {
+        int32_t integ = integrators[m];
+        /* jumps at a ceiling whose bottom face is at y = 3, 30 Hz, g 9.81 */
+        for (int k = 0; k < 200; k += 3) {
+            rg_world *w = gravity_world(-9.81);
+            assert_ok(rg_world_set_integrator(w, integ));
+            box_body(w, RG_BODY_STATIC, 0, 0, 3.01, 100, 0.01);
+            rg_body b = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5 + 0.005 * k, 0.5, 0.5);
+            assert_ok(rg_body_set_velocity(w, b, v2(0, 6)));
+            for (int s = 0; s < 60; s++) {
+                assert_ok(rg_world_step(w, (rg_real)(1.0 / 30)));
+                double over = PY(w, b) + 0.5 - 3;
+                if (!(over <= 0.005 + 1e-5))
+                    fail_msg("integrator %d, start %d: %.4f m into the ceiling at step %d", integ, k, over, s);
+            }
+            rg_world_destroy(w);
+        }
+        /* drops with restitution 0.5 at 60 Hz, g 10 */
+        const double g = 10, e = 0.5;
+        for (int k = 0; k < 40; k += 3) {
+            double h = 1 + k * 0.2317;
+            rg_world *w = gravity_world(-g);
+            assert_ok(rg_world_set_integrator(w, integ));
+            floor_of(w);
+            rg_body b = circle_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5 + h, 0.5);
+            assert_ok(rg_body_set_restitution(w, b, (rg_real)e));
+            int bounced = 0, after = 0;
+            double apex = 0, energy = 0;
+            for (int s = 0; s < 400; s++) {
+                assert_ok(rg_world_step(w, (rg_real)DT));
+                double vy = VY(w, b), y = PY(w, b) - 0.5;
+                if (vy > 0 && !bounced) {
+                    bounced = s + 1;
+                    energy = 0.5 * vy * vy + g * y;
+                }
+                if (bounced && y > apex) apex = y;
+                if (bounced && vy < 0 && ++after > 1) break;
+            }
+            double rnd = 64 * REAL_EPS * (h + 1);
+            if (!(apex <= e * e * h + g * DT * DT / 8 + rnd))
+                fail_msg("integrator %d, drop %g: apex %.6f above e^2 h %.6f + g dt^2 / 8", integ, h, apex, e * e * h);
+            /* each step rounds y and v once: E/g = y + v^2 / 2g moves by at most 3 eps (h + 1) */
+            double ernd = 3 * bounced * REAL_EPS * (h + 1);
+            if (integ != RG_INTEGRATOR_EXPLICIT_EULER && !(fabs(energy / g - e * e * h) <= ernd))
+                fail_msg("integrator %d, drop %g: E/g after the bounce %.9f, e^2 h %.9f", integ, h, energy / g, e * e * h);
+            rg_world_destroy(w);
+        }
+        /* a 1 kg box on the floor (mu 0.6: 5.9 N) under a wind of 3 N, sleeping off */
+        rg_world *w = gravity_world(-9.81);
+        assert_ok(rg_world_set_integrator(w, integ));
+        assert_ok(rg_world_set_sleeping(w, 0));
+        rg_body fl = floor_of(w);
+        assert_ok(rg_body_set_friction(w, fl, 0.6));
+        rg_body b = box_body(w, RG_BODY_DYNAMIC, 1, 0, 0.5, 0.5, 0.5);
+        assert_ok(rg_body_set_friction(w, b, 0.6));
+        step_n(w, 10, DT);
+        assert_ok(rg_world_set_wind(w, v2(3, 0)));
+        double x0 = PX(w, b);
+        step_n(w, 300, DT);
+        if (!(fabs(PX(w, b) - x0) <= 8 * REAL_EPS))
+            fail_msg("integrator %d: the held box moved %.3g m in 5 s", integ, PX(w, b) - x0);
+        rg_world_destroy(w);
+    }
+}
+
 /* A ball thrown up at a ceiling (e = 1): the correction moves it up to the ceiling, against
  * gravity, and its speed is the one it has there, so E stays put there too. */
 static void test_a_bounce_off_a_ceiling_gains_no_energy(void **state)
@@ -929,6 +1007,7 @@ int main(void)
         cmocka_unit_test(test_landings_on_seams_in_corners_and_on_stacks),
         cmocka_unit_test(test_elastic_bounces_never_gain_height),
         cmocka_unit_test(test_a_box_set_on_the_floor_rests_on_it_under_every_integrator),
+        cmocka_unit_test(test_other_integrators_meet_ceilings_bounce_and_hold_as_they_move),
         cmocka_unit_test(test_a_bounce_off_a_ceiling_gains_no_energy),
         cmocka_unit_test(test_a_ball_and_a_box_rest_on_the_floor_for_ten_seconds),
         cmocka_unit_test(test_friction_stops_a_sliding_box_where_coulomb_says),

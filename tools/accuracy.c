@@ -611,7 +611,8 @@ static void usage(void)
 {
     fprintf(stderr, "usage: accuracy [--out DIR] [--quick] [--bodies N] [--reps R]\n"
                     "       accuracy --recommend [BUDGET] [--quick]\n"
-                    "       accuracy --soup [--quick]\n");
+                    "       accuracy --soup [--quick]\n"
+                    "       accuracy --contacts [--quick]\n");
     exit(2);
 }
 
@@ -619,7 +620,7 @@ int main(int argc, char **argv)
 {
     static lab L;
     const char *dir = "build/charts";
-    int quick = 0, do_recommend = 0, do_soup = 0;
+    int quick = 0, do_recommend = 0, do_soup = 0, do_contacts = 0;
     double budgets[8] = {1e-2, 1e-3, 1e-4};
     int nb = 3;
     L.bodies = 1024;
@@ -635,6 +636,8 @@ int main(int argc, char **argv)
             L.reps = atoi(argv[++i]);
         } else if (strcmp(argv[i], "--soup") == 0) {
             do_soup = 1;
+        } else if (strcmp(argv[i], "--contacts") == 0) {
+            do_contacts = 1;
         } else if (strcmp(argv[i], "--recommend") == 0) {
             do_recommend = 1;
             if (i + 1 < argc && argv[i + 1][0] != '-') {
@@ -660,12 +663,12 @@ int main(int argc, char **argv)
         fprintf(stderr, "accuracy: library/header real size mismatch\n");
         return 1;
     }
-    if (do_soup) {
+    if (do_soup || do_contacts) {
 #ifdef ACC_COLLISION
-        print_soups(quick);
-        return 0;
+        if (do_soup) print_soups(quick);
+        return do_contacts && acc_contacts_print(quick) != 0;
 #else
-        fprintf(stderr, "accuracy: --soup needs the library's collision\n");
+        fprintf(stderr, "accuracy: --soup and --contacts need the library's collision\n");
         return 1;
 #endif
     }

@@ -6,7 +6,7 @@ ACC_HDR := tools/accuracy_scenes.h tools/accuracy_collision.h
 # collision switch; until src/ implements them the lab and its test build without them.
 ACC_COLLISION := $(shell grep -qs rg_body_set_circle src/*.c && grep -qs rg_world_set_continuous src/*.c && echo 1)
 ifeq ($(ACC_COLLISION),1)
-ACC_SHARED += tools/accuracy_collision.c tools/accuracy_soup.c
+ACC_SHARED += tools/accuracy_collision.c tools/accuracy_soup.c tools/accuracy_contacts.c
 ACC_DEFS := -DACC_COLLISION
 endif
 ALL_TARGETS += $(B)/accuracy

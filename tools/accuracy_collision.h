@@ -92,4 +92,12 @@ rg_status acc_push_rebound(double ratio, double speed, int velocity_iterations, 
  * (the paddle pushes all of them ahead, or over its top). */
 rg_status acc_paddle_run(int scenes, double lo, double hi, int *out_through, int *out_bodies);
 
+/* ---------------------------------------------------------------- contacts */
+
+/* accuracy --contacts: the contact scenes of tools/accuracy_contacts.c under each integrator
+ * (jumps into a ceiling, bounces, a landing, friction holding and stopping, a pile going to
+ * sleep), a table on stdout; fewer scenes when quick.  Returns how many integrators failed
+ * to run (a status other than RG_OK). */
+int acc_contacts_print(int quick);
+
 #endif
