@@ -651,7 +651,7 @@ static void resolve_pushed(resolve_state *rs, const body_store *b, const rg_real
                 n[0] = con[k].nx;
                 n[1] = con[k].ny;
                 rs->spush[q] |= 1;
-            } else if (rg_fabs(n[0] * con[k].ny - n[1] * con[k].nx) > RG_R(1e-3)) {
+            } else if ((rs->spush[q] & 3) == 1 && rg_fabs(n[0] * con[k].ny - n[1] * con[k].nx) > RG_R(1e-3)) {
                 /* another direction (parallel ones, opposite too, are one) */
                 rs->spush[q] = (uint8_t)((rs->spush[q] & 12) | 2);
             }
