@@ -9,7 +9,7 @@
 # (make fuzz, make sanitize CC=clang); --aarch64, --armhf, --i386 and --s390x add Debian's
 # architecture of that name (arm64 for aarch64), cmocka for it, its cross compiler and
 # qemu-user (make test-aarch64, test-armhf, test-i386, test-s390x); --tcc adds the Tiny C
-# Compiler (make test-tcc).
+# Compiler (make test-tcc); --memcheck adds valgrind (make memcheck).
 # clang is always installed: make test compares the state hash of a clang build with gcc's.
 # Uses sudo when not root.
 set -e
@@ -27,9 +27,10 @@ for arg in "$@"; do
     --i386) archs="$archs i386"; pkgs="$pkgs gcc-i686-linux-gnu libc6-dev-i386-cross qemu-user libcmocka-dev:i386" ;;
     --s390x) archs="$archs s390x"; pkgs="$pkgs gcc-s390x-linux-gnu libc6-dev-s390x-cross qemu-user libcmocka-dev:s390x" ;;
     --tcc) pkgs="$pkgs tcc" ;;
+    --memcheck) pkgs="$pkgs valgrind" ;;
     --browser) pkgs="$pkgs chromium" ;;
     --fuzz) pkgs="$pkgs libclang-rt-14-dev" ;;
-    *) echo "usage: $0 [--bench] [--charts] [--love] [--browser] [--cross] [--fuzz] [--aarch64] [--armhf] [--i386] [--s390x] [--tcc]" >&2; exit 2 ;;
+    *) echo "usage: $0 [--bench] [--charts] [--love] [--browser] [--cross] [--fuzz] [--aarch64] [--armhf] [--i386] [--s390x] [--tcc] [--memcheck]" >&2; exit 2 ;;
     esac
 done
 missing=""
