@@ -54,8 +54,9 @@ typedef struct bench_scene {
     /* Called before every step with the step index, or NULL. */
     void (*drive)(const struct bench_scene *s, int32_t step, const bench_pusher *p);
     /* Rigid's gameplay collision (tools/bench_gameplay.c): BENCH_PLAIN, or with sleeping
-     * off BENCH_AWAKE, BENCH_ONE_WAY (bodies[].nx, ny set) or BENCH_PRE_SOLVE (a hook that
-     * keeps every pair). */
+     * off BENCH_AWAKE, BENCH_ONE_WAY (bodies[].nx, ny set), BENCH_PRE_SOLVE (a hook that
+     * keeps every pair), BENCH_VERLET or BENCH_RK4 (that integrator instead of the
+     * default). */
     int32_t variant;
     /* Run settings, set by the harness before each create: the same for every engine. */
     int32_t sleep;       /* 1: sleeping on, with the engine's own thresholds; 0: off */
@@ -65,7 +66,8 @@ typedef struct bench_scene {
                             substeps; Chipmunk: iterations (solver[1] unused) */
 } bench_scene;
 
-enum { BENCH_PLAIN = 0, BENCH_AWAKE = 1, BENCH_ONE_WAY = 2, BENCH_PRE_SOLVE = 3 };
+enum { BENCH_PLAIN = 0, BENCH_AWAKE = 1, BENCH_ONE_WAY = 2, BENCH_PRE_SOLVE = 3, BENCH_VERLET = 4,
+       BENCH_RK4 = 5 };
 
 /* What the contacts of the last step were: touching pairs, those of them with a one-way
  * shape, and the calls the pre-solve hook had in that step. */
@@ -156,7 +158,8 @@ typedef struct bench_scene_def {
     int sleep_default;  /* the sleeping setting it runs with when not both */
     const char *base;   /* a gameplay variant (rigid only, tools/bench_gameplay.c): the scene
                            it builds; NULL for the others */
-    int32_t variant;    /* BENCH_PLAIN, BENCH_AWAKE, BENCH_ONE_WAY, BENCH_PRE_SOLVE */
+    int32_t variant;    /* BENCH_PLAIN, BENCH_AWAKE, BENCH_ONE_WAY, BENCH_PRE_SOLVE, BENCH_VERLET,
+                           BENCH_RK4 */
 } bench_scene_def;
 
 extern const bench_scene_def bench_scenes[];

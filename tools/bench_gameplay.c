@@ -3,7 +3,10 @@
  * A variant is a plain scene (rain, boxes, platformer) with sleeping off, so that every pair
  * is solved every step and a pile's median step is its settled steady state: as it is
  * (BENCH_AWAKE, the reference), with every static box one-way, or with a pre-solve hook
- * that keeps every pair.  A pile's floor and walls then face the pile, so its bodies, which
+ * that keeps every pair, or under Verlet or RK4 (what those integrators cost in contact: their
+ * own stages, and the narrowphase's scalar path, which checks both motions; their bodies
+ * settle a little otherwise, so the piles are alike, not the same).  A pile's floor and
+ * walls then face the pile, so its bodies, which
  * only ever press against those faces, move exactly as in the reference, and the difference
  * in time per step is the cost of the feature; the platformer's tiles face up, so its
  * walkers jump up through the platforms instead of bumping into them.  The report divides
@@ -61,7 +64,8 @@ void bench_gameplay_report(const bench_gameplay_row *rows, int32_t nrows)
         const bench_gameplay_row *ref = &rows[i];
         if (ref->variant != BENCH_AWAKE) continue;
         if (!any) {
-            printf("\ngameplay collision (rigid): what one-way shapes and a pre-solve hook cost per pair.\n"
+            printf("\ngameplay collision (rigid): what one-way shapes, a pre-solve hook and the Verlet and RK4\n"
+                   "integrators cost per pair.\n"
                    "Sleeping off; median ms per step (medians over the runs); per step, means over all "
                    "steps: touching pairs,\npairs with a one-way shape, pre-solve calls.  extra: the "
                    "variant less the -awake scene, per step, per touching pair,\nand per pair "

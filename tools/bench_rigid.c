@@ -142,6 +142,10 @@ static void *rigid_create(const bench_scene *s)
 #ifdef RG_BENCH_COLLISION
     if (s->variant == BENCH_PRE_SOLVE && rg_world_set_pre_solve(c->w, rigid_keep_pair, c) != RG_OK)
         goto fail;
+    if ((s->variant == BENCH_VERLET || s->variant == BENCH_RK4) &&
+        rg_world_set_integrator(c->w, s->variant == BENCH_RK4 ? RG_INTEGRATOR_RK4 : RG_INTEGRATOR_VELOCITY_VERLET) !=
+            RG_OK)
+        goto fail;
 #else
     if (s->variant != BENCH_PLAIN) goto fail;
 #endif
